@@ -1,0 +1,26 @@
+# Every third-party package Caligo links, found once. See ../shared/DEPENDENCIES.md for the pitfalls.
+find_package(TBB CONFIG REQUIRED)
+find_package(embree 3 CONFIG REQUIRED)
+find_package(OpenEXR CONFIG REQUIRED)
+find_package(Imath CONFIG REQUIRED)
+find_package(OpenImageIO 2.4 CONFIG REQUIRED)
+find_package(nlohmann_json CONFIG REQUIRED)
+find_package(CLI11 CONFIG REQUIRED)
+find_package(fmt CONFIG REQUIRED)
+find_package(tinyobjloader CONFIG REQUIRED)
+find_package(TinyGLTF CONFIG REQUIRED)
+find_package(Threads REQUIRED)
+if(CALIGO_BUILD_TESTS)
+  find_package(GTest CONFIG REQUIRED)
+endif()
+if(CALIGO_BUILD_BENCH)
+  find_package(benchmark CONFIG REQUIRED)
+endif()
+
+# OpenImageIO's imported target names /usr/include/opencv4, which only exists with
+# libopencv-core-dev installed; CMake refuses to generate with a missing include path.
+get_target_property(_oiio_includes OpenImageIO::OpenImageIO INTERFACE_INCLUDE_DIRECTORIES)
+if(_oiio_includes)
+  list(FILTER _oiio_includes EXCLUDE REGEX "opencv4")
+  set_target_properties(OpenImageIO::OpenImageIO PROPERTIES INTERFACE_INCLUDE_DIRECTORIES "${_oiio_includes}")
+endif()

@@ -1,0 +1,61 @@
+// Reproducible sample values: every value is a pure function of
+// (seed, pixel, sample index, dimension), so an image does not depend on the thread
+// count or the order in which tiles run.
+//
+// Values come from a 2D Sobol' sequence (the first two Sobol' dimensions: van der Corput
+// and its (0,2)-partner), made independent across pixels and dimensions by hash-based
+// Owen scrambling and a per-(pixel, dimension) shuffle of the sample index (Burley 2020,
+// "Practical Hash-based Owen Scrambling"). Each 1D or 2D request is stratified over the
+// sample indices of its pixel; different dimensions are decorrelated by their hashes.
+//
+// Dimensions are named (see SampleDim) so two uses never collide silently.
+#pragma once
+
+#include <cstdint>
+
+#include "core/vec.h"
+
+namespace caligo {
+
+// Named sample dimensions. A path vertex at depth d uses
+// kBounceBase + d * kPerBounce + <offset>; camera dimensions come first.
+namespace sample_dim {
+inline constexpr uint32_t kFilm = 0;         // 2D: position inside the pixel
+inline constexpr uint32_t kLens = 1;         // 2D: aperture (reserved for depth of field)
+inline constexpr uint32_t kBounceBase = 2;
+enum Bounce : uint32_t {
+  kLightSelect = 0,      // 1D: which light for next-event estimation
+  kLightPosition,        // 2D: point / direction on that light
+  kBsdfLobe,             // 1D: reflect or refract, lobe choice
+  kBsdfDirection,        // 2D: scattered direction
+  kRussianRoulette,      // 1D: path termination
+  kPerBounce
+};
+constexpr uint32_t bounce(int depth, Bounce which) {
+  return kBounceBase + uint32_t(depth) * kPerBounce + which;
+}
+}  // namespace sample_dim
+
+class Sampler {
+ public:
+  Sampler(uint64_t seed, Vec2i pixel, uint32_t sample_index)
+      : seed_(seed), pixel_(pixel), index_(sample_index) {}
+
+  float get_1d(uint32_t dimension) const;  // in [0, 1)
+  Vec2 get_2d(uint32_t dimension) const;   // in [0, 1)^2
+
+  uint32_t sample_index() const { return index_; }
+  Vec2i pixel() const { return pixel_; }
+
+ private:
+  uint64_t seed_;
+  Vec2i pixel_;
+  uint32_t index_;
+};
+
+// The building blocks, exposed for tests and benchmarks.
+uint32_t sobol_dim0(uint32_t index);           // van der Corput (bit reversal)
+uint32_t sobol_dim1(uint32_t index);           // second Sobol' dimension
+uint32_t nested_uniform_scramble(uint32_t x, uint32_t seed);  // Owen scrambling of a 32-bit fraction
+
+}  // namespace caligo
