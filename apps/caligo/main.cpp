@@ -1,1 +1,50 @@
-int main() { return 0; }
+// caligo: the command line. Exit codes: 0 success, 1 internal error (a bug of ours),
+// 2 bad input (scene, mesh, image or command line), with a one-line message on stderr.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+
+#include "commands.h"
+#include "core/error.h"
+
+namespace {
+
+int print_error(const char* what, int code) {
+  std::fprintf(stderr, "caligo: error: %s\n", what);
+  return code;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Caligo: a renderer for participating media", "caligo"};
+  app.set_version_flag("--version", std::string("caligo ") + CALIGO_VERSION);
+  app.require_subcommand(1);
+  caligo::RenderOptions render;
+  caligo::CompareOptions compare;
+  caligo::add_render_command(app, render);
+  caligo::add_compare_command(app, compare);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    print_error(e.what(), caligo::kExitInputError);
+    std::fprintf(stderr, "run 'caligo --help' for usage\n");
+    return caligo::kExitInputError;
+  }
+  try {
+    if (app.got_subcommand("render")) return caligo::run_render(render);
+    if (app.got_subcommand("compare")) return caligo::run_compare(compare);
+  } catch (const caligo::InputError& e) {
+    return print_error(e.what(), caligo::kExitInputError);
+  } catch (const std::exception& e) {
+    return print_error((std::string("internal: ") + e.what()).c_str(), caligo::kExitInternalError);
+  }
+  return caligo::kExitInternalError;
+}

@@ -1,1 +1,125 @@
-// placeholder
+// caligo render [SCENE.json | BUILTIN] [-o out.exr] [--spp N] [--res WxH] [--threads N] [--seed S]
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "commands.h"
+#include "core/error.h"
+#include "image/exr_io.h"
+#include "image/png_io.h"
+#include "image/tonemap.h"
+#include "render/render.h"
+#include "scene/builtins.h"
+#include "scene/scene_parser.h"
+
+namespace caligo {
+
+void add_render_command(CLI::App& app, RenderOptions& o) {
+  CLI::App* cmd = app.add_subcommand("render", "Render a scene file or a built-in scene to OpenEXR + PNG");
+  cmd->add_option("scene", o.scene, "Scene file (.json) or built-in name (see --list-builtins)");
+  cmd->add_option("-o,--output", o.output, "Output OpenEXR file; a PNG preview is written beside it")
+      ->default_str("<scene name>.exr");
+  cmd->add_option("--spp", o.spp, "Samples per pixel (overrides the scene)");
+  cmd->add_option("--res", o.resolution, "Resolution WxH, e.g. 640x480 (overrides the scene)");
+  cmd->add_option("--threads", o.threads, "Worker threads (default: all cores)");
+  cmd->add_option("--seed", o.seed, "Random seed (overrides the scene)");
+  cmd->add_option("--max-depth", o.max_depth, "Maximum path depth (overrides the scene)");
+  cmd->add_option("--exposure", o.exposure, "Exposure of the PNG preview, in stops");
+  cmd->add_flag("--list-builtins", o.list_builtins, "List the built-in scenes and exit");
+  cmd->add_flag("-q,--quiet", o.quiet, "No progress output");
+}
+
+namespace {
+
+const SourceLocation kCommandLine{"command line", ""};
+
+Vec2i parse_resolution(const std::string& text) {
+  int w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X'))
+    throw InputError(kCommandLine, "--res: expected WxH such as 640x480, got \"" + text + "\"");
+  if (w < 1 || h < 1 || w > 16384 || h > 16384)
+    throw InputError(kCommandLine, "--res: each side must be between 1 and 16384, got \"" + text + "\"");
+  return {w, h};
+}
+
+SceneDesc load_scene(const std::string& name) {
+  if (name.empty()) throw InputError(kCommandLine, "no scene given (a .json file or a built-in name)");
+  if (const BuiltinScene* builtin = find_builtin(name)) return parse_scene_text(builtin->json, "builtin:" + builtin->name, ".");
+  if (!std::filesystem::exists(name)) {
+    std::string names;
+    for (const BuiltinScene& b : builtin_scenes()) names += (names.empty() ? "" : ", ") + b.name;
+    throw InputError(SourceLocation{name, ""}, "no such scene file, and no built-in of that name (built-ins: " +
+                                                   names + ")");
+  }
+  return parse_scene_file(name);
+}
+
+RenderSettings settings_from(const RenderOptions& o, const SceneDesc& desc) {
+  RenderSettings s = default_settings(desc);
+  if (o.spp) {
+    if (*o.spp < 1 || *o.spp > 1'000'000) throw InputError(kCommandLine, "--spp: expected 1 to 1000000");
+    s.spp = *o.spp;
+  }
+  if (o.resolution) s.resolution = parse_resolution(*o.resolution);
+  if (o.threads) {
+    if (*o.threads < 1 || *o.threads > 1024) throw InputError(kCommandLine, "--threads: expected 1 to 1024");
+    s.threads = *o.threads;
+  }
+  if (o.seed) s.seed = *o.seed;
+  if (o.max_depth) {
+    if (*o.max_depth < 0 || *o.max_depth > 10'000) throw InputError(kCommandLine, "--max-depth: expected 0 to 10000");
+    s.max_depth = *o.max_depth;
+  }
+  return s;
+}
+
+std::string default_output(const std::string& scene) {
+  return std::filesystem::path(scene).stem().string() + ".exr";
+}
+
+// Checks the output location before rendering, so a long render never ends in a failed write.
+void check_output(const std::filesystem::path& exr) {
+  if (exr.extension() != ".exr") throw InputError(SourceLocation{exr.string(), ""}, "output must be an .exr file");
+  const std::filesystem::path dir = exr.parent_path().empty() ? "." : exr.parent_path();
+  if (!std::filesystem::is_directory(dir))
+    throw InputError(SourceLocation{exr.string(), ""}, "output directory \"" + dir.string() + "\" does not exist");
+}
+
+void print_summary(const std::string& scene, const RenderSettings& s, const RenderStats& stats,
+                   const std::string& output) {
+  std::fprintf(stderr,
+               "caligo: %s %dx%d, %d spp: %s wall, %.3g paths/s, %.3g rays/s, %d threads -> %s\n", scene.c_str(),
+               s.resolution.x, s.resolution.y, s.spp, format_duration(stats.seconds).c_str(),
+               double(stats.paths) / stats.seconds, double(stats.rays) / stats.seconds,
+               s.threads > 0 ? s.threads : int(std::thread::hardware_concurrency()), output.c_str());
+}
+
+int list_builtins() {
+  for (const BuiltinScene& b : builtin_scenes()) std::printf("%-18s %s\n", b.name.c_str(), b.description.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int run_render(const RenderOptions& o) {
+  if (o.list_builtins) return list_builtins();
+  const SceneDesc desc = load_scene(o.scene);
+  const RenderSettings settings = settings_from(o, desc);
+  const std::filesystem::path exr = o.output.empty() ? default_output(o.scene) : o.output;
+  check_output(exr);
+  const auto scene = Scene::build(desc);
+
+  const RenderResult result = render(*scene, settings, o.quiet ? Progress::Style::kQuiet : Progress::Style::kAuto);
+  std::filesystem::path png = exr;
+  png.replace_extension(".png");
+  write_exr(exr.string(), result.image);
+  write_png(png.string(), result.image.width(), result.image.height(),
+            to_srgb8_preview(result.image, PreviewSettings{o.exposure, true}));
+  if (!o.quiet) print_summary(o.scene, settings, result.stats, exr.string());
+  return 0;
+}
+
+}  // namespace caligo

@@ -1,1 +1,61 @@
-// placeholder: not yet written
+#include "geometry/shapes.h"
+
+#include <cmath>
+
+namespace caligo {
+
+TriangleMesh box_mesh(Vec3 lo, Vec3 hi) {
+  TriangleMesh mesh;
+  for (int i = 0; i < 8; ++i)
+    mesh.positions.push_back({(i & 1) ? hi.x : lo.x, (i & 2) ? hi.y : lo.y, (i & 4) ? hi.z : lo.z});
+  // Each face as a quad (a, b, c, d) wound counter-clockwise seen from outside.
+  const uint32_t faces[6][4] = {
+      {0, 4, 6, 2},  // -x
+      {1, 3, 7, 5},  // +x
+      {0, 1, 5, 4},  // -y
+      {2, 6, 7, 3},  // +y
+      {0, 2, 3, 1},  // -z
+      {4, 5, 7, 6},  // +z
+  };
+  for (const auto& f : faces) mesh.indices.insert(mesh.indices.end(), {f[0], f[1], f[2], f[0], f[2], f[3]});
+  return mesh;
+}
+
+TriangleMesh rectangle_mesh(Vec3 corner, Vec3 edge1, Vec3 edge2) {
+  TriangleMesh mesh;
+  mesh.positions = {corner, corner + edge1, corner + edge1 + edge2, corner + edge2};
+  mesh.indices = {0, 1, 2, 0, 2, 3};
+  return mesh;
+}
+
+Sphere Sphere::make(Vec3 center, float radius, const Transform& placement) {
+  return {placement * Transform::translate(center) * Transform::scale(Vec3(radius))};
+}
+
+// Unit sphere in object space. The discriminant is formed as a * (1 - |l|^2) with l the
+// point of closest approach, which loses far less precision than b^2 - ac for distant
+// origins (Haines et al., Ray Tracing Gems, ch. 7); the roots use the stable q form.
+std::optional<SphereRoots> intersect_sphere(const Sphere& sphere, const Ray& world_ray) {
+  const Transform& to_object = sphere.object_to_world;
+  const Vec3 o = to_object.inverse().point(world_ray.origin);
+  const Vec3 d = to_object.inverse().vector(world_ray.direction);
+  const float a = dot(d, d);
+  if (!(a > 0.0f)) return std::nullopt;
+  const float b = dot(o, d);
+  const float c = dot(o, o) - 1.0f;
+  const Vec3 l = o - d * (b / a);
+  const float disc = a * (1.0f - dot(l, l));
+  if (disc < 0.0f) return std::nullopt;
+  const float q = -(b + std::copysign(std::sqrt(disc), b));
+  float t0 = q / a;
+  float t1 = q != 0.0f ? c / q : -t0;
+  if (t0 > t1) std::swap(t0, t1);
+  return SphereRoots{t0, t1};
+}
+
+Vec3 sphere_normal(const Sphere& sphere, Vec3 world_point) {
+  const Vec3 p = sphere.object_to_world.inverse().point(world_point);
+  return normalize(sphere.object_to_world.normal(p));
+}
+
+}  // namespace caligo

@@ -34,10 +34,12 @@ struct SpotLight {
 };
 
 // A spherical emitter, sampled by the cone it subtends (uniform area sampling from inside).
+// Emits outwards only, unless two_sided (then also into its interior).
 struct SphereLight {
   Vec3 center;
   float radius = 1.0f;
   RGB radiance;
+  bool two_sided = false;
 };
 
 // A parallelogram corner + s*edge1 + t*edge2, s,t in [0,1]. Emits on the side of

@@ -1,1 +1,68 @@
-// placeholder: not yet written
+#include "render/render.h"
+
+#include <atomic>
+#include <chrono>
+#include <memory>
+
+#include <tbb/global_control.h>
+
+#include "core/parallel.h"
+#include "core/sampler.h"
+#include "render/film.h"
+
+namespace caligo {
+
+RenderSettings default_settings(const SceneDesc& desc) {
+  RenderSettings s;
+  s.resolution = desc.camera.resolution;
+  s.spp = desc.render.spp;
+  s.max_depth = desc.render.max_depth;
+  s.seed = desc.render.seed;
+  return s;
+}
+
+namespace {
+
+// One tile: every pixel, every sample, in a fixed order.
+uint64_t render_tile(const Scene& scene, const Camera& camera, const RenderSettings& settings, const Tile& tile,
+                     Film& film) {
+  const PathSettings path_settings{settings.max_depth};
+  PathCounters counters;
+  for (int y = tile.y0; y < tile.y1; ++y)
+    for (int x = tile.x0; x < tile.x1; ++x)
+      for (int s = 0; s < settings.spp; ++s) {
+        const Sampler sampler(settings.seed, {x, y}, uint32_t(s));
+        const Vec2 jitter = sampler.get_2d(sample_dim::kFilm);
+        const Ray ray = camera.generate_ray({float(x) + jitter.x, float(y) + jitter.y});
+        const PathSample sample = trace_path(scene, ray, sampler, path_settings, counters);
+        film.add(x, y, sample, sample.alpha > 0.0f ? camera.depth(ray, sample.hit_t) : kInfinity);
+      }
+  return counters.rays;
+}
+
+}  // namespace
+
+RenderResult render(const Scene& scene, const RenderSettings& settings, Progress::Style progress_style) {
+  std::unique_ptr<tbb::global_control> thread_limit;
+  if (settings.threads > 0)
+    thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                         size_t(settings.threads));
+  const Camera camera = scene.camera(settings.resolution);
+  Film film(settings.resolution);
+  const auto tiles = make_tiles(settings.resolution, settings.tile_size);
+  const uint64_t paths = uint64_t(settings.resolution.x) * uint64_t(settings.resolution.y) * uint64_t(settings.spp);
+  std::atomic<uint64_t> rays{0};
+
+  const auto start = std::chrono::steady_clock::now();
+  {
+    Progress progress("render", paths, progress_style);
+    parallel_for_tiles(tiles, [&](const Tile& tile) {
+      rays.fetch_add(render_tile(scene, camera, settings, tile, film), std::memory_order_relaxed);
+      progress.advance(uint64_t(tile.x1 - tile.x0) * uint64_t(tile.y1 - tile.y0) * uint64_t(settings.spp));
+    });
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return {film.resolve(settings.spp), {seconds, paths, rays.load()}};
+}
+
+}  // namespace caligo

@@ -1,1 +1,146 @@
-// placeholder: not yet written
+#include "scene/scene.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "geometry/shapes.h"
+#include "scene/mesh_loader.h"
+
+namespace caligo {
+namespace {
+
+bool emits(const Material& m) { return !m.emission.is_black(); }
+
+// A sphere transform that is a similarity (uniform scale, rotation, translation) keeps it a
+// sphere, which the sphere light's cone sampling requires.
+std::optional<SphereLight> as_sphere_light(const Sphere& s, const Material& m) {
+  const Transform& t = s.object_to_world;
+  const float rx = length(t.vector({1, 0, 0})), ry = length(t.vector({0, 1, 0})), rz = length(t.vector({0, 0, 1}));
+  const float tolerance = 1e-4f * rx;
+  if (std::abs(rx - ry) > tolerance || std::abs(rx - rz) > tolerance ||
+      std::abs(dot(t.vector({1, 0, 0}), t.vector({0, 1, 0}))) > tolerance * rx)
+    return std::nullopt;
+  return SphereLight{t.point({}), rx, m.emission, m.two_sided_emission};
+}
+
+struct ShapeMesh {
+  const ShapeDesc& shape;
+  TriangleMesh operator()(const BoxShape& b) const { return box_mesh(b.min, b.max); }
+  TriangleMesh operator()(const RectangleShape& r) const { return rectangle_mesh(r.corner, r.edge1, r.edge2); }
+  TriangleMesh operator()(const MeshFileShape& m) const { return load_mesh(m.path, shape.where); }
+  TriangleMesh operator()(const SphereShape&) const { throw std::logic_error("spheres are not meshed"); }
+};
+
+}  // namespace
+
+std::unique_ptr<Scene> Scene::build(const SceneDesc& desc) {
+  std::unique_ptr<Scene> scene(new Scene());
+  scene->desc_ = desc;
+  scene->materials_ = desc.materials;
+  scene->lights_ = desc.lights;
+  for (const ShapeDesc& shape : desc.shapes) scene->add_shape(shape);
+  for (size_t i = 0; i < desc.lights.size(); ++i) scene->add_light_geometry(int(i));
+  scene->surfaces_.commit();
+  scene->finish_lights();
+  return scene;
+}
+
+int Scene::add_geometry(uint32_t geom_id, GeometryInfo info) {
+  if (geom_id != geometry_.size()) throw std::logic_error("Embree geometry ids must be dense");
+  geometry_.push_back(info);
+  surfaces_.set_casts_shadows(geom_id, !std::holds_alternative<NullBsdf>(materials_[size_t(info.material)].bsdf));
+  return int(geom_id);
+}
+
+void Scene::add_shape(const ShapeDesc& shape) {
+  const Material& material = materials_[size_t(shape.material)];
+  if (const auto* s = std::get_if<SphereShape>(&shape.geometry)) {
+    const Sphere sphere = Sphere::make(s->center, s->radius, shape.transform);
+    GeometryInfo info{shape.material};
+    if (emits(material)) {
+      const auto light = as_sphere_light(sphere, material);
+      if (!light) throw InputError(shape.where, "an emissive sphere must be scaled uniformly (it becomes a sphere light)");
+      info.light = int(lights_.size());
+      lights_.push_back(*light);
+    }
+    add_geometry(surfaces_.add_sphere(sphere), info);
+    return;
+  }
+  TriangleMesh mesh = std::visit(ShapeMesh{shape}, shape.geometry);
+  transform_mesh(mesh, shape.transform);
+  if (emits(material)) {
+    add_emitting_mesh(std::move(mesh), shape.material, shape.where);
+    return;
+  }
+  try {
+    add_geometry(surfaces_.add_mesh(std::move(mesh)), {shape.material});
+  } catch (const std::invalid_argument& e) {
+    throw InputError(shape.where, e.what());
+  }
+}
+
+void Scene::add_emitting_mesh(TriangleMesh mesh, int material, const SourceLocation& where) {
+  const Material& m = materials_[size_t(material)];
+  const int first = int(lights_.size());
+  for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const uint32_t* tri = &mesh.indices[3 * t];
+    lights_.push_back(TriangleLight{mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]], m.emission,
+                                    m.two_sided_emission});
+  }
+  try {
+    add_geometry(surfaces_.add_mesh(std::move(mesh)), {material, first, true});
+  } catch (const std::invalid_argument& e) {
+    throw InputError(where, e.what());
+  }
+}
+
+// Sphere and quad lights are visible: each gets geometry with a black, emitting material.
+void Scene::add_light_geometry(int index) {
+  const Light& light = lights_[size_t(index)];
+  if (const auto* s = std::get_if<SphereLight>(&light)) {
+    materials_.push_back({"<sphere light " + std::to_string(index) + ">", BlackBsdf{}, s->radiance, s->two_sided});
+    add_geometry(surfaces_.add_sphere(Sphere::make(s->center, s->radius, {})), {int(materials_.size()) - 1, index});
+  } else if (const auto* q = std::get_if<QuadLight>(&light)) {
+    materials_.push_back({"<quad light " + std::to_string(index) + ">", BlackBsdf{}, q->radiance, q->two_sided});
+    add_geometry(surfaces_.add_mesh(rectangle_mesh(q->corner, q->edge1, q->edge2)),
+                 {int(materials_.size()) - 1, index});
+  }
+}
+
+void Scene::finish_lights() {
+  const Bounds3 b = surfaces_.bounds();
+  const float radius = b.empty() ? 1.0f : std::max(1e-3f, 0.5f * length(b.diagonal()));
+  std::vector<float> weights;
+  for (size_t i = 0; i < lights_.size(); ++i) {
+    Light& light = lights_[i];
+    if (auto* d = std::get_if<DirectionalLight>(&light)) d->scene_radius = radius;
+    if (auto* e = std::get_if<EnvironmentLight>(&light)) e->scene_radius = radius;
+    if (is_infinite(light)) infinite_lights_.push_back(int(i));
+    weights.push_back(std::max(0.0f, power(light)));
+  }
+  float total = 0.0f;
+  for (float w : weights) total += w;
+  if (total > 0.0f) light_selection_ = DiscreteDistribution(weights);
+}
+
+SurfaceInteraction Scene::interaction(const Ray& ray, const SurfaceHit& hit) const {
+  const GeometryInfo& info = geometry_[hit.geom_id];
+  SurfaceInteraction si;
+  si.p = ray.at(hit.t);
+  si.ng = hit.ng;
+  si.ns = hit.ng;
+  si.material = &materials_[size_t(info.material)];
+  if (info.light >= 0) si.light = info.light + (info.light_per_primitive ? int(hit.prim_id) : 0);
+  if (!surfaces_.is_sphere(hit.geom_id)) {
+    const TriangleMesh& mesh = surfaces_.mesh(hit.geom_id);
+    if (!mesh.normals.empty()) {
+      const uint32_t* tri = &mesh.indices[3 * size_t(hit.prim_id)];
+      const float b1 = hit.uv.x, b2 = hit.uv.y, b0 = 1.0f - b1 - b2;
+      const Vec3 n = mesh.normals[tri[0]] * b0 + mesh.normals[tri[1]] * b1 + mesh.normals[tri[2]] * b2;
+      if (length_squared(n) > 0.0f) si.ns = face_forward(normalize(n), si.ng);
+    }
+  }
+  return si;
+}
+
+}  // namespace caligo

@@ -1,0 +1,29 @@
+// Renders a Scene with the path tracer into an Image with AOVs: the tile loop, the film,
+// sample generation and the statistics of the summary line.
+#pragma once
+
+#include "image/image.h"
+#include "render/progress.h"
+#include "render/render_settings.h"
+#include "scene/scene.h"
+
+namespace caligo {
+
+struct RenderStats {
+  double seconds = 0.0;
+  uint64_t paths = 0;
+  uint64_t rays = 0;
+};
+
+struct RenderResult {
+  Image image;
+  RenderStats stats;
+};
+
+RenderResult render(const Scene& scene, const RenderSettings& settings,
+                    Progress::Style progress = Progress::Style::kQuiet);
+
+// Settings from the scene's render defaults and camera resolution.
+RenderSettings default_settings(const SceneDesc& desc);
+
+}  // namespace caligo

@@ -1,0 +1,19 @@
+// Everything that says how to render (as opposed to what): passed by value, never global.
+#pragma once
+
+#include <cstdint>
+
+#include "core/vec.h"
+
+namespace caligo {
+
+struct RenderSettings {
+  Vec2i resolution{640, 480};
+  int spp = 16;
+  int max_depth = 8;
+  uint64_t seed = 0;
+  int threads = 0;        // 0: all hardware threads
+  int tile_size = 16;
+};
+
+}  // namespace caligo

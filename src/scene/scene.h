@@ -1,0 +1,69 @@
+// The immutable Scene every pipeline reads: built once from a SceneDesc, then shared
+// read-only by all render threads. Owns the Embree scene, the materials, the lights and
+// the light-selection distribution, and maps each surface hit back to its material and,
+// for emitters, to its light.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "core/sampling.h"
+#include "geometry/embree_scene.h"
+#include "lights/light.h"
+#include "materials/material.h"
+#include "scene/camera.h"
+#include "scene/scene_desc.h"
+
+namespace caligo {
+
+// What the integrator needs to know about a surface hit.
+struct SurfaceInteraction {
+  Vec3 p;                       // world position
+  Vec3 ng;                      // unit geometric normal (outward for closed shapes)
+  Vec3 ns;                      // unit shading normal, on the same side as ng
+  const Material* material = nullptr;
+  int light = -1;               // index into Scene::lights() when the surface emits
+};
+
+class Scene {
+ public:
+  // Throws InputError (located in the scene file) for meshes that fail to load or validate.
+  static std::unique_ptr<Scene> build(const SceneDesc& desc);
+
+  const SceneDesc& desc() const { return desc_; }
+  const EmbreeScene& surfaces() const { return surfaces_; }
+  const std::vector<Material>& materials() const { return materials_; }
+  const std::vector<Light>& lights() const { return lights_; }
+  const std::vector<int>& infinite_lights() const { return infinite_lights_; }
+  // Probability of picking each light for next-event estimation (proportional to power).
+  const DiscreteDistribution& light_selection() const { return light_selection_; }
+  float light_selection_pmf(int light) const { return light_selection_.empty() ? 0.0f : light_selection_.pmf(light); }
+
+  SurfaceInteraction interaction(const Ray& ray, const SurfaceHit& hit) const;
+  Camera camera(Vec2i resolution) const { return Camera(desc_.camera, resolution); }
+
+ private:
+  struct GeometryInfo {
+    int material = 0;
+    int light = -1;               // first light of this geometry, or -1
+    bool light_per_primitive = false;  // emissive meshes: one TriangleLight per triangle
+  };
+
+  Scene() = default;
+  void add_shape(const ShapeDesc& shape);
+  void add_light_geometry(int light_index);
+  void add_emitting_mesh(TriangleMesh mesh, int material, const SourceLocation& where);
+  int add_geometry(uint32_t geom_id, GeometryInfo info);
+  void finish_lights();
+
+  SceneDesc desc_;
+  EmbreeScene surfaces_;
+  std::vector<Material> materials_;
+  std::vector<GeometryInfo> geometry_;  // indexed by Embree geometry id
+  std::vector<Light> lights_;
+  std::vector<int> infinite_lights_;
+  DiscreteDistribution light_selection_;
+};
+
+}  // namespace caligo
