@@ -1,1 +1,161 @@
-// placeholder: not yet written
+#include "lights/light_sample.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <optional>
+
+#include "core/math.h"
+#include "core/rng.h"
+#include "core/sampling.h"
+
+namespace caligo {
+namespace {
+
+// Irradiance at `p` on a surface facing `n`, estimated by sampling the light.
+double irradiance_by_light_sampling(const Light& light, Vec3 p, Vec3 n, int count) {
+  Pcg32 rng(7, 1);
+  double sum = 0.0;
+  for (int i = 0; i < count; ++i) {
+    const auto s = sample_light(light, p, {rng.next_float(), rng.next_float()});
+    if (!s) continue;
+    EXPECT_TRUE(s->delta || s->pdf > 0.0f);
+    sum += s->radiance.average() * std::max(0.0f, dot(n, s->wi)) / s->pdf;
+  }
+  return sum / count;
+}
+
+// The same integral by cosine-weighted hemisphere sampling and ray casting against the light:
+// obviously correct, slow, and independent of the light's own sampling code.
+template <typename HitLight>
+double irradiance_by_hemisphere(Vec3 n, int count, HitLight radiance_along) {
+  Pcg32 rng(11, 3);
+  const Frame frame = Frame::from_z(n);
+  double sum = 0.0;
+  for (int i = 0; i < count; ++i) {
+    const Vec3 w = frame.to_world(sample_cosine_hemisphere({rng.next_float(), rng.next_float()}));
+    sum += radiance_along(w) * kPi;  // L cos / (cos / pi)
+  }
+  return sum / count;
+}
+
+// Ray against the parallelogram corner + s e1 + t e2.
+std::optional<float> hit_parallelogram(Vec3 o, Vec3 w, Vec3 corner, Vec3 e1, Vec3 e2) {
+  const Vec3 n = cross(e1, e2);
+  const float denom = dot(n, w);
+  if (std::abs(denom) < 1e-12f) return std::nullopt;
+  const float t = dot(n, corner - o) / denom;
+  if (t <= 0.0f) return std::nullopt;
+  const Vec3 q = o + w * t - corner;
+  const float s = dot(q, e1) / dot(e1, e1), u = dot(q, e2) / dot(e2, e2);
+  if (s < 0 || s > 1 || u < 0 || u > 1) return std::nullopt;
+  return t;
+}
+
+TEST(PointLight, InverseSquareLaw) {
+  const PointLight light{{0, 4, 0}, RGB(8.0f)};
+  const auto s = sample_light(light, {0, 0, 0}, {0.5f, 0.5f});
+  ASSERT_TRUE(s);
+  EXPECT_TRUE(s->delta);
+  EXPECT_FLOAT_EQ(s->radiance.g, 0.5f);
+  EXPECT_FLOAT_EQ(s->distance, 4.0f);
+  EXPECT_NEAR(power(light), 4.0f * kPi * 8.0f, 1e-3f);
+}
+
+TEST(SpotLight, ConeFalloffAndPower) {
+  SpotLight spot{{0, 0, 0}, {0, -1, 0}, std::cos(radians(20.0f)), std::cos(radians(30.0f)), RGB(10.0f)};
+  const auto on_axis = sample_light(spot, {0, -2, 0}, {});
+  ASSERT_TRUE(on_axis);
+  EXPECT_FLOAT_EQ(on_axis->radiance.r, 2.5f);
+  EXPECT_FALSE(sample_light(spot, {0, 2, 0}, {}));  // behind
+  const float mid_angle = radians(25.0f);
+  const auto edge = sample_light(spot, {std::sin(mid_angle), -std::cos(mid_angle), 0}, {});
+  ASSERT_TRUE(edge);
+  EXPECT_GT(edge->radiance.r, 0.0f);
+  EXPECT_LT(edge->radiance.r, 10.0f);
+  // A hard-edged cone emits I times its solid angle.
+  spot.cos_inner = spot.cos_outer;
+  EXPECT_NEAR(power(spot), 10.0f * 2.0f * kPi * (1.0f - spot.cos_outer), 1e-3f);
+}
+
+TEST(SphereLight, IrradianceMatchesTheAnalyticValue) {
+  const SphereLight light{{0, 0, 5}, 1.5f, RGB(2.0f)};
+  // A surface facing the centre receives E = pi L sin^2(alpha), sin alpha = r / d.
+  const double expected = kPi * 2.0 * sqr(1.5f / 5.0f);
+  EXPECT_NEAR(irradiance_by_light_sampling(light, {}, {0, 0, 1}, 20000), expected, 1e-3 * expected);
+}
+
+TEST(SphereLight, PdfMatchesSampling) {
+  const SphereLight light{{1, 2, 5}, 1.0f, RGB(1.0f), true};
+  for (Vec3 receiver : {Vec3(0, 0, 0), Vec3(1, 2, 5.2f)}) {  // outside, then inside
+    Pcg32 rng(3, 4);
+    for (int i = 0; i < 100; ++i) {
+      const auto s = sample_light(light, receiver, {rng.next_float(), rng.next_float()});
+      ASSERT_TRUE(s);
+      const Vec3 p = receiver + s->wi * s->distance;
+      EXPECT_NEAR(length(p - light.center), 1.0f, 1e-3f);
+      const float pdf = light_pdf(light, receiver, s->wi, p, normalize(p - light.center));
+      EXPECT_NEAR(pdf, s->pdf, 1e-3f * s->pdf);
+    }
+  }
+}
+
+TEST(QuadLight, LightSamplingAgreesWithHemisphereSampling) {
+  const QuadLight light{{-0.5f, 2, -1}, {2, 0, 0}, {0, 0, 1.5f}, RGB(3.0f)};
+  // cross(e1, e2) = (0, 0, 0) x ... = -y: faces down, towards the receiver.
+  const Vec3 p(0.2f, 0, 0.1f), n = normalize(Vec3(0.3f, 1, 0));
+  const double by_light = irradiance_by_light_sampling(light, p, n, 40000);
+  const double by_hemisphere = irradiance_by_hemisphere(n, 400000, [&](Vec3 w) {
+    return hit_parallelogram(p, w, light.corner, light.edge1, light.edge2) ? 3.0 : 0.0;
+  });
+  EXPECT_NEAR(by_light, by_hemisphere, 0.01 * by_hemisphere);
+  // One-sided: from above it is dark.
+  EXPECT_FALSE(sample_light(light, {0, 4, 0}, {0.5f, 0.5f}));
+}
+
+TEST(TriangleLight, LightSamplingAgreesWithHemisphereSampling) {
+  const TriangleLight light{{-1, 1, -1}, {0, 1, 2}, {1.5f, 1, -1}, RGB(1.0f), true};
+  const Vec3 p(0, 0, 0), n(0, 1, 0);
+  const Vec3 e1 = light.p1 - light.p0, e2 = light.p2 - light.p0;
+  const double by_light = irradiance_by_light_sampling(light, p, n, 40000);
+  const double by_hemisphere = irradiance_by_hemisphere(n, 400000, [&](Vec3 w) {
+    // The triangle lies inside the parallelogram p0 + s e1 + t e2.
+    const auto t = hit_parallelogram(p, w, light.p0, e1, e2);
+    if (!t) return 0.0;
+    const Vec3 q = p + w * *t - light.p0;
+    // Inside the triangle iff its barycentrics are non-negative.
+    const Vec3 c = cross(e1, e2);
+    const float b1 = dot(cross(q, e2), c) / dot(c, c), b2 = dot(cross(e1, q), c) / dot(c, c);
+    return (b1 >= 0 && b2 >= 0 && b1 + b2 <= 1) ? 1.0 : 0.0;
+  });
+  EXPECT_NEAR(by_light, by_hemisphere, 0.01 * by_hemisphere);
+}
+
+TEST(EnvironmentLight, UniformRadianceGivesPiL) {
+  const EnvironmentLight env{RGB(0.7f)};
+  EXPECT_NEAR(irradiance_by_light_sampling(env, {}, {0, 1, 0}, 200000), kPi * 0.7, 0.01 * kPi * 0.7);
+  EXPECT_FLOAT_EQ(light_pdf(env, {}, {0, 1, 0}, {}, {}), 1.0f / (4.0f * kPi));
+}
+
+TEST(DirectionalLight, SunDiskDeliversItsIrradiance) {
+  DirectionalLight sun{normalize(Vec3(0, -1, -1)), RGB(5.0f), std::cos(radians(2.0f))};
+  EXPECT_NEAR(irradiance_by_light_sampling(sun, {}, normalize(Vec3(0, 1, 1)), 20000), 5.0, 0.005 * 5.0);
+  EXPECT_TRUE(escaped_radiance(sun, normalize(Vec3(0, 1, 1))).r > 0.0f);
+  EXPECT_TRUE(escaped_radiance(sun, Vec3(0, 1, 0)).is_black());
+  sun.cos_angular_radius = 1.0f;
+  EXPECT_TRUE(is_delta(sun));
+  const auto s = sample_light(sun, {}, {0.3f, 0.3f});
+  ASSERT_TRUE(s);
+  EXPECT_TRUE(s->delta);
+  EXPECT_FLOAT_EQ(s->radiance.r, 5.0f);
+}
+
+TEST(Light, Classification) {
+  EXPECT_TRUE(is_delta(PointLight{}));
+  EXPECT_FALSE(is_delta(QuadLight{}));
+  EXPECT_TRUE(is_infinite(EnvironmentLight{}));
+  EXPECT_FALSE(is_infinite(SphereLight{}));
+}
+
+}  // namespace
+}  // namespace caligo
