@@ -1,0 +1,17 @@
+// 8-bit RGB PNG output for previews (see tonemap.h). OpenImageIO stays inside png_io.cpp: it
+// costs ~240 ms of start-up per process, so only binaries that write PNGs link it.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace caligo {
+
+// Writes `rgb8` (3 bytes per pixel, rows top to bottom, as to_srgb8_preview returns) as a PNG,
+// atomically: readers see the old file or the complete new one. Throws std::invalid_argument
+// when the buffer does not hold width * height * 3 bytes, and std::runtime_error carrying
+// OpenImageIO's message when writing fails; `path` is then untouched.
+void write_png(const std::string& path, int width, int height, const std::vector<uint8_t>& rgb8);
+
+}  // namespace caligo
