@@ -1,1 +1,210 @@
-// placeholder
+// End-to-end tests of the caligo binary: what a user sees (exit codes, messages, files).
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+  int exit_code;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("caligo-cli-" + std::to_string(::getpid()) + "-" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  RunResult run(const std::string& args) const {
+    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
+    const std::string command =
+        std::string(CALIGO_BINARY) + " " + args + " >" + out.string() + " 2>" + err.string();
+    const int status = std::system(command.c_str());
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+  }
+
+  fs::path write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir_ / name) << text;
+    return dir_ / name;
+  }
+
+  // Every file in the directory except the captured stdout/stderr.
+  std::vector<std::string> outputs() const {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir_)) {
+      const std::string n = e.path().filename().string();
+      if (n.find(".exr") != std::string::npos || n.find(".png") != std::string::npos) names.push_back(n);
+    }
+    return names;
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(Cli, VersionAndHelp) {
+  const RunResult v = run("--version");
+  EXPECT_EQ(v.exit_code, 0);
+  EXPECT_NE(v.out.find("caligo "), std::string::npos);
+  const RunResult h = run("--help");
+  EXPECT_EQ(h.exit_code, 0);
+  EXPECT_NE(h.out.find("render"), std::string::npos);
+  EXPECT_NE(h.out.find("compare"), std::string::npos);
+}
+
+TEST_F(Cli, ListsBuiltins) {
+  const RunResult r = run("render --list-builtins");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("default"), std::string::npos);
+}
+
+TEST_F(Cli, RendersABuiltinAndComparesItWithItself) {
+  const fs::path exr = dir_ / "a.exr";
+  const RunResult r = run("render default --res 32x32 --spp 4 -q -o " + exr.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(exr));
+  EXPECT_TRUE(fs::exists(dir_ / "a.png"));
+  const RunResult c = run("compare " + exr.string() + " " + exr.string() + " --max-rmse 0");
+  EXPECT_EQ(c.exit_code, 0) << c.err;
+  EXPECT_NE(c.out.find("rmse 0\n"), std::string::npos) << c.out;
+}
+
+TEST_F(Cli, SameSeedGivesTheSameImageOnOneAndTwoThreads) {
+  const fs::path one = dir_ / "one.exr", two = dir_ / "two.exr", other = dir_ / "other.exr";
+  ASSERT_EQ(run("render default --res 32x32 --spp 4 -q --threads 1 -o " + one.string()).exit_code, 0);
+  ASSERT_EQ(run("render default --res 32x32 --spp 4 -q --threads 2 -o " + two.string()).exit_code, 0);
+  const RunResult same = run("compare " + one.string() + " " + two.string());
+  EXPECT_EQ(same.exit_code, 0);
+  EXPECT_NE(same.out.find("max_abs_difference 0\n"), std::string::npos) << same.out;
+
+  ASSERT_EQ(run("render default --res 32x32 --spp 4 -q --seed 7 -o " + other.string()).exit_code, 0);
+  const RunResult differ = run("compare " + one.string() + " " + other.string() + " --max-rmse 1e-9");
+  EXPECT_EQ(differ.exit_code, 1);
+  EXPECT_NE(differ.err.find("exceeds"), std::string::npos);
+}
+
+TEST_F(Cli, SummaryLineReportsThroughput) {
+  const RunResult r = run("render default --res 16x16 --spp 2 -o " + (dir_ / "s.exr").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("paths/s"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("rays/s"), std::string::npos) << r.err;
+}
+
+// --- Bad input: one line naming the file and the JSON path, exit code 2, no output. ---
+
+const char* kValidScene = R"({
+  "camera": {"position": [0, 1, 4], "look_at": [0, 1, 0], "fov": 40, "resolution": [16, 16]},
+  "render": {"spp": 1},
+  "materials": {"white": {"type": "diffuse", "reflectance": 0.5}},
+  "shapes": [SHAPE],
+  "lights": [{"type": "point", "position": [0, 2, 0], "intensity": 5}]
+})";
+
+std::string scene_with(const std::string& needle, const std::string& replacement,
+                       const std::string& shape = R"({"type": "sphere", "radius": 1, "material": "white"})") {
+  std::string s = kValidScene;
+  s.replace(s.find("SHAPE"), 5, shape);
+  if (!needle.empty()) {
+    const size_t at = s.find(needle);
+    EXPECT_NE(at, std::string::npos) << needle;
+    s.replace(at, needle.size(), replacement);
+  }
+  return s;
+}
+
+struct BadCase {
+  const char* name;
+  std::string scene;
+  std::string expected;  // must appear in the one-line error
+};
+
+TEST_F(Cli, BadScenesGiveLocatedErrorsAndNoOutput) {
+  const std::vector<BadCase> cases = {
+      {"syntax", scene_with("\"render\"", "\"render\" ::"), "line 3"},
+      {"unknown_key", scene_with("\"fov\"", "\"colour\": 1, \"fov\""), "/camera: unknown key \"colour\""},
+      {"wrong_type", scene_with("\"intensity\": 5", "\"intensity\": \"bright\""), "/lights/0/intensity"},
+      {"missing_key", scene_with("\"position\": [0, 2, 0], ", ""), "/lights/0"},
+      {"not_finite", scene_with("", "", R"({"type": "sphere", "radius": 1e39, "material": "white"})"),
+       "/shapes/0/radius"},
+      {"negative_radius", scene_with("", "", R"({"type": "sphere", "radius": -1, "material": "white"})"),
+       "/shapes/0/radius"},
+      {"zero_box", scene_with("", "", R"({"type": "box", "min": [0,0,0], "max": [1,0,1], "material": "white"})"),
+       "/shapes/0"},
+      {"absurd_resolution", scene_with("[16, 16]", "[100000, 16]"), "/camera/resolution"},
+      {"zero_spp", scene_with("\"spp\": 1", "\"spp\": 0"), "/render/spp"},
+      {"unknown_material", scene_with("", "", R"({"type": "sphere", "radius": 1, "material": "chrome"})"),
+       "/shapes/0/material"},
+      {"unknown_light_type", scene_with("\"type\": \"point\"", "\"type\": \"laser\""), "/lights/0/type"},
+      {"missing_mesh", scene_with("", "", R"({"type": "mesh", "file": "nowhere.obj", "material": "white"})"),
+       "nowhere.obj"},
+      {"nan_mesh", scene_with("", "", R"({"type": "mesh", "file": "nan.obj", "material": "white"})"), "non-finite"},
+      {"degenerate_mesh", scene_with("", "", R"({"type": "mesh", "file": "flat.obj", "material": "white"})"),
+       "degenerate"},
+      {"negative_colour", scene_with("\"reflectance\": 0.5", "\"reflectance\": [0.5, -0.1, 0.5]"),
+       "/materials/white/reflectance"},
+      {"top_level_key", scene_with("\"render\"", "\"volumes\": [], \"render\""), "unknown key \"volumes\""},
+  };
+  write("nan.obj", "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n");
+  write("flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
+  for (const BadCase& c : cases) {
+    const fs::path scene = write(std::string(c.name) + ".json", c.scene);
+    const fs::path exr = dir_ / "out.exr";
+    const RunResult r = run("render " + scene.string() + " -q -o " + exr.string());
+    EXPECT_EQ(r.exit_code, 2) << c.name << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("caligo: error: " + scene.string(), 0), 0u) << c.name << ": " << r.err;
+    EXPECT_NE(r.err.find(c.expected), std::string::npos) << c.name << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.name << ": " << r.err;
+    EXPECT_TRUE(outputs().empty()) << c.name;
+  }
+}
+
+TEST_F(Cli, AFailedRenderLeavesAnExistingOutputUntouched) {
+  const fs::path exr = write("keep.exr", "precious");
+  const fs::path scene = write("bad.json", scene_with("\"spp\": 1", "\"spp\": -3"));
+  EXPECT_EQ(run("render " + scene.string() + " -q -o " + exr.string()).exit_code, 2);
+  EXPECT_EQ(slurp(exr), "precious");
+}
+
+TEST_F(Cli, BadCommandLinesExitWithTwo) {
+  const fs::path exr = dir_ / "x.exr";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"render default --res 10 -o " + exr.string(), "--res"},
+      {"render default --res 0x10 -o " + exr.string(), "--res"},
+      {"render default --spp 0 -o " + exr.string(), "--spp"},
+      {"render default --threads banana -o " + exr.string(), "--threads"},
+      {"render no-such-scene -o " + exr.string(), "no-such-scene"},
+      {"render default -o " + (dir_ / "missing-dir" / "x.exr").string(), "does not exist"},
+      {"render default -o " + (dir_ / "x.tiff").string(), ".exr"},
+      {"compare " + (dir_ / "nope.exr").string() + " " + (dir_ / "nope.exr").string(), "nope.exr"},
+      {"frobnicate", "frobnicate"},
+  };
+  for (const auto& [args, expected] : cases) {
+    const RunResult r = run(args);
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("caligo: error: ", 0), 0u) << args << ": " << r.err;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << args << ": " << r.err;
+    EXPECT_TRUE(outputs().empty()) << args;
+  }
+}
+
+}  // namespace

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "commands.h"
+#include "core/error.h"
 #include "image/compare.h"
 #include "image/exr_io.h"
 

@@ -16,7 +16,10 @@ std::filesystem::path temp_path_for(const std::filesystem::path& target) {
   // Appended piecewise: GCC 12 warns falsely (-Wrestrict) about `"." + std::string`.
   std::string name = ".";
   name += target.filename().string();
-  name += ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter.fetch_add(1));
+  name += ".tmp-";
+  name += std::to_string(::getpid());
+  name += '-';
+  name += std::to_string(counter.fetch_add(1));
   name += target.extension().string();
   return target.parent_path() / name;
 }
