@@ -70,14 +70,13 @@ float to_unit_float(uint32_t bits) { return std::min(float(bits) * 0x1p-32f, kOn
 
 // The three seeds of one (seed, pixel, dimension): the shuffle takes the low half of the hash, the two
 // scrambles the halves of a second, unrelated mix of it. Pixel coordinates are packed into one word
-// so the hash chain is three mixes long; it is most of the cost of a request.
+// and hashed once per Sampler, so a request costs two mixes.
 struct DimensionSeeds {
   uint32_t shuffle, scramble_x, scramble_y;
 };
 
-DimensionSeeds dimension_seeds(uint64_t seed, Vec2i pixel, uint32_t dimension) {
-  const uint64_t packed_pixel = uint64_t(uint32_t(pixel.x)) | uint64_t(uint32_t(pixel.y)) << 32;
-  const uint64_t base = hash_values(seed, packed_pixel, dimension);
+DimensionSeeds dimension_seeds(uint64_t pixel_key, uint32_t dimension) {
+  const uint64_t base = hash_combine(pixel_key, dimension);
   const uint64_t scramble = mix_bits(base ^ 0x5343524d424c45ULL);  // any constant: decorrelates from base
   return {uint32_t(base), uint32_t(scramble), uint32_t(scramble >> 32)};
 }
@@ -95,14 +94,19 @@ uint32_t nested_uniform_scramble(uint32_t x, uint32_t seed) {
   return reverse_bits(laine_karras_permutation(reverse_bits(x), seed));
 }
 
+Sampler::Sampler(uint64_t seed, Vec2i pixel, uint32_t sample_index)
+    : pixel_key_(hash_values(seed, uint64_t(uint32_t(pixel.x)) | uint64_t(uint32_t(pixel.y)) << 32)),
+      pixel_(pixel),
+      index_(sample_index) {}
+
 float Sampler::get_1d(uint32_t dimension) const {
-  const DimensionSeeds seeds = dimension_seeds(seed_, pixel_, dimension);
+  const DimensionSeeds seeds = dimension_seeds(pixel_key_, dimension);
   const uint32_t i = nested_uniform_scramble(index_, seeds.shuffle);
   return to_unit_float(nested_uniform_scramble(sobol_dim0(i), seeds.scramble_x));
 }
 
 Vec2 Sampler::get_2d(uint32_t dimension) const {
-  const DimensionSeeds seeds = dimension_seeds(seed_, pixel_, dimension);
+  const DimensionSeeds seeds = dimension_seeds(pixel_key_, dimension);
   const uint32_t i = nested_uniform_scramble(index_, seeds.shuffle);
   return {to_unit_float(nested_uniform_scramble(sobol_dim0(i), seeds.scramble_x)),
           to_unit_float(nested_uniform_scramble(sobol_dim1(i), seeds.scramble_y))};

@@ -38,8 +38,7 @@ constexpr uint32_t bounce(int depth, Bounce which) {
 
 class Sampler {
  public:
-  Sampler(uint64_t seed, Vec2i pixel, uint32_t sample_index)
-      : seed_(seed), pixel_(pixel), index_(sample_index) {}
+  Sampler(uint64_t seed, Vec2i pixel, uint32_t sample_index);
 
   float get_1d(uint32_t dimension) const;  // in [0, 1)
   Vec2 get_2d(uint32_t dimension) const;   // in [0, 1)^2
@@ -48,7 +47,7 @@ class Sampler {
   Vec2i pixel() const { return pixel_; }
 
  private:
-  uint64_t seed_;
+  uint64_t pixel_key_;  // hash of (seed, pixel): computed once, mixed with each dimension
   Vec2i pixel_;
   uint32_t index_;
 };

@@ -128,19 +128,28 @@ bool Transform::swaps_handedness() const {
   return det < 0.0f;
 }
 
-Vec3 Transform::point(Vec3 p) const {
-  const auto& a = m_.m;
+namespace {
+
+Vec3 apply_point(const Mat4& m, Vec3 p) {
+  const auto& a = m.m;
   return {a[0][0] * p.x + a[0][1] * p.y + a[0][2] * p.z + a[0][3],
           a[1][0] * p.x + a[1][1] * p.y + a[1][2] * p.z + a[1][3],
           a[2][0] * p.x + a[2][1] * p.y + a[2][2] * p.z + a[2][3]};
 }
 
-Vec3 Transform::vector(Vec3 v) const {
-  const auto& a = m_.m;
+Vec3 apply_vector(const Mat4& m, Vec3 v) {
+  const auto& a = m.m;
   return {a[0][0] * v.x + a[0][1] * v.y + a[0][2] * v.z,
           a[1][0] * v.x + a[1][1] * v.y + a[1][2] * v.z,
           a[2][0] * v.x + a[2][1] * v.y + a[2][2] * v.z};
 }
+
+}  // namespace
+
+Vec3 Transform::point(Vec3 p) const { return apply_point(m_, p); }
+Vec3 Transform::vector(Vec3 v) const { return apply_vector(m_, v); }
+Vec3 Transform::inverse_point(Vec3 p) const { return apply_point(inv_, p); }
+Vec3 Transform::inverse_vector(Vec3 v) const { return apply_vector(inv_, v); }
 
 Vec3 Transform::normal(Vec3 n) const {
   const auto& b = inv_.m;  // transpose of the inverse

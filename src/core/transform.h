@@ -46,6 +46,9 @@ class Transform {
   Vec3 point(Vec3 p) const;
   Vec3 vector(Vec3 v) const;
   Vec3 normal(Vec3 n) const;  // not normalised
+  // The inverse transform applied directly (no Transform copy in hot loops).
+  Vec3 inverse_point(Vec3 p) const;
+  Vec3 inverse_vector(Vec3 v) const;
   Ray ray(const Ray& r) const { return {point(r.origin), vector(r.direction), r.tmin, r.tmax}; }
   Bounds3 bounds(const Bounds3& b) const;
 

@@ -37,8 +37,8 @@ Sphere Sphere::make(Vec3 center, float radius, const Transform& placement) {
 // origins (Haines et al., Ray Tracing Gems, ch. 7); the roots use the stable q form.
 std::optional<SphereRoots> intersect_sphere(const Sphere& sphere, const Ray& world_ray) {
   const Transform& to_object = sphere.object_to_world;
-  const Vec3 o = to_object.inverse().point(world_ray.origin);
-  const Vec3 d = to_object.inverse().vector(world_ray.direction);
+  const Vec3 o = to_object.inverse_point(world_ray.origin);
+  const Vec3 d = to_object.inverse_vector(world_ray.direction);
   const float a = dot(d, d);
   if (!(a > 0.0f)) return std::nullopt;
   const float b = dot(o, d);
@@ -54,7 +54,7 @@ std::optional<SphereRoots> intersect_sphere(const Sphere& sphere, const Ray& wor
 }
 
 Vec3 sphere_normal(const Sphere& sphere, Vec3 world_point) {
-  const Vec3 p = sphere.object_to_world.inverse().point(world_point);
+  const Vec3 p = sphere.object_to_world.inverse_point(world_point);
   return normalize(sphere.object_to_world.normal(p));
 }
 

@@ -1,1 +1,579 @@
-// placeholder: not yet written
+#include "scene/mesh_loader.h"
+
+// Debian ships both libraries compiled: include the declarations only (no *_IMPLEMENTATION).
+#include <tiny_gltf.h>
+#include <tiny_obj_loader.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+namespace caligo {
+namespace {
+
+// Raised by the readers below with a bare message; load_mesh() adds the location and path.
+class MeshFileError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+[[noreturn]] void fail(const std::string& what) { throw MeshFileError(what); }
+
+std::string in_quotes(std::string_view s) { return "\"" + std::string(s) + "\""; }
+
+// The libraries end their messages with newlines (and sometimes hold several lines).
+std::string tidy_library_message(std::string message) {
+  std::replace(message.begin(), message.end(), '\n', ' ');
+  while (!message.empty() && std::isspace(static_cast<unsigned char>(message.back()))) message.pop_back();
+  return message.empty() ? "unknown error" : message;
+}
+
+std::string lowercase_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+std::string read_whole_file(const std::string& path, const SourceLocation& where) {
+  std::error_code ec;
+  std::ifstream in(path, std::ios::binary);
+  if (!in || std::filesystem::is_directory(path, ec))
+    throw InputError(where, "cannot open mesh file " + in_quotes(path));
+  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw InputError(where, "cannot read mesh file " + in_quotes(path));
+  return data;
+}
+
+// ---- Assembling the result -----------------------------------------------------------------
+
+// Concatenates the parts of a file into one mesh. Shading normals survive only when every part
+// has them: a mesh cannot carry normals for some vertices and not others.
+class MeshBuilder {
+ public:
+  void append(const TriangleMesh& part) {
+    const size_t base = mesh_.positions.size();
+    if (base + part.positions.size() > std::numeric_limits<uint32_t>::max())
+      fail("the mesh has more vertices than 32-bit indices can address");
+    all_parts_have_normals_ = all_parts_have_normals_ && !part.normals.empty();
+    mesh_.positions.insert(mesh_.positions.end(), part.positions.begin(), part.positions.end());
+    if (all_parts_have_normals_)
+      mesh_.normals.insert(mesh_.normals.end(), part.normals.begin(), part.normals.end());
+    for (uint32_t i : part.indices) mesh_.indices.push_back(static_cast<uint32_t>(base + i));
+  }
+
+  TriangleMesh finish() {
+    if (!all_parts_have_normals_) mesh_.normals.clear();
+    return std::move(mesh_);
+  }
+
+ private:
+  TriangleMesh mesh_;
+  bool all_parts_have_normals_ = true;
+};
+
+// ---- Wavefront OBJ -------------------------------------------------------------------------
+
+// tinyobjloader reads "nan", "inf" and unreadable text as 0 without a word, which would silently
+// move vertices. (Numbers too large for a float come out as infinity, which validate_mesh()
+// rejects, so out-of-range values need no check here.)
+void check_obj_number(std::string_view token, size_t line, const char* kind) {
+  std::string_view digits = token;
+  if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);  // from_chars rejects '+'
+  double value = 0.0;
+  const std::errc ec = std::from_chars(digits.data(), digits.data() + digits.size(), value).ec;
+  const std::string prefix = "line " + std::to_string(line) + ": ";
+  if (ec == std::errc::invalid_argument) fail(prefix + "cannot read the coordinate " + in_quotes(token));
+  if (ec == std::errc() && !std::isfinite(value))
+    fail(prefix + kind + " has a non-finite coordinate " + in_quotes(token));
+}
+
+// The first `N` whitespace-separated words of a line (fewer if the line is shorter).
+template <size_t N>
+size_t first_words(std::string_view line, std::array<std::string_view, N>& words) {
+  size_t count = 0, pos = 0;
+  while (count < N) {
+    pos = line.find_first_not_of(" \t\r", pos);
+    if (pos == std::string_view::npos) break;
+    const size_t end = std::min(line.find_first_of(" \t\r", pos), line.size());
+    words[count++] = line.substr(pos, end - pos);
+    pos = end;
+  }
+  return count;
+}
+
+// Checks the first three numbers of every position ("v") and normal ("vn") line.
+void check_obj_numbers(std::string_view text) {
+  size_t line_number = 0;
+  for (size_t start = 0; start < text.size();) {
+    const size_t newline = std::min(text.find('\n', start), text.size());
+    const std::string_view line = text.substr(start, newline - start);
+    start = newline + 1;
+    ++line_number;
+    std::array<std::string_view, 4> words;
+    const size_t count = first_words(line, words);
+    if (count == 0 || (words[0] != "v" && words[0] != "vn")) continue;
+    if (count < 4)
+      fail("line " + std::to_string(line_number) + ": " + std::string(words[0]) + " needs three coordinates");
+    for (size_t i = 1; i <= 3; ++i)
+      check_obj_number(words[i], line_number, words[0] == "v" ? "vertex" : "normal");
+  }
+}
+
+void check_obj_faces(const tinyobj::attrib_t& attrib, const std::vector<tinyobj::shape_t>& shapes) {
+  const size_t vertex_count = attrib.vertices.size() / 3;
+  const size_t normal_count = attrib.normals.size() / 3;
+  for (const tinyobj::shape_t& shape : shapes) {
+    for (unsigned int corners : shape.mesh.num_face_vertices)
+      if (corners != 3) fail("a face has " + std::to_string(corners) + " vertices after triangulation");
+    // tinyobjloader only warns about indices out of range; OBJ counts from 1.
+    for (const tinyobj::index_t& index : shape.mesh.indices) {
+      if (index.vertex_index < 0 || size_t(index.vertex_index) >= vertex_count)
+        fail("a face refers to vertex " + std::to_string(int64_t(index.vertex_index) + 1) +
+             ", but the file has " + std::to_string(vertex_count) + " vertices");
+      if (index.normal_index >= 0 && size_t(index.normal_index) >= normal_count)
+        fail("a face refers to normal " + std::to_string(int64_t(index.normal_index) + 1) +
+             ", but the file has " + std::to_string(normal_count) + " normals");
+    }
+  }
+}
+
+bool every_corner_has_a_normal(const std::vector<tinyobj::shape_t>& shapes) {
+  for (const tinyobj::shape_t& shape : shapes)
+    for (const tinyobj::index_t& index : shape.mesh.indices)
+      if (index.normal_index < 0) return false;
+  return true;
+}
+
+Vec3 obj_vec3(const std::vector<tinyobj::real_t>& values, int index) {
+  const size_t i = 3 * size_t(index);
+  return {float(values[i]), float(values[i + 1]), float(values[i + 2])};
+}
+
+// Without normals the OBJ vertices map one to one onto mesh vertices.
+TriangleMesh obj_mesh_without_normals(const tinyobj::attrib_t& attrib,
+                                      const std::vector<tinyobj::shape_t>& shapes) {
+  TriangleMesh mesh;
+  const size_t vertex_count = attrib.vertices.size() / 3;
+  mesh.positions.reserve(vertex_count);
+  for (size_t v = 0; v < vertex_count; ++v) mesh.positions.push_back(obj_vec3(attrib.vertices, int(v)));
+  for (const tinyobj::shape_t& shape : shapes)
+    for (const tinyobj::index_t& index : shape.mesh.indices)
+      mesh.indices.push_back(uint32_t(index.vertex_index));
+  return mesh;
+}
+
+// OBJ indexes positions and normals separately; a mesh vertex is each distinct pair.
+TriangleMesh obj_mesh_with_normals(const tinyobj::attrib_t& attrib,
+                                   const std::vector<tinyobj::shape_t>& shapes) {
+  TriangleMesh mesh;
+  std::unordered_map<uint64_t, uint32_t> vertex_of_pair;
+  for (const tinyobj::shape_t& shape : shapes)
+    for (const tinyobj::index_t& index : shape.mesh.indices) {
+      const uint64_t key = uint64_t(uint32_t(index.vertex_index)) << 32 | uint32_t(index.normal_index);
+      const auto [it, added] = vertex_of_pair.try_emplace(key, uint32_t(mesh.positions.size()));
+      if (added) {
+        mesh.positions.push_back(obj_vec3(attrib.vertices, index.vertex_index));
+        mesh.normals.push_back(obj_vec3(attrib.normals, index.normal_index));
+      }
+      mesh.indices.push_back(it->second);
+    }
+  return mesh;
+}
+
+TriangleMesh read_obj(const std::string& text) {
+  check_obj_numbers(text);
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = true;
+  config.vertex_color = false;
+  tinyobj::ObjReader reader;
+  // An empty material text keeps tinyobjloader from opening .mtl files we would not use.
+  if (!reader.ParseFromString(text, "", config))
+    fail("cannot parse OBJ: " + tidy_library_message(reader.Error()));
+  const tinyobj::attrib_t& attrib = reader.GetAttrib();
+  const std::vector<tinyobj::shape_t>& shapes = reader.GetShapes();
+  if (attrib.vertices.size() / 3 > std::numeric_limits<uint32_t>::max())
+    fail("the mesh has more vertices than 32-bit indices can address");
+  check_obj_faces(attrib, shapes);
+  return !attrib.normals.empty() && every_corner_has_a_normal(shapes)
+             ? obj_mesh_with_normals(attrib, shapes)
+             : obj_mesh_without_normals(attrib, shapes);
+}
+
+// ---- glTF 2.0: accessors -------------------------------------------------------------------
+
+// Byte ranges of one accessor's elements, checked against the buffer: the file is untrusted
+// and tinygltf does not check that accessors and buffer views stay inside their buffers.
+struct AccessorBytes {
+  const unsigned char* first = nullptr;
+  size_t count = 0;
+  size_t stride = 0;
+};
+
+std::string accessor_label(int index) { return "accessor " + std::to_string(index); }
+
+const tinygltf::Accessor& find_accessor(const tinygltf::Model& model, int index) {
+  if (index < 0 || size_t(index) >= model.accessors.size()) fail(accessor_label(index) + " does not exist");
+  const tinygltf::Accessor& accessor = model.accessors[size_t(index)];
+  if (accessor.sparse.isSparse) fail(accessor_label(index) + " is sparse, which is not supported");
+  if (accessor.bufferView < 0 || size_t(accessor.bufferView) >= model.bufferViews.size())
+    fail(accessor_label(index) + " has no buffer view (compressed data is not supported)");
+  return accessor;
+}
+
+AccessorBytes accessor_bytes(const tinygltf::Model& model, int index, size_t element_size) {
+  const tinygltf::Accessor& accessor = find_accessor(model, index);
+  const tinygltf::BufferView& view = model.bufferViews[size_t(accessor.bufferView)];
+  if (view.buffer < 0 || size_t(view.buffer) >= model.buffers.size())
+    fail("buffer view " + std::to_string(accessor.bufferView) + " refers to a missing buffer");
+  const std::vector<unsigned char>& buffer = model.buffers[size_t(view.buffer)].data;
+  if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset)
+    fail("buffer view " + std::to_string(accessor.bufferView) + " extends past the end of its buffer");
+  const size_t stride = view.byteStride != 0 ? view.byteStride : element_size;
+  if (stride < element_size) fail(accessor_label(index) + " has a byte stride smaller than its elements");
+  if (accessor.count == 0) return {};
+  // Written so that no product can overflow: (count - 1) * stride + element_size <= available.
+  const size_t available = accessor.byteOffset <= view.byteLength ? view.byteLength - accessor.byteOffset : 0;
+  if (available < element_size || (accessor.count - 1) > (available - element_size) / stride)
+    fail(accessor_label(index) + " reads past the end of its buffer view");
+  return {buffer.data() + view.byteOffset + accessor.byteOffset, accessor.count, stride};
+}
+
+std::vector<Vec3> read_vec3_accessor(const tinygltf::Model& model, int index, const std::string& attribute) {
+  const tinygltf::Accessor& accessor = find_accessor(model, index);
+  if (accessor.type != TINYGLTF_TYPE_VEC3 || accessor.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
+    fail(attribute + " " + accessor_label(index) + " must hold 3-component float vectors");
+  const AccessorBytes bytes = accessor_bytes(model, index, 3 * sizeof(float));
+  std::vector<Vec3> values(bytes.count);
+  for (size_t i = 0; i < bytes.count; ++i) {
+    float xyz[3];
+    std::memcpy(xyz, bytes.first + i * bytes.stride, sizeof xyz);  // the data may be unaligned
+    values[i] = {xyz[0], xyz[1], xyz[2]};
+  }
+  return values;
+}
+
+template <typename Index>
+void append_indices(const AccessorBytes& bytes, std::vector<uint32_t>& out) {
+  for (size_t i = 0; i < bytes.count; ++i) {
+    Index value;
+    std::memcpy(&value, bytes.first + i * bytes.stride, sizeof value);
+    out.push_back(value);
+  }
+}
+
+std::vector<uint32_t> read_index_accessor(const tinygltf::Model& model, int index) {
+  const tinygltf::Accessor& accessor = find_accessor(model, index);
+  if (accessor.type != TINYGLTF_TYPE_SCALAR) fail("index " + accessor_label(index) + " must hold scalars");
+  std::vector<uint32_t> indices;
+  switch (accessor.componentType) {
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      append_indices<uint8_t>(accessor_bytes(model, index, 1), indices);
+      break;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+      append_indices<uint16_t>(accessor_bytes(model, index, 2), indices);
+      break;
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+      append_indices<uint32_t>(accessor_bytes(model, index, 4), indices);
+      break;
+    default:
+      fail("index " + accessor_label(index) + " must hold unsigned 8, 16 or 32-bit integers");
+  }
+  return indices;
+}
+
+// ---- glTF 2.0: primitives and the node hierarchy ---------------------------------------------
+
+std::string primitive_label(size_t mesh, size_t primitive) {
+  return "mesh " + std::to_string(mesh) + ", primitive " + std::to_string(primitive);
+}
+
+std::vector<uint32_t> sequential_indices(size_t count) {
+  std::vector<uint32_t> indices(count);
+  for (size_t i = 0; i < count; ++i) indices[i] = uint32_t(i);
+  return indices;
+}
+
+TriangleMesh read_primitive(const tinygltf::Model& model, size_t mesh_index, size_t primitive_index) {
+  const tinygltf::Primitive& primitive = model.meshes[mesh_index].primitives[primitive_index];
+  const std::string label = primitive_label(mesh_index, primitive_index);
+  try {
+    if (primitive.mode != TINYGLTF_MODE_TRIANGLES)
+      fail("has mode " + std::to_string(primitive.mode) + "; only triangles (mode 4) are supported");
+    const auto position = primitive.attributes.find("POSITION");
+    if (position == primitive.attributes.end()) fail("has no POSITION attribute");
+    TriangleMesh part;
+    part.positions = read_vec3_accessor(model, position->second, "POSITION");
+    if (part.positions.size() > std::numeric_limits<uint32_t>::max()) fail("has too many vertices");
+    if (const auto normal = primitive.attributes.find("NORMAL"); normal != primitive.attributes.end()) {
+      part.normals = read_vec3_accessor(model, normal->second, "NORMAL");
+      if (part.normals.size() != part.positions.size())
+        fail("has a different number of normals and positions");
+    }
+    part.indices = primitive.indices >= 0 ? read_index_accessor(model, primitive.indices)
+                                          : sequential_indices(part.positions.size());
+    if (part.indices.size() % 3 != 0)
+      fail("has " + std::to_string(part.indices.size()) + " indices, which is not a multiple of 3");
+    for (uint32_t i : part.indices)
+      if (i >= part.positions.size())
+        fail("refers to vertex " + std::to_string(i) + ", but it has " +
+             std::to_string(part.positions.size()));
+    return part;
+  } catch (const MeshFileError& e) {
+    fail(label + ": " + e.what());
+  }
+}
+
+// glTF stores matrices column by column.
+Mat4 column_major(const std::vector<double>& values) {
+  Mat4 m;
+  for (int column = 0; column < 4; ++column)
+    for (int row = 0; row < 4; ++row) m.m[row][column] = float(values[size_t(4 * column + row)]);
+  return m;
+}
+
+Mat4 translation_matrix(const std::vector<double>& t) {
+  Mat4 m = Mat4::identity();
+  for (int i = 0; i < 3; ++i) m.m[i][3] = float(t[size_t(i)]);
+  return m;
+}
+
+Mat4 scale_matrix(const std::vector<double>& s) {
+  Mat4 m = Mat4::identity();
+  for (int i = 0; i < 3; ++i) m.m[i][i] = float(s[size_t(i)]);
+  return m;
+}
+
+// Unit quaternion (x, y, z, w) to rotation matrix; normalised first, as exporters round.
+Mat4 rotation_matrix(const std::vector<double>& q, const std::string& label) {
+  const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  if (!(norm > 0.0) || !std::isfinite(norm)) fail(label + " has an invalid rotation quaternion");
+  const double x = q[0] / norm, y = q[1] / norm, z = q[2] / norm, w = q[3] / norm;
+  Mat4 m = Mat4::identity();
+  m.m[0][0] = float(1 - 2 * (y * y + z * z));
+  m.m[0][1] = float(2 * (x * y - z * w));
+  m.m[0][2] = float(2 * (x * z + y * w));
+  m.m[1][0] = float(2 * (x * y + z * w));
+  m.m[1][1] = float(1 - 2 * (x * x + z * z));
+  m.m[1][2] = float(2 * (y * z - x * w));
+  m.m[2][0] = float(2 * (x * z - y * w));
+  m.m[2][1] = float(2 * (y * z + x * w));
+  m.m[2][2] = float(1 - 2 * (x * x + y * y));
+  return m;
+}
+
+bool is_affine_and_finite(const Mat4& m) {
+  for (const auto& row : m.m)
+    for (float v : row)
+      if (!std::isfinite(v)) return false;
+  return m.m[3][0] == 0.0f && m.m[3][1] == 0.0f && m.m[3][2] == 0.0f && m.m[3][3] == 1.0f;
+}
+
+// The node's local transform: its matrix, or translation * rotation * scale.
+Mat4 node_matrix(const tinygltf::Node& node, const std::string& label) {
+  const auto size_ok = [](const std::vector<double>& v, size_t n) { return v.empty() || v.size() == n; };
+  if (!size_ok(node.matrix, 16) || !size_ok(node.translation, 3) || !size_ok(node.rotation, 4) ||
+      !size_ok(node.scale, 3))
+    fail(label + " has a transform with the wrong number of values");
+  Mat4 m = Mat4::identity();
+  if (!node.matrix.empty()) {
+    m = column_major(node.matrix);
+  } else {
+    if (!node.translation.empty()) m = m * translation_matrix(node.translation);
+    if (!node.rotation.empty()) m = m * rotation_matrix(node.rotation, label);
+    if (!node.scale.empty()) m = m * scale_matrix(node.scale);
+  }
+  if (!is_affine_and_finite(m)) fail(label + " has a non-affine or non-finite transform");
+  return m;
+}
+
+// The roots of the scene to render: the default scene, else the first, else (a file without
+// scenes) every node that is no other node's child.
+std::vector<int> scene_roots(const tinygltf::Model& model) {
+  if (!model.scenes.empty()) {
+    const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
+    if (size_t(scene) >= model.scenes.size())
+      fail("the default scene " + std::to_string(scene) + " does not exist");
+    return model.scenes[size_t(scene)].nodes;
+  }
+  std::vector<bool> is_child(model.nodes.size(), false);
+  for (const tinygltf::Node& node : model.nodes)
+    for (int child : node.children)
+      if (child >= 0 && size_t(child) < model.nodes.size()) is_child[size_t(child)] = true;
+  std::vector<int> roots;
+  for (size_t n = 0; n < model.nodes.size(); ++n)
+    if (!is_child[n]) roots.push_back(int(n));
+  return roots;
+}
+
+struct MeshInstance {
+  size_t mesh;
+  Mat4 node_to_model;
+};
+
+// Walks the hierarchy depth-first without recursion (files may nest deeply), visiting each
+// node at most once: glTF requires a tree, and a cycle or shared child would otherwise loop
+// forever or multiply the work exponentially.
+std::vector<MeshInstance> mesh_instances(const tinygltf::Model& model) {
+  struct Pending {
+    int node;
+    Mat4 parent;
+  };
+  std::vector<Pending> stack;
+  for (int root : scene_roots(model)) stack.push_back({root, Mat4::identity()});
+  std::vector<bool> visited(model.nodes.size(), false);
+  std::vector<MeshInstance> instances;
+  while (!stack.empty()) {
+    const Pending pending = stack.back();
+    stack.pop_back();
+    const std::string label = "node " + std::to_string(pending.node);
+    if (pending.node < 0 || size_t(pending.node) >= model.nodes.size()) fail(label + " does not exist");
+    if (visited[size_t(pending.node)]) fail(label + " appears more than once in the scene's node hierarchy");
+    visited[size_t(pending.node)] = true;
+    const tinygltf::Node& node = model.nodes[size_t(pending.node)];
+    const Mat4 node_to_model = pending.parent * node_matrix(node, label);
+    if (!is_affine_and_finite(node_to_model)) fail(label + " has a non-finite transform");
+    if (node.mesh >= 0) {
+      if (size_t(node.mesh) >= model.meshes.size()) fail(label + " refers to a missing mesh");
+      instances.push_back({size_t(node.mesh), node_to_model});
+    }
+    for (int child : node.children) stack.push_back({child, node_to_model});
+  }
+  return instances;
+}
+
+// Extensions that change how geometry is stored; a file that requires one cannot be read
+// correctly without it, and tinygltf does not decode any of them.
+void check_required_extensions(const tinygltf::Model& model) {
+  for (const std::string& extension : model.extensionsRequired) {
+    const bool geometry_neutral = extension.rfind("KHR_materials_", 0) == 0 ||
+                                  extension.rfind("KHR_texture_", 0) == 0 ||
+                                  extension == "KHR_lights_punctual";
+    if (!geometry_neutral) fail("the file requires the unsupported glTF extension " + extension);
+  }
+}
+
+// Textures do not matter for geometry; skipping them avoids decoding (and trusting) images.
+bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
+                void*) {
+  return true;
+}
+
+tinygltf::Model parse_gltf(const std::string& data, const std::string& path) {
+  if (data.size() >= std::numeric_limits<unsigned int>::max()) fail("the file is too large (4 GiB or more)");
+  tinygltf::TinyGLTF parser;
+  parser.SetImageLoader(&skip_image, nullptr);
+  // External buffers are found relative to the file.
+  const std::string base_dir = std::filesystem::path(path).parent_path().string();
+  const auto length = static_cast<unsigned int>(data.size());
+  tinygltf::Model model;
+  std::string error, warning;
+  bool ok = false;
+  try {
+    // Recognise the binary container by its magic number rather than trusting the extension.
+    ok = data.compare(0, 4, "glTF") == 0
+             ? parser.LoadBinaryFromMemory(&model, &error, &warning,
+                                           reinterpret_cast<const unsigned char*>(data.data()), length,
+                                           base_dir)
+             : parser.LoadASCIIFromString(&model, &error, &warning, data.data(), length, base_dir);
+  } catch (const std::exception& e) {
+    fail(std::string("cannot parse glTF: ") + e.what());
+  }
+  if (!ok) fail("cannot parse glTF: " + tidy_library_message(error));
+  return model;
+}
+
+TriangleMesh read_gltf(const std::string& data, const std::string& path) {
+  const tinygltf::Model model = parse_gltf(data, path);
+  // tinygltf reads a glTF 1.0 file without complaint but finds nothing in it.
+  if (model.asset.version.rfind("2.", 0) != 0)
+    fail("glTF version " + in_quotes(model.asset.version) + " is not supported (only 2.x)");
+  check_required_extensions(model);
+  MeshBuilder builder;
+  for (const MeshInstance& instance : mesh_instances(model)) {
+    const std::optional<Transform> transform = Transform::from_matrix(instance.node_to_model);
+    // A singular transform (a zero scale) is how glTF hides geometry: it has nothing to show.
+    if (!transform) continue;
+    for (size_t p = 0; p < model.meshes[instance.mesh].primitives.size(); ++p) {
+      TriangleMesh part = read_primitive(model, instance.mesh, p);
+      if (!transform->is_identity()) transform_mesh(part, *transform);
+      builder.append(part);
+    }
+  }
+  return builder.finish();
+}
+
+// ---- Clean-up -------------------------------------------------------------------------------
+
+// Same criterion as validate_mesh(): repeated vertices, or sin(angle between the edges) below
+// 1e-12 in double precision, i.e. collinear or coincident vertices.
+bool is_degenerate(Vec3 p0, Vec3 p1, Vec3 p2) {
+  const double e1[3] = {double(p1.x) - p0.x, double(p1.y) - p0.y, double(p1.z) - p0.z};
+  const double e2[3] = {double(p2.x) - p0.x, double(p2.y) - p0.y, double(p2.z) - p0.z};
+  const double c[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                       e1[0] * e2[1] - e1[1] * e2[0]};
+  const auto length = [](const double* v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); };
+  return length(c) <= 1e-12 * length(e1) * length(e2);
+}
+
+// Real files often hold a few zero-area triangles (spider.obj from assimp's test models has 56
+// among 1368). They cover nothing and Embree never hits them, so rejecting the whole file would
+// help no one; they are removed before validation, which still rejects them in meshes built
+// by code. Returns how many were removed. Triangles with bad indices or non-finite vertices
+// are kept for validate_mesh() to report.
+size_t drop_degenerate_triangles(TriangleMesh& mesh) {
+  if (mesh.indices.size() % 3 != 0) return 0;  // validate_mesh() reports this
+  const auto is_kept = [&mesh](const uint32_t* tri) {
+    const size_t n = mesh.positions.size();
+    if (tri[0] >= n || tri[1] >= n || tri[2] >= n) return true;
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) return false;
+    return !is_degenerate(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]);
+  };
+  size_t kept = 0;
+  for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+    if (!is_kept(&mesh.indices[3 * t])) continue;
+    std::copy_n(mesh.indices.begin() + std::ptrdiff_t(3 * t), 3,
+                mesh.indices.begin() + std::ptrdiff_t(3 * kept));
+    ++kept;
+  }
+  const size_t dropped = mesh.triangle_count() - kept;
+  mesh.indices.resize(3 * kept);
+  return dropped;
+}
+
+TriangleMesh read_mesh(const std::string& path, const SourceLocation& where) {
+  const std::string extension = lowercase_extension(path);
+  const bool is_obj = extension == ".obj";
+  if (!is_obj && extension != ".gltf" && extension != ".glb")
+    fail("unsupported mesh format " + in_quotes(extension) + " (expected .obj, .gltf or .glb)");
+  const std::string data = read_whole_file(path, where);
+  return is_obj ? read_obj(data) : read_gltf(data, path);
+}
+
+}  // namespace
+
+TriangleMesh load_mesh(const std::string& path, const SourceLocation& where) {
+  try {
+    TriangleMesh mesh = read_mesh(path, where);
+    const size_t dropped = drop_degenerate_triangles(mesh);
+    if (mesh.indices.empty() && dropped > 0)
+      fail("all " + std::to_string(dropped) + " triangles are degenerate (zero area)");
+    if (const std::string problem = validate_mesh(mesh); !problem.empty()) fail(problem);
+    return mesh;
+  } catch (const MeshFileError& e) {
+    throw InputError(where, path + ": " + e.what());
+  }
+}
+
+}  // namespace caligo

@@ -1,1 +1,592 @@
-// placeholder: not yet written
+#include "scene/mesh_loader.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/bounds.h"
+
+namespace caligo {
+namespace {
+
+namespace fs = std::filesystem;
+
+// ---- Helpers -------------------------------------------------------------------------------
+
+const SourceLocation kWhere{"scene.json", "/shapes/0"};
+
+::testing::AssertionResult contains(const std::string& text, const std::string& part) {
+  if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "\"" << text << "\" does not contain \"" << part << "\"";
+}
+
+void expect_near(Vec3 a, Vec3 b, float tolerance = 1e-5f) {
+  EXPECT_NEAR(a.x, b.x, tolerance);
+  EXPECT_NEAR(a.y, b.y, tolerance);
+  EXPECT_NEAR(a.z, b.z, tolerance);
+}
+
+Vec3 geometric_normal(const TriangleMesh& mesh, size_t t) {
+  const Vec3 p0 = mesh.positions[mesh.indices[3 * t]];
+  const Vec3 p1 = mesh.positions[mesh.indices[3 * t + 1]];
+  const Vec3 p2 = mesh.positions[mesh.indices[3 * t + 2]];
+  return normalize(cross(p1 - p0, p2 - p0));
+}
+
+std::string base64(const std::string& bytes) {
+  static const char* const kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (size_t i = 0; i < bytes.size(); i += 3) {
+    const size_t n = std::min<size_t>(3, bytes.size() - i);
+    uint32_t chunk = 0;
+    for (size_t k = 0; k < 3; ++k) chunk = chunk << 8 | (k < n ? uint8_t(bytes[i + k]) : 0u);
+    for (size_t k = 0; k < 4; ++k) out += k <= n ? kAlphabet[(chunk >> (18 - 6 * k)) & 63] : '=';
+  }
+  return out;
+}
+
+template <typename T>
+void append_bytes(std::string& out, T value) {
+  char raw[sizeof(T)];
+  std::memcpy(raw, &value, sizeof(T));  // little-endian host, as glTF requires
+  out.append(raw, sizeof(T));
+}
+
+void pad_to_4(std::string& s, char fill) {
+  while (s.size() % 4 != 0) s += fill;
+}
+
+// A unit right triangle in z = 0: positions (36 bytes) followed by indices of the given type.
+struct TriangleBuffer {
+  std::string bytes;
+  size_t index_bytes = 0;
+  int index_component_type = 0;
+};
+
+TriangleBuffer triangle_buffer(int component_type = 5123) {
+  TriangleBuffer buffer;
+  buffer.index_component_type = component_type;
+  for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) append_bytes(buffer.bytes, v);
+  for (uint32_t i : {0u, 1u, 2u}) {
+    if (component_type == 5121) append_bytes(buffer.bytes, uint8_t(i));
+    if (component_type == 5123) append_bytes(buffer.bytes, uint16_t(i));
+    if (component_type == 5125) append_bytes(buffer.bytes, i);
+  }
+  buffer.index_bytes = buffer.bytes.size() - 36;
+  return buffer;
+}
+
+struct GltfOptions {
+  std::string node = R"("translation": [1, 2, 3])";
+  size_t position_count = 3;
+  std::string position_view_length = "36";
+  std::string primitive_extra;
+};
+
+// The glTF JSON for triangle_buffer(), with `buffer_json` as its one buffer.
+std::string triangle_gltf(const TriangleBuffer& buffer, const std::string& buffer_json,
+                          const GltfOptions& options = {}) {
+  return R"({
+  "asset": {"version": "2.0"},
+  "scene": 0,
+  "scenes": [{"nodes": [0]}],
+  "nodes": [{"mesh": 0, )" +
+         options.node + R"(}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1)" +
+         options.primitive_extra + R"(}]}],
+  "buffers": [)" +
+         buffer_json + R"(],
+  "bufferViews": [
+    {"buffer": 0, "byteOffset": 0, "byteLength": )" +
+         options.position_view_length + R"(},
+    {"buffer": 0, "byteOffset": 36, "byteLength": )" +
+         std::to_string(buffer.index_bytes) + R"(}
+  ],
+  "accessors": [
+    {"bufferView": 0, "componentType": 5126, "count": )" +
+         std::to_string(options.position_count) + R"(, "type": "VEC3",
+     "min": [0, 0, 0], "max": [1, 1, 0]},
+    {"bufferView": 1, "componentType": )" +
+         std::to_string(buffer.index_component_type) + R"(, "count": 3, "type": "SCALAR"}
+  ]
+})";
+}
+
+std::string data_uri_buffer(const std::string& bytes) {
+  return R"({"byteLength": )" + std::to_string(bytes.size()) +
+         R"(, "uri": "data:application/octet-stream;base64,)" + base64(bytes) + R"("})";
+}
+
+// The binary container: 12-byte header, a JSON chunk padded with spaces, a BIN chunk padded
+// with zeros (https://registry.khronos.org/glTF/specs/2.0/glTF-2.0.html#binary-gltf-layout).
+std::string make_glb(std::string json, std::string bin) {
+  pad_to_4(json, ' ');
+  pad_to_4(bin, '\0');
+  std::string glb = "glTF";
+  append_bytes(glb, uint32_t(2));
+  append_bytes(glb, uint32_t(12 + 8 + json.size() + 8 + bin.size()));
+  append_bytes(glb, uint32_t(json.size()));
+  append_bytes(glb, uint32_t(0x4E4F534A));  // "JSON"
+  glb += json;
+  append_bytes(glb, uint32_t(bin.size()));
+  append_bytes(glb, uint32_t(0x004E4942));  // "BIN\0"
+  glb += bin;
+  return glb;
+}
+
+class MeshLoaderTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    dir_ = fs::temp_directory_path() / ("caligo_mesh_io_" + std::to_string(getpid()) + "_" + test);
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const std::string& name, const std::string& contents) {
+    const fs::path path = dir_ / name;
+    std::ofstream(path, std::ios::binary) << contents;
+    return path.string();
+  }
+
+  // The message of the InputError that loading `path` throws (empty, and a failure, if none).
+  static std::string load_error(const std::string& path) {
+    try {
+      load_mesh(path, kWhere);
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.where().json_path, kWhere.json_path);
+      const std::string message = e.what();
+      EXPECT_TRUE(contains(message, path));
+      EXPECT_EQ(message.rfind("scene.json: /shapes/0: ", 0), 0u) << message;
+      return message;
+    }
+    ADD_FAILURE() << "loading " << path << " did not throw";
+    return {};
+  }
+
+  fs::path dir_;
+};
+
+// ---- OBJ -----------------------------------------------------------------------------------
+
+constexpr const char* kObjQuad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+
+TEST_F(MeshLoaderTest, ObjQuadIsTriangulated) {
+  const TriangleMesh mesh = load_mesh(write("quad.obj", kObjQuad), kWhere);
+  ASSERT_EQ(mesh.triangle_count(), 2u);
+  EXPECT_EQ(mesh.positions.size(), 4u);
+  EXPECT_TRUE(mesh.normals.empty());
+  // Both halves keep the face's counter-clockwise winding.
+  for (size_t t = 0; t < 2; ++t) expect_near(geometric_normal(mesh, t), {0, 0, 1});
+}
+
+TEST_F(MeshLoaderTest, ObjExtensionIsCaseInsensitive) {
+  EXPECT_EQ(load_mesh(write("QUAD.OBJ", kObjQuad), kWhere).triangle_count(), 2u);
+}
+
+TEST_F(MeshLoaderTest, ObjNormalsBecomeOnePerVertex) {
+  const TriangleMesh mesh = load_mesh(
+      write("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1 4//1\n"), kWhere);
+  ASSERT_EQ(mesh.triangle_count(), 2u);
+  EXPECT_EQ(mesh.positions.size(), 4u);  // each (position, normal) pair appears once
+  ASSERT_EQ(mesh.normals.size(), mesh.positions.size());
+  for (Vec3 n : mesh.normals) expect_near(n, {0, 0, 1});
+}
+
+TEST_F(MeshLoaderTest, ObjPositionWithTwoNormalsIsSplit) {
+  const std::string obj =
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvn 0 0 1\nvn 1 0 0\n"
+      "f 1/1/1 2/1/1 3/1/1\nf 1//2 3//2 4//2\n";
+  const TriangleMesh mesh = load_mesh(write("split.obj", "vt 0 0\n" + obj), kWhere);
+  ASSERT_EQ(mesh.triangle_count(), 2u);
+  EXPECT_EQ(mesh.positions.size(), 6u);
+  ASSERT_EQ(mesh.normals.size(), 6u);
+  for (size_t k = 0; k < 3; ++k) {
+    expect_near(mesh.normals[mesh.indices[k]], {0, 0, 1});
+    expect_near(mesh.normals[mesh.indices[3 + k]], {1, 0, 0});
+  }
+  expect_near(mesh.positions[mesh.indices[0]], mesh.positions[mesh.indices[3]]);
+}
+
+TEST_F(MeshLoaderTest, ObjNormalsAreDroppedWhenSomeFacesLackThem) {
+  const TriangleMesh mesh = load_mesh(
+      write("mixed.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\nf 1 3 4\n"),
+      kWhere);
+  EXPECT_EQ(mesh.triangle_count(), 2u);
+  EXPECT_TRUE(mesh.normals.empty());
+}
+
+TEST_F(MeshLoaderTest, ObjShapesAreFlattenedIntoOneMesh) {
+  const TriangleMesh mesh = load_mesh(
+      write("two.obj",
+            "o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\no b\nv 0 0 5\nv 1 0 5\nv 0 1 5\nf -3 -2 -1\n"),
+      kWhere);
+  ASSERT_EQ(mesh.triangle_count(), 2u);
+  EXPECT_EQ(mesh.positions[mesh.indices[3]].z, 5.0f);
+}
+
+TEST_F(MeshLoaderTest, ObjMaterialLibrariesAreIgnored) {
+  const std::string path =
+      write("mtl.obj", "mtllib missing.mtl\nusemtl red\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  EXPECT_EQ(load_mesh(path, kWhere).triangle_count(), 1u);
+}
+
+TEST_F(MeshLoaderTest, ObjNaNVertexIsRejected) {
+  const std::string path = write("nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n");
+  const std::string message = load_error(path);
+  EXPECT_TRUE(contains(message, "non-finite"));
+  EXPECT_TRUE(contains(message, "line 2"));
+}
+
+TEST_F(MeshLoaderTest, ObjInfiniteVertexIsRejected) {
+  EXPECT_TRUE(
+      contains(load_error(write("inf.obj", "v 0 0 0\nv 1 0 -inf\nv 0 1 0\nf 1 2 3\n")), "non-finite"));
+  // Too large for a float: tinyobjloader produces infinity, which validation catches.
+  EXPECT_TRUE(contains(load_error(write("huge.obj", "v 0 0 0\nv 1e39 0 0\nv 0 1 0\nf 1 2 3\n")),
+                       "vertex 1 has a non-finite coordinate"));
+}
+
+TEST_F(MeshLoaderTest, ObjNaNNormalIsRejected) {
+  EXPECT_TRUE(
+      contains(load_error(write("nan_n.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 nan 1\nf 1//1 2//1 3//1\n")),
+               "normal has a non-finite coordinate"));
+}
+
+TEST_F(MeshLoaderTest, ObjUnreadableCoordinateIsRejected) {
+  EXPECT_TRUE(contains(load_error(write("abc.obj", "v 0 0 0\nv 1 zero 0\nv 0 1 0\nf 1 2 3\n")),
+                       "line 2: cannot read the coordinate \"zero\""));
+  EXPECT_TRUE(contains(load_error(write("short.obj", "v 0 0 0\nv 1 0\nv 0 1 0\nf 1 2 3\n")),
+                       "v needs three coordinates"));
+}
+
+TEST_F(MeshLoaderTest, ObjAcceptsTheNumberFormatsTinyObjReads) {
+  const TriangleMesh mesh =
+      load_mesh(write("numbers.obj", "v +0 -0. .0\nv 1e0 0.0E+0 -0e-3\n\tv 0 1. 0 1.0\nf 1 2 3\n"), kWhere);
+  expect_near(mesh.positions[2], {0, 1, 0});
+}
+
+TEST_F(MeshLoaderTest, ObjOfOnlyDegenerateTrianglesIsRejected) {
+  // Collinear vertices, and a triangle whose distinct vertices share one position.
+  EXPECT_TRUE(
+      contains(load_error(write("degenerate.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 0 0\nf 1 2 3\nf 1 2 4\n")),
+               "all 2 triangles are degenerate (zero area)"));
+}
+
+TEST_F(MeshLoaderTest, DegenerateTrianglesAmongGoodOnesAreDropped) {
+  // Real files often contain a few (assimp's spider.obj has 56); they cover no area.
+  const TriangleMesh mesh = load_mesh(
+      write("some.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\nf 4 4 1\nf 1 2 4\n"), kWhere);
+  EXPECT_EQ(mesh.indices, (std::vector<uint32_t>{0, 1, 3, 0, 1, 3}));
+  EXPECT_EQ(validate_mesh(mesh), "");
+}
+
+TEST_F(MeshLoaderTest, ObjIndexOutOfRangeIsRejected) {
+  EXPECT_TRUE(contains(load_error(write("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n")),
+                       "a face refers to vertex 7, but the file has 3 vertices"));
+  EXPECT_TRUE(contains(load_error(write("relative.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -9\n")),
+                       "a face refers to vertex"));
+  EXPECT_TRUE(
+      contains(load_error(write("normal.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//4\n")),
+               "a face refers to normal 4, but the file has 1 normals"));
+}
+
+TEST_F(MeshLoaderTest, ObjParseErrorCarriesTheLibraryMessage) {
+  EXPECT_TRUE(contains(load_error(write("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n")),
+                       "cannot parse OBJ: Failed parse `f' line"));
+}
+
+TEST_F(MeshLoaderTest, ObjWithoutFacesIsRejected) {
+  EXPECT_TRUE(contains(load_error(write("empty.obj", "")), "mesh has no triangles"));
+  EXPECT_TRUE(contains(load_error(write("lines.obj", "v 0 0 0\nv 1 0 0\nl 1 2\n")), "mesh has no triangles"));
+}
+
+TEST_F(MeshLoaderTest, GarbageFileIsRejected) {
+  std::string garbage;
+  for (int i = 0; i < 4096; ++i) garbage += char((i * 7919 + 13) % 256);
+  load_error(write("garbage.obj", garbage));
+  load_error(write("garbage.gltf", garbage));
+  load_error(write("garbage.glb", "glTF" + garbage));
+}
+
+// ---- Files and formats ---------------------------------------------------------------------
+
+TEST_F(MeshLoaderTest, MissingFileNamesThePath) {
+  const std::string path = (dir_ / "missing.obj").string();
+  EXPECT_TRUE(contains(load_error(path), "cannot open mesh file \"" + path + "\""));
+}
+
+TEST_F(MeshLoaderTest, DirectoryIsNotAMeshFile) {
+  fs::create_directories(dir_ / "dir.obj");
+  EXPECT_TRUE(contains(load_error((dir_ / "dir.obj").string()), "cannot open mesh file"));
+}
+
+TEST_F(MeshLoaderTest, UnsupportedExtensionIsRejected) {
+  EXPECT_TRUE(contains(load_error(write("mesh.stl", "solid x\nendsolid x\n")),
+                       "unsupported mesh format \".stl\" (expected .obj, .gltf or .glb)"));
+  EXPECT_TRUE(contains(load_error(write("mesh", kObjQuad)), "unsupported mesh format"));
+}
+
+// ---- glTF ----------------------------------------------------------------------------------
+
+TEST_F(MeshLoaderTest, GltfEmbeddedTriangleIsTranslatedByItsNode) {
+  const TriangleBuffer buffer = triangle_buffer();
+  const TriangleMesh mesh =
+      load_mesh(write("tri.gltf", triangle_gltf(buffer, data_uri_buffer(buffer.bytes))), kWhere);
+  ASSERT_EQ(mesh.triangle_count(), 1u);
+  ASSERT_EQ(mesh.positions.size(), 3u);
+  expect_near(mesh.positions[mesh.indices[0]], {1, 2, 3});
+  expect_near(mesh.positions[mesh.indices[1]], {2, 2, 3});
+  expect_near(mesh.positions[mesh.indices[2]], {1, 3, 3});
+  EXPECT_TRUE(mesh.normals.empty());
+}
+
+TEST_F(MeshLoaderTest, GltfReadsEveryIndexType) {
+  for (int type : {5121, 5123, 5125}) {
+    const TriangleBuffer buffer = triangle_buffer(type);
+    const std::string name = "tri" + std::to_string(type) + ".gltf";
+    const TriangleMesh mesh =
+        load_mesh(write(name, triangle_gltf(buffer, data_uri_buffer(buffer.bytes))), kWhere);
+    EXPECT_EQ(mesh.indices, (std::vector<uint32_t>{0, 1, 2})) << type;
+  }
+}
+
+TEST_F(MeshLoaderTest, GltfSignedIndicesAreRejected) {
+  TriangleBuffer buffer = triangle_buffer(5123);
+  buffer.index_component_type = 5122;  // SHORT is not a valid index type
+  EXPECT_TRUE(contains(load_error(write("signed.gltf", triangle_gltf(buffer, data_uri_buffer(buffer.bytes)))),
+                       "unsigned 8, 16 or 32-bit"));
+}
+
+TEST_F(MeshLoaderTest, GltfExternalBufferIsFoundNextToTheFile) {
+  const TriangleBuffer buffer = triangle_buffer();
+  write("tri.bin", buffer.bytes);
+  const std::string buffer_json =
+      R"({"byteLength": )" + std::to_string(buffer.bytes.size()) + R"(, "uri": "tri.bin"})";
+  const std::string path = write("tri.gltf", triangle_gltf(buffer, buffer_json));
+  EXPECT_EQ(load_mesh(path, kWhere).triangle_count(), 1u);
+  fs::remove(dir_ / "tri.bin");
+  EXPECT_TRUE(contains(load_error(path), "cannot parse glTF"));
+}
+
+TEST_F(MeshLoaderTest, GlbContainerWithTheSameTriangle) {
+  const TriangleBuffer buffer = triangle_buffer();
+  const std::string buffer_json = R"({"byteLength": )" + std::to_string(buffer.bytes.size()) + "}";
+  const std::string glb = make_glb(triangle_gltf(buffer, buffer_json), buffer.bytes);
+  const TriangleMesh mesh = load_mesh(write("tri.glb", glb), kWhere);
+  ASSERT_EQ(mesh.triangle_count(), 1u);
+  expect_near(mesh.positions[mesh.indices[1]], {2, 2, 3});
+
+  // Recognised by content, whatever the extension says; a truncated container is an error.
+  EXPECT_EQ(load_mesh(write("named_wrongly.gltf", glb), kWhere).triangle_count(), 1u);
+  EXPECT_TRUE(
+      contains(load_error(write("truncated.glb", glb.substr(0, glb.size() - 8))), "cannot parse glTF"));
+}
+
+TEST_F(MeshLoaderTest, GltfAccessorPastTheEndOfItsBufferIsRejected) {
+  const TriangleBuffer buffer = triangle_buffer();
+  GltfOptions options;
+  options.position_count = 4;  // one more vec3 than the 36-byte view holds
+  EXPECT_TRUE(
+      contains(load_error(write("count.gltf", triangle_gltf(buffer, data_uri_buffer(buffer.bytes), options))),
+               "accessor 0 reads past the end of its buffer view"));
+
+  options.position_count = size_t(1) << 62;  // large enough to overflow a naive size computation
+  EXPECT_TRUE(
+      contains(load_error(write("huge.gltf", triangle_gltf(buffer, data_uri_buffer(buffer.bytes), options))),
+               "past the end"));
+
+  options.position_count = 3;
+  options.position_view_length = "4096";  // the view itself leaves the 42-byte buffer
+  EXPECT_TRUE(
+      contains(load_error(write("view.gltf", triangle_gltf(buffer, data_uri_buffer(buffer.bytes), options))),
+               "buffer view 0 extends past the end of its buffer"));
+}
+
+TEST_F(MeshLoaderTest, GltfIndexBeyondTheVerticesIsRejected) {
+  TriangleBuffer buffer = triangle_buffer(5123);
+  buffer.bytes[36 + 4] = 9;  // third index: 2 -> 9
+  EXPECT_TRUE(contains(load_error(write("index.gltf", triangle_gltf(buffer, data_uri_buffer(buffer.bytes)))),
+                       "mesh 0, primitive 0: refers to vertex 9, but it has 3"));
+}
+
+TEST_F(MeshLoaderTest, GltfNonTriangleModesAreRejected) {
+  const TriangleBuffer buffer = triangle_buffer();
+  GltfOptions options;
+  options.primitive_extra = R"(, "mode": 1)";
+  EXPECT_TRUE(
+      contains(load_error(write("lines.gltf", triangle_gltf(buffer, data_uri_buffer(buffer.bytes), options))),
+               "mesh 0, primitive 0: has mode 1; only triangles (mode 4) are supported"));
+}
+
+TEST_F(MeshLoaderTest, GltfCyclicNodeHierarchyIsRejected) {
+  const TriangleBuffer buffer = triangle_buffer();
+  GltfOptions options;
+  options.node = R"("children": [1]}, {"children": [0])";
+  EXPECT_TRUE(
+      contains(load_error(write("cycle.gltf", triangle_gltf(buffer, data_uri_buffer(buffer.bytes), options))),
+               "node 0 appears more than once"));
+}
+
+// A glTF with its own buffer of interleaved positions and normals, for transform tests.
+class GltfTransformTest : public MeshLoaderTest {
+ protected:
+  // Triangle (0,0,0), (1,0,0), (0,1,0) with normals +z, stored as p0 n0 p1 n1 p2 n2 (stride 24)
+  // and no index accessor; `nodes` holds the node list, whose node 0 is the scene's root.
+  std::string write_interleaved(const std::string& nodes) {
+    std::string bytes;
+    for (float v : {0.f, 0.f, 0.f, 0.f, 0.f, 1.f, 1.f, 0.f, 0.f, 0.f, 0.f, 1.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f})
+      append_bytes(bytes, v);
+    const std::string json = R"({
+      "asset": {"version": "2.0"},
+      "scenes": [{"nodes": [0]}],
+      "nodes": )" + nodes + R"(,
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}}]}],
+      "buffers": [)" + data_uri_buffer(bytes) +
+                             R"(],
+      "bufferViews": [{"buffer": 0, "byteLength": 72, "byteStride": 24}],
+      "accessors": [
+        {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"},
+        {"bufferView": 0, "byteOffset": 12, "componentType": 5126, "count": 3, "type": "VEC3"}
+      ]
+    })";
+    return write("interleaved.gltf", json);
+  }
+};
+
+TEST_F(GltfTransformTest, InterleavedAttributesAndNoIndices) {
+  const TriangleMesh mesh = load_mesh(write_interleaved(R"([{"mesh": 0}])"), kWhere);
+  EXPECT_EQ(mesh.indices, (std::vector<uint32_t>{0, 1, 2}));
+  ASSERT_EQ(mesh.normals.size(), 3u);
+  expect_near(mesh.positions[1], {1, 0, 0});
+  expect_near(mesh.positions[2], {0, 1, 0});
+  for (Vec3 n : mesh.normals) expect_near(n, {0, 0, 1});
+}
+
+TEST_F(GltfTransformTest, QuaternionRotationAppliesToPositionsAndNormals) {
+  // 90 degrees about +x: y -> z, z -> -y.
+  const TriangleMesh mesh =
+      load_mesh(write_interleaved(R"([{"mesh": 0, "rotation": [0.7071068, 0, 0, 0.7071068]}])"), kWhere);
+  expect_near(mesh.positions[2], {0, 0, 1});
+  for (Vec3 n : mesh.normals) expect_near(n, {0, -1, 0});
+  expect_near(geometric_normal(mesh, 0), {0, -1, 0});
+}
+
+TEST_F(GltfTransformTest, HierarchyComposesParentAfterChild) {
+  const TriangleMesh mesh = load_mesh(
+      write_interleaved(R"([{"translation": [10, 0, 0], "children": [1]}, {"mesh": 0, "scale": [2, 2, 2]}])"),
+      kWhere);
+  expect_near(mesh.positions[0], {10, 0, 0});
+  expect_near(mesh.positions[1], {12, 0, 0});
+  expect_near(mesh.positions[2], {10, 2, 0});
+}
+
+TEST_F(GltfTransformTest, TrsOrderIsTranslateRotateScale) {
+  // Scale x by 3, then rotate 90 degrees about +z (x -> y), then translate.
+  const TriangleMesh mesh = load_mesh(
+      write_interleaved(
+          R"([{"mesh": 0, "translation": [0, 0, 5], "rotation": [0, 0, 0.7071068, 0.7071068], "scale": [3, 1, 1]}])"),
+      kWhere);
+  expect_near(mesh.positions[1], {0, 3, 5});
+  expect_near(mesh.positions[2], {-1, 0, 5});
+}
+
+TEST_F(GltfTransformTest, ColumnMajorMatrix) {
+  const TriangleMesh mesh = load_mesh(
+      write_interleaved(R"([{"mesh": 0, "matrix": [2,0,0,0, 0,2,0,0, 0,0,2,0, 7,8,9,1]}])"), kWhere);
+  expect_near(mesh.positions[1], {9, 8, 9});
+}
+
+TEST_F(GltfTransformTest, MirroringKeepsGeometricAndShadingNormalsTogether) {
+  const TriangleMesh mesh = load_mesh(write_interleaved(R"([{"mesh": 0, "scale": [1, 1, -1]}])"), kWhere);
+  for (Vec3 n : mesh.normals) expect_near(n, {0, 0, -1});
+  expect_near(geometric_normal(mesh, 0), {0, 0, -1});
+}
+
+TEST_F(GltfTransformTest, ZeroScaleHidesTheMesh) {
+  EXPECT_TRUE(contains(load_error(write_interleaved(R"([{"mesh": 0, "scale": [0, 0, 0]}])")),
+                       "mesh has no triangles"));
+}
+
+TEST_F(GltfTransformTest, MalformedTransformsAreRejected) {
+  EXPECT_TRUE(contains(load_error(write_interleaved(R"([{"mesh": 0, "translation": [1, 2]}])")),
+                       "node 0 has a transform with the wrong number of values"));
+  EXPECT_TRUE(contains(load_error(write_interleaved(R"([{"mesh": 0, "rotation": [0, 0, 0, 0]}])")),
+                       "node 0 has an invalid rotation quaternion"));
+  EXPECT_TRUE(contains(
+      load_error(write_interleaved(R"([{"mesh": 0, "matrix": [1,0,0,1, 0,1,0,0, 0,0,1,0, 0,0,0,1]}])")),
+      "node 0 has a non-affine or non-finite transform"));
+}
+
+// ---- Real files (Debian's assimp-testmodels, when installed) -------------------------------
+
+fs::path test_models_dir() {
+  const char* override_dir = std::getenv("CALIGO_TEST_MODELS_DIR");  // for a copy elsewhere
+  return override_dir != nullptr ? fs::path(override_dir) : fs::path("/usr/share/assimp/models");
+}
+
+void expect_plausible(const TriangleMesh& mesh) {
+  EXPECT_GT(mesh.triangle_count(), 0u);
+  Bounds3 bounds;
+  for (Vec3 p : mesh.positions) bounds.extend(p);
+  EXPECT_TRUE(is_finite(bounds.lo) && is_finite(bounds.hi));
+  EXPECT_FALSE(bounds.empty());
+}
+
+class RealMeshTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!fs::exists(test_models_dir() / "OBJ/spider.obj"))
+      GTEST_SKIP() << "assimp-testmodels is not installed";
+  }
+  static std::string model(const std::string& relative) { return (test_models_dir() / relative).string(); }
+};
+
+TEST_F(RealMeshTest, SpiderObj) {
+  const TriangleMesh mesh = load_mesh(model("OBJ/spider.obj"), kWhere);
+  expect_plausible(mesh);
+}
+
+TEST_F(RealMeshTest, GltfBoxes) {
+  for (const char* file :
+       {"glTF2/BoxTextured-glTF/BoxTextured.gltf", "glTF2/BoxTextured-glTF-Binary/BoxTextured.glb",
+        "glTF2/BoxTextured-glTF-Embedded/BoxTextured.gltf"}) {
+    SCOPED_TRACE(file);
+    const TriangleMesh mesh = load_mesh(model(file), kWhere);
+    EXPECT_EQ(mesh.triangle_count(), 12u);
+    EXPECT_EQ(mesh.normals.size(), mesh.positions.size());
+    expect_plausible(mesh);
+  }
+}
+
+TEST_F(RealMeshTest, BrokenGltfFilesAreInputErrors) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"glTF2/BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb", "non-finite"},
+      {"glTF2/IndexOutOfRange/IndexOutOfRange.gltf", "refers to vertex"},
+      {"glTF2/RecursiveNodes/RecursiveNodes.gltf", "appears more than once"},
+      {"glTF2/MissingBin/BoxTextured.gltf", "cannot parse glTF"},
+  };
+  for (const auto& [file, expected] : cases) {
+    SCOPED_TRACE(file);
+    try {
+      load_mesh(model(file), kWhere);
+      ADD_FAILURE() << "no error";
+    } catch (const InputError& e) {
+      EXPECT_TRUE(contains(e.what(), expected));
+    }
+  }
+}
+
+}  // namespace
+}  // namespace caligo

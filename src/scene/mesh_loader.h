@@ -1,0 +1,19 @@
+// Mesh files (Wavefront OBJ, glTF 2.0 .gltf/.glb) -> one validated TriangleMesh. The parsing
+// libraries stay behind this header so only mesh_loader.cpp compiles against them.
+#pragma once
+
+#include <string>
+
+#include "core/error.h"
+#include "geometry/triangle_mesh.h"
+
+namespace caligo {
+
+// Loads every triangle of the file at `path` into one mesh in the file's model space: all OBJ
+// shapes, or every mesh instance of a glTF file's default scene with its node transforms
+// applied. Normals are kept only when every triangle has them. The result has passed
+// validate_mesh(). Any problem throws InputError at `where` (the shape's place in the scene
+// file) with a message naming `path`.
+TriangleMesh load_mesh(const std::string& path, const SourceLocation& where);
+
+}  // namespace caligo
