@@ -121,7 +121,7 @@ const char* kValidScene = R"({
 })";
 
 std::string scene_with(const std::string& needle, const std::string& replacement,
-                       const std::string& shape = R"({"type": "sphere", "radius": 1, "material": "white"})") {
+                       const std::string& shape = R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white"})") {
   std::string s = kValidScene;
   s.replace(s.find("SHAPE"), 5, shape);
   if (!needle.empty()) {
@@ -141,18 +141,18 @@ struct BadCase {
 TEST_F(Cli, BadScenesGiveLocatedErrorsAndNoOutput) {
   const std::vector<BadCase> cases = {
       {"syntax", scene_with("\"render\"", "\"render\" ::"), "line 3"},
-      {"unknown_key", scene_with("\"fov\"", "\"colour\": 1, \"fov\""), "/camera: unknown key \"colour\""},
+      {"unknown_key", scene_with("\"fov\"", "\"colour\": 1, \"fov\""), "/camera/colour: unknown key \"colour\""},
       {"wrong_type", scene_with("\"intensity\": 5", "\"intensity\": \"bright\""), "/lights/0/intensity"},
       {"missing_key", scene_with("\"position\": [0, 2, 0], ", ""), "/lights/0"},
-      {"not_finite", scene_with("", "", R"({"type": "sphere", "radius": 1e39, "material": "white"})"),
+      {"not_finite", scene_with("", "", R"({"type": "sphere", "center": [0, 0, 0], "radius": 1e39, "material": "white"})"),
        "/shapes/0/radius"},
-      {"negative_radius", scene_with("", "", R"({"type": "sphere", "radius": -1, "material": "white"})"),
+      {"negative_radius", scene_with("", "", R"({"type": "sphere", "center": [0, 0, 0], "radius": -1, "material": "white"})"),
        "/shapes/0/radius"},
       {"zero_box", scene_with("", "", R"({"type": "box", "min": [0,0,0], "max": [1,0,1], "material": "white"})"),
        "/shapes/0"},
       {"absurd_resolution", scene_with("[16, 16]", "[100000, 16]"), "/camera/resolution"},
       {"zero_spp", scene_with("\"spp\": 1", "\"spp\": 0"), "/render/spp"},
-      {"unknown_material", scene_with("", "", R"({"type": "sphere", "radius": 1, "material": "chrome"})"),
+      {"unknown_material", scene_with("", "", R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "chrome"})"),
        "/shapes/0/material"},
       {"unknown_light_type", scene_with("\"type\": \"point\"", "\"type\": \"laser\""), "/lights/0/type"},
       {"missing_mesh", scene_with("", "", R"({"type": "mesh", "file": "nowhere.obj", "material": "white"})"),
@@ -196,7 +196,7 @@ TEST_F(Cli, BadCommandLinesExitWithTwo) {
       {"render default -o " + (dir_ / "missing-dir" / "x.exr").string(), "does not exist"},
       {"render default -o " + (dir_ / "x.tiff").string(), ".exr"},
       {"compare " + (dir_ / "nope.exr").string() + " " + (dir_ / "nope.exr").string(), "nope.exr"},
-      {"frobnicate", "frobnicate"},
+      {"frobnicate", "unknown command \"frobnicate\""},
   };
   for (const auto& [args, expected] : cases) {
     const RunResult r = run(args);

@@ -25,6 +25,16 @@ int main(int argc, char** argv) {
   caligo::CompareOptions compare;
   caligo::add_render_command(app, render);
   caligo::add_compare_command(app, compare);
+  // CLI11 would only say "a subcommand is required" for a misspelt one.
+  const auto is_command = [&app](const std::string& name) {
+    for (const CLI::App* sub : app.get_subcommands({}))
+      if (sub->check_name(name)) return true;
+    return false;
+  };
+  if (argc > 1 && argv[1][0] != '-' && !is_command(argv[1])) {
+    std::fprintf(stderr, "caligo: error: unknown command \"%s\" (commands: render, compare)\n", argv[1]);
+    return caligo::kExitInputError;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

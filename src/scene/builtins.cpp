@@ -1,1 +1,130 @@
-// placeholder: not yet written
+#include "scene/builtins.h"
+
+#include "scene/scene_parser.h"
+
+namespace caligo {
+namespace {
+
+// A closed Cornell-style room, 4 m wide, 4 m high and 7 m deep, with all six walls facing
+// inwards (the wall behind the camera included, so no light escapes). Kept identical to
+// scenes/default.json.
+constexpr const char* kDefault = R"json({
+  "camera": {"position": [0, 2, 4.5], "look_at": [0, 2, -2], "fov": 40, "resolution": [640, 480]},
+  "render": {"spp": 64, "max_depth": 8},
+  "materials": {
+    "white": {"type": "diffuse", "reflectance": 0.75},
+    "red": {"type": "diffuse", "reflectance": [0.63, 0.065, 0.05]},
+    "green": {"type": "diffuse", "reflectance": [0.14, 0.45, 0.091]},
+    "glass": {"type": "dielectric", "ior": 1.5}
+  },
+  "shapes": [
+    {"type": "rectangle", "corner": [-2, 0, -2], "edge1": [0, 0, 7], "edge2": [4, 0, 0], "material": "white"},
+    {"type": "rectangle", "corner": [-2, 4, -2], "edge1": [4, 0, 0], "edge2": [0, 0, 7], "material": "white"},
+    {"type": "rectangle", "corner": [-2, 0, -2], "edge1": [4, 0, 0], "edge2": [0, 4, 0], "material": "white"},
+    {"type": "rectangle", "corner": [-2, 0, 5], "edge1": [0, 4, 0], "edge2": [4, 0, 0], "material": "white"},
+    {"type": "rectangle", "corner": [-2, 0, -2], "edge1": [0, 4, 0], "edge2": [0, 0, 7], "material": "red"},
+    {"type": "rectangle", "corner": [2, 0, -2], "edge1": [0, 0, 7], "edge2": [0, 4, 0], "material": "green"},
+    {"type": "sphere", "center": [-0.8, 0.7, 0.2], "radius": 0.7, "material": "glass"},
+    {"type": "box", "min": [-0.6, 0, -0.6], "max": [0.6, 1.6, 0.6], "material": "white",
+     "transform": [{"rotate": {"angle": 25, "axis": [0, 1, 0]}}, {"translate": [0.9, 0, -0.6]}]}
+  ],
+  "lights": [
+    {"type": "quad", "corner": [-0.5, 3.99, -0.5], "edge1": [1, 0, 0], "edge2": [0, 0, 1],
+     "color": [1, 0.85, 0.65], "radiance": 17}
+  ]
+}
+)json";
+
+// Albedo-0.5 walls emitting 1 on both sides, seen from inside: L = E / (1 - a) = 2.
+constexpr const char* kFurnace = R"json({
+  "camera": {"position": [0, 0, 0], "look_at": [0, 0, 1], "fov": 60, "resolution": [32, 32]},
+  "render": {"spp": 64, "max_depth": 1000},
+  "materials": {
+    "wall": {"type": "diffuse", "reflectance": 0.5, "emission": 1, "two_sided": true}
+  },
+  "shapes": [
+    {"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "wall"}
+  ]
+}
+)json";
+
+// Irradiance on the wall E = I / r^2 = 1; the walls' radiance sums the bounces:
+// L = (a / pi) E / (1 - a) = 1 / pi (the first bounce alone: a / pi = 0.159).
+constexpr const char* kPointInSphere = R"json({
+  "camera": {"position": [0, 0, 0], "look_at": [0, 0, 1], "fov": 60, "resolution": [32, 32]},
+  "render": {"spp": 64, "max_depth": 1000},
+  "materials": {
+    "wall": {"type": "diffuse", "reflectance": 0.5}
+  },
+  "shapes": [
+    {"type": "sphere", "center": [0, 0, 0], "radius": 2, "material": "wall"}
+  ],
+  "lights": [
+    {"type": "point", "position": [0, 0, 0], "intensity": 4}
+  ]
+}
+)json";
+
+constexpr const char* kLightsShowcase = R"json({
+  "camera": {"position": [0, 2.5, 8], "look_at": [0, 0.8, 0], "fov": 40, "resolution": [640, 480]},
+  "render": {"spp": 32, "max_depth": 5},
+  "materials": {
+    "ground": {"type": "diffuse", "reflectance": 0.5},
+    "grey": {"type": "diffuse", "reflectance": 0.7},
+    "rust": {"type": "diffuse", "reflectance": [0.7, 0.3, 0.15]},
+    "slate": {"type": "diffuse", "reflectance": [0.2, 0.3, 0.6]}
+  },
+  "shapes": [
+    {"type": "rectangle", "corner": [-20, 0, -20], "edge1": [0, 0, 40], "edge2": [40, 0, 0],
+     "material": "ground"},
+    {"type": "sphere", "center": [0, 1, 0], "radius": 1, "material": "grey"},
+    {"type": "sphere", "center": [-2.5, 0.7, 0.5], "radius": 0.7, "material": "rust"},
+    {"type": "sphere", "center": [2.2, 0.6, 1.2], "radius": 0.6, "material": "slate"}
+  ],
+  "lights": [
+    {"type": "spot", "position": [-3, 5, 3], "look_at": [0, 1, 0], "inner_angle": 15, "outer_angle": 25,
+     "color": [1, 0.9, 0.7], "power": 60},
+    {"type": "sphere", "center": [2.5, 2.5, -1], "radius": 0.3, "color": [0.6, 0.8, 1], "power": 40},
+    {"type": "point", "position": [0, 3.5, 2.5], "power": 60},
+    {"type": "quad", "corner": [-1, 0.5, -4], "edge1": [2, 0, 0], "edge2": [0, 1.2, 0],
+     "color": [1, 0.4, 0.2], "radiance": 3},
+    {"type": "directional", "direction": [-0.4, -1, -0.3], "color": [1, 0.95, 0.85], "irradiance": 1.5,
+     "angular_radius": 0.5},
+    {"type": "environment", "color": [0.5, 0.7, 1], "radiance": 0.15}
+  ]
+}
+)json";
+
+const std::vector<BuiltinScene>& all_builtins() {
+  static const std::vector<BuiltinScene> scenes = {
+      {"default", "a closed Cornell-style room with a glass sphere, a rotated box and a ceiling light",
+       kDefault},
+      {"furnace", "camera inside a closed sphere of albedo 0.5 emitting 1: every pixel converges to 2",
+       kFurnace},
+      {"point-in-sphere",
+       "camera inside an albedo-0.5 sphere of radius 2 lit by a 4 W/sr point light at its centre: "
+       "every pixel converges to 1/pi",
+       kPointInSphere},
+      {"lights-showcase",
+       "spheres on a ground plane lit by one light of each type: spot, sphere, point, quad, directional "
+       "(0.5 degree sun) and environment",
+       kLightsShowcase},
+  };
+  return scenes;
+}
+
+}  // namespace
+
+std::vector<BuiltinScene> builtin_scenes() { return all_builtins(); }
+
+const BuiltinScene* find_builtin(std::string_view name) {
+  for (const BuiltinScene& scene : all_builtins())
+    if (scene.name == name) return &scene;
+  return nullptr;
+}
+
+SceneDesc parse_builtin(const BuiltinScene& scene) {
+  return parse_scene_text(scene.json, "builtin:" + scene.name, "");
+}
+
+}  // namespace caligo

@@ -1,1 +1,95 @@
-// placeholder: not yet written
+#include "scene/builtins.h"
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+namespace caligo {
+namespace {
+
+TEST(Builtins, EveryBuiltinParses) {
+  const auto scenes = builtin_scenes();
+  ASSERT_FALSE(scenes.empty());
+  for (const BuiltinScene& b : scenes) {
+    SCOPED_TRACE(b.name);
+    EXPECT_FALSE(b.description.empty());
+    const SceneDesc scene = parse_builtin(b);
+    EXPECT_EQ(scene.file, "builtin:" + b.name);
+  }
+}
+
+TEST(Builtins, NamesAreUniqueAndFindable) {
+  std::set<std::string> names;
+  for (const BuiltinScene& b : builtin_scenes()) {
+    EXPECT_TRUE(names.insert(b.name).second) << "duplicate builtin " << b.name;
+    const BuiltinScene* found = find_builtin(b.name);
+    ASSERT_NE(found, nullptr);
+    EXPECT_EQ(found->name, b.name);
+    EXPECT_EQ(found->json, b.json);
+  }
+  for (const char* required : {"default", "furnace", "point-in-sphere", "lights-showcase"})
+    EXPECT_TRUE(names.count(required)) << required;
+  EXPECT_EQ(builtin_scenes().front().name, "default");
+}
+
+TEST(Builtins, UnknownNameIsNull) {
+  EXPECT_EQ(find_builtin("no-such-scene"), nullptr);
+  EXPECT_EQ(find_builtin(""), nullptr);
+}
+
+// The analytic scenes must stay what the integrator tests assume.
+TEST(Builtins, FurnaceIsAClosedEmittingSphereAroundTheCamera) {
+  const SceneDesc scene = parse_builtin(*find_builtin("furnace"));
+  ASSERT_EQ(scene.shapes.size(), 1u);
+  const auto& sphere = std::get<SphereShape>(scene.shapes[0].geometry);
+  EXPECT_LT(distance(scene.camera.position, sphere.center), sphere.radius);
+  const Material& wall = scene.materials[scene.shapes[0].material];
+  EXPECT_EQ(std::get<DiffuseBsdf>(wall.bsdf).reflectance, RGB(0.5f));
+  EXPECT_EQ(wall.emission, RGB(1.0f));
+  EXPECT_TRUE(wall.two_sided_emission);
+  EXPECT_TRUE(scene.lights.empty());
+  EXPECT_EQ(scene.camera.resolution, (Vec2i{32, 32}));
+  EXPECT_GE(scene.render.max_depth, 1000);
+}
+
+TEST(Builtins, PointInSphereHasTheLightAtTheCentre) {
+  const SceneDesc scene = parse_builtin(*find_builtin("point-in-sphere"));
+  ASSERT_EQ(scene.shapes.size(), 1u);
+  const auto& sphere = std::get<SphereShape>(scene.shapes[0].geometry);
+  EXPECT_FLOAT_EQ(sphere.radius, 2.0f);
+  EXPECT_LT(distance(scene.camera.position, sphere.center), sphere.radius);
+  EXPECT_EQ(std::get<DiffuseBsdf>(scene.materials[scene.shapes[0].material].bsdf).reflectance, RGB(0.5f));
+  ASSERT_EQ(scene.lights.size(), 1u);
+  const auto& point = std::get<PointLight>(scene.lights[0]);
+  EXPECT_EQ(point.position, sphere.center);
+  EXPECT_EQ(point.intensity, RGB(4.0f));
+  EXPECT_EQ(scene.camera.resolution, (Vec2i{32, 32}));
+}
+
+TEST(Builtins, DefaultRoomIsClosedAroundTheCamera) {
+  const SceneDesc scene = parse_builtin(*find_builtin("default"));
+  // Six walls: the camera is inside the box they bound.
+  int walls = 0;
+  for (const ShapeDesc& s : scene.shapes) walls += std::holds_alternative<RectangleShape>(s.geometry);
+  EXPECT_EQ(walls, 6);
+  const Vec3 p = scene.camera.position;
+  EXPECT_TRUE(p.x > -2 && p.x < 2 && p.y > 0 && p.y < 4 && p.z > -2 && p.z < 5);
+  ASSERT_EQ(scene.lights.size(), 1u);
+  EXPECT_TRUE(std::holds_alternative<QuadLight>(scene.lights[0]));
+  EXPECT_EQ(scene.render.spp, 64);
+  EXPECT_EQ(scene.render.max_depth, 8);
+}
+
+TEST(Builtins, LightsShowcaseHasEveryFileLightType) {
+  const SceneDesc scene = parse_builtin(*find_builtin("lights-showcase"));
+  std::set<size_t> kinds;
+  for (const Light& l : scene.lights) kinds.insert(l.index());
+  EXPECT_EQ(kinds.size(), 6u);  // every type a scene file can name (triangle lights come from meshes)
+  for (const Light& l : scene.lights)
+    if (const auto* sun = std::get_if<DirectionalLight>(&l)) {
+      EXPECT_LT(sun->cos_angular_radius, 1.0f);
+    }
+}
+
+}  // namespace
+}  // namespace caligo
