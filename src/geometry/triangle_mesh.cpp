@@ -1,5 +1,6 @@
 #include "geometry/triangle_mesh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -34,8 +35,10 @@ std::string check_normals(const TriangleMesh& mesh) {
   return {};
 }
 
+}  // namespace
+
 // Computed in double so that rounding in the cross product cannot hide exact collinearity.
-bool has_zero_area(Vec3 p0, Vec3 p1, Vec3 p2) {
+bool is_degenerate_triangle(Vec3 p0, Vec3 p1, Vec3 p2) {
   const double e1[3] = {double(p1.x) - p0.x, double(p1.y) - p0.y, double(p1.z) - p0.z};
   const double e2[3] = {double(p2.x) - p0.x, double(p2.y) - p0.y, double(p2.z) - p0.z};
   const double c[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
@@ -46,6 +49,27 @@ bool has_zero_area(Vec3 p0, Vec3 p1, Vec3 p2) {
   return cross_len <= kDegenerateSine * len1 * len2;
 }
 
+size_t remove_degenerate_triangles(TriangleMesh& mesh) {
+  if (mesh.indices.size() % 3 != 0) return 0;  // validate_mesh() reports this
+  const size_t n = mesh.positions.size();
+  const auto keep = [&](const uint32_t* tri) {
+    if (tri[0] >= n || tri[1] >= n || tri[2] >= n) return true;
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) return false;
+    return !is_degenerate_triangle(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]);
+  };
+  size_t kept = 0;
+  for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+    if (!keep(&mesh.indices[3 * t])) continue;
+    std::copy_n(mesh.indices.begin() + std::ptrdiff_t(3 * t), 3, mesh.indices.begin() + std::ptrdiff_t(3 * kept));
+    ++kept;
+  }
+  const size_t removed = mesh.triangle_count() - kept;
+  mesh.indices.resize(3 * kept);
+  return removed;
+}
+
+namespace {
+
 std::string check_triangle(const TriangleMesh& mesh, size_t t) {
   const uint32_t* tri = &mesh.indices[3 * t];
   for (int k = 0; k < 3; ++k)
@@ -53,7 +77,7 @@ std::string check_triangle(const TriangleMesh& mesh, size_t t) {
       return triangle_error(t, "refers to vertex " + std::to_string(tri[k]) + ", but the mesh has " +
                                    std::to_string(mesh.positions.size()) + " vertices");
   if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] ||
-      has_zero_area(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]))
+      is_degenerate_triangle(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]))
     return triangle_error(t, "is degenerate (zero area)");
   return {};
 }

@@ -23,8 +23,15 @@ struct TriangleMesh {
 // the transform mirrors, so geometric normals keep pointing outwards.
 void transform_mesh(TriangleMesh& mesh, const Transform& object_to_world);
 
+// True when the triangle has zero area (coincident or collinear vertices, tested in double).
+bool is_degenerate_triangle(Vec3 p0, Vec3 p1, Vec3 p2);
+
+// Removes zero-area triangles (and those repeating a vertex index); returns how many.
+// Triangles with out-of-range indices are kept for validate_mesh() to report.
+size_t remove_degenerate_triangles(TriangleMesh& mesh);
+
 // Returns an empty string when the mesh is usable, otherwise the first problem found, e.g.
-// "vertex 12 has a non-finite coordinate", "triangle 3 refers to vertex 99 (the mesh has 40)",
+// "vertex 12 has a non-finite coordinate", "triangle 3 refers to vertex 99, but the mesh has 40 vertices",
 // "triangle 7 is degenerate (zero area)", "mesh has no triangles".
 std::string validate_mesh(const TriangleMesh& mesh);
 

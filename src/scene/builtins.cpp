@@ -9,7 +9,7 @@ namespace {
 // inwards (the wall behind the camera included, so no light escapes). Kept identical to
 // scenes/default.json.
 constexpr const char* kDefault = R"json({
-  "camera": {"position": [0, 2, 4.5], "look_at": [0, 2, -2], "fov": 40, "resolution": [640, 480]},
+  "camera": {"position": [0, 1.7, 4.9], "look_at": [0, 1.3, -2], "fov": 48, "resolution": [640, 480]},
   "render": {"spp": 64, "max_depth": 8},
   "materials": {
     "white": {"type": "diffuse", "reflectance": 0.75},
@@ -29,8 +29,8 @@ constexpr const char* kDefault = R"json({
      "transform": [{"rotate": {"angle": 25, "axis": [0, 1, 0]}}, {"translate": [0.9, 0, -0.6]}]}
   ],
   "lights": [
-    {"type": "quad", "corner": [-0.5, 3.99, -0.5], "edge1": [1, 0, 0], "edge2": [0, 0, 1],
-     "color": [1, 0.85, 0.65], "radiance": 17}
+    {"type": "quad", "corner": [-0.75, 3.99, -0.75], "edge1": [1.5, 0, 0], "edge2": [0, 0, 1.5],
+     "color": [1, 0.85, 0.65], "radiance": 8}
   ]
 }
 )json";

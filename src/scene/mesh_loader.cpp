@@ -516,42 +516,6 @@ TriangleMesh read_gltf(const std::string& data, const std::string& path) {
 
 // ---- Clean-up -------------------------------------------------------------------------------
 
-// Same criterion as validate_mesh(): repeated vertices, or sin(angle between the edges) below
-// 1e-12 in double precision, i.e. collinear or coincident vertices.
-bool is_degenerate(Vec3 p0, Vec3 p1, Vec3 p2) {
-  const double e1[3] = {double(p1.x) - p0.x, double(p1.y) - p0.y, double(p1.z) - p0.z};
-  const double e2[3] = {double(p2.x) - p0.x, double(p2.y) - p0.y, double(p2.z) - p0.z};
-  const double c[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
-                       e1[0] * e2[1] - e1[1] * e2[0]};
-  const auto length = [](const double* v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); };
-  return length(c) <= 1e-12 * length(e1) * length(e2);
-}
-
-// Real files often hold a few zero-area triangles (spider.obj from assimp's test models has 56
-// among 1368). They cover nothing and Embree never hits them, so rejecting the whole file would
-// help no one; they are removed before validation, which still rejects them in meshes built
-// by code. Returns how many were removed. Triangles with bad indices or non-finite vertices
-// are kept for validate_mesh() to report.
-size_t drop_degenerate_triangles(TriangleMesh& mesh) {
-  if (mesh.indices.size() % 3 != 0) return 0;  // validate_mesh() reports this
-  const auto is_kept = [&mesh](const uint32_t* tri) {
-    const size_t n = mesh.positions.size();
-    if (tri[0] >= n || tri[1] >= n || tri[2] >= n) return true;
-    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) return false;
-    return !is_degenerate(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]]);
-  };
-  size_t kept = 0;
-  for (size_t t = 0; t < mesh.triangle_count(); ++t) {
-    if (!is_kept(&mesh.indices[3 * t])) continue;
-    std::copy_n(mesh.indices.begin() + std::ptrdiff_t(3 * t), 3,
-                mesh.indices.begin() + std::ptrdiff_t(3 * kept));
-    ++kept;
-  }
-  const size_t dropped = mesh.triangle_count() - kept;
-  mesh.indices.resize(3 * kept);
-  return dropped;
-}
-
 TriangleMesh read_mesh(const std::string& path, const SourceLocation& where) {
   const std::string extension = lowercase_extension(path);
   const bool is_obj = extension == ".obj";
@@ -563,12 +527,14 @@ TriangleMesh read_mesh(const std::string& path, const SourceLocation& where) {
 
 }  // namespace
 
-TriangleMesh load_mesh(const std::string& path, const SourceLocation& where) {
+TriangleMesh load_mesh(const std::string& path, const SourceLocation& where, DegenerateTriangles degenerate) {
   try {
     TriangleMesh mesh = read_mesh(path, where);
-    const size_t dropped = drop_degenerate_triangles(mesh);
-    if (mesh.indices.empty() && dropped > 0)
-      fail("all " + std::to_string(dropped) + " triangles are degenerate (zero area)");
+    if (degenerate == DegenerateTriangles::kRemove) {
+      const size_t removed = remove_degenerate_triangles(mesh);
+      if (mesh.indices.empty() && removed > 0)
+        fail("all " + std::to_string(removed) + " triangles are degenerate (zero area)");
+    }
     if (const std::string problem = validate_mesh(mesh); !problem.empty()) fail(problem);
     return mesh;
   } catch (const MeshFileError& e) {

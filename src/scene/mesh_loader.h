@@ -14,6 +14,12 @@ namespace caligo {
 // applied. Normals are kept only when every triangle has them. The result has passed
 // validate_mesh(). Any problem throws InputError at `where` (the shape's place in the scene
 // file) with a message naming `path`.
-TriangleMesh load_mesh(const std::string& path, const SourceLocation& where);
+//
+// Zero-area triangles are an error by default (a broken export should not render silently);
+// many real files carry a few, so a scene may ask for them to be removed instead
+// ("skip_degenerate": true on the mesh shape).
+enum class DegenerateTriangles { kReject, kRemove };
+TriangleMesh load_mesh(const std::string& path, const SourceLocation& where,
+                       DegenerateTriangles degenerate = DegenerateTriangles::kReject);
 
 }  // namespace caligo

@@ -279,15 +279,22 @@ TEST_F(MeshLoaderTest, ObjAcceptsTheNumberFormatsTinyObjReads) {
 
 TEST_F(MeshLoaderTest, ObjOfOnlyDegenerateTrianglesIsRejected) {
   // Collinear vertices, and a triangle whose distinct vertices share one position.
-  EXPECT_TRUE(
-      contains(load_error(write("degenerate.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 0 0\nf 1 2 3\nf 1 2 4\n")),
-               "all 2 triangles are degenerate (zero area)"));
+  const std::string path = write("degenerate.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 0 0\nf 1 2 3\nf 1 2 4\n");
+  EXPECT_TRUE(contains(load_error(path), "triangle 0 is degenerate (zero area)"));
+  try {
+    load_mesh(path, kWhere, DegenerateTriangles::kRemove);
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_TRUE(contains(e.what(), "all 2 triangles are degenerate (zero area)")) << e.what();
+  }
 }
 
-TEST_F(MeshLoaderTest, DegenerateTrianglesAmongGoodOnesAreDropped) {
+TEST_F(MeshLoaderTest, DegenerateTrianglesAreRejectedUnlessRemovalIsAsked) {
   // Real files often contain a few (assimp's spider.obj has 56); they cover no area.
-  const TriangleMesh mesh = load_mesh(
-      write("some.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\nf 4 4 1\nf 1 2 4\n"), kWhere);
+  const std::string path =
+      write("some.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 4\nf 4 4 1\nf 1 2 4\n");
+  EXPECT_TRUE(contains(load_error(path), "triangle 0 is degenerate (zero area)"));
+  const TriangleMesh mesh = load_mesh(path, kWhere, DegenerateTriangles::kRemove);
   EXPECT_EQ(mesh.indices, (std::vector<uint32_t>{0, 1, 3, 0, 1, 3}));
   EXPECT_EQ(validate_mesh(mesh), "");
 }
@@ -554,7 +561,9 @@ class RealMeshTest : public ::testing::Test {
 };
 
 TEST_F(RealMeshTest, SpiderObj) {
-  const TriangleMesh mesh = load_mesh(model("OBJ/spider.obj"), kWhere);
+  // The file holds 56 zero-area triangles: rejected unless the scene asks for their removal.
+  EXPECT_THROW(load_mesh(model("OBJ/spider.obj"), kWhere), InputError);
+  const TriangleMesh mesh = load_mesh(model("OBJ/spider.obj"), kWhere, DegenerateTriangles::kRemove);
   expect_plausible(mesh);
 }
 

@@ -23,11 +23,24 @@ std::optional<SphereLight> as_sphere_light(const Sphere& s, const Material& m) {
   return SphereLight{t.point({}), rx, m.emission, m.two_sided_emission};
 }
 
+// Built piecewise: GCC 12 warns falsely (-Wrestrict) about `"literal" + std::string`.
+std::string light_material_name(const char* kind, int index) {
+  std::string name = "<";
+  name += kind;
+  name += " light ";
+  name += std::to_string(index);
+  name += '>';
+  return name;
+}
+
 struct ShapeMesh {
   const ShapeDesc& shape;
   TriangleMesh operator()(const BoxShape& b) const { return box_mesh(b.min, b.max); }
   TriangleMesh operator()(const RectangleShape& r) const { return rectangle_mesh(r.corner, r.edge1, r.edge2); }
-  TriangleMesh operator()(const MeshFileShape& m) const { return load_mesh(m.path, shape.where); }
+  TriangleMesh operator()(const MeshFileShape& m) const {
+    return load_mesh(m.path, shape.where,
+                     m.skip_degenerate ? DegenerateTriangles::kRemove : DegenerateTriangles::kReject);
+  }
   TriangleMesh operator()(const SphereShape&) const { throw std::logic_error("spheres are not meshed"); }
 };
 
@@ -98,10 +111,10 @@ void Scene::add_emitting_mesh(TriangleMesh mesh, int material, const SourceLocat
 void Scene::add_light_geometry(int index) {
   const Light& light = lights_[size_t(index)];
   if (const auto* s = std::get_if<SphereLight>(&light)) {
-    materials_.push_back({"<sphere light " + std::to_string(index) + ">", BlackBsdf{}, s->radiance, s->two_sided});
+    materials_.push_back({light_material_name("sphere", index), BlackBsdf{}, s->radiance, s->two_sided});
     add_geometry(surfaces_.add_sphere(Sphere::make(s->center, s->radius, {})), {int(materials_.size()) - 1, index});
   } else if (const auto* q = std::get_if<QuadLight>(&light)) {
-    materials_.push_back({"<quad light " + std::to_string(index) + ">", BlackBsdf{}, q->radiance, q->two_sided});
+    materials_.push_back({light_material_name("quad", index), BlackBsdf{}, q->radiance, q->two_sided});
     add_geometry(surfaces_.add_mesh(rectangle_mesh(q->corner, q->edge1, q->edge2)),
                  {int(materials_.size()) - 1, index});
   }

@@ -42,6 +42,7 @@ struct RectangleShape {
 // A triangle mesh from a file: OBJ (tinyobjloader) or glTF 2.0 (.gltf/.glb, tinygltf).
 struct MeshFileShape {
   std::string path;  // absolute, or relative to the working directory
+  bool skip_degenerate = false;  // remove zero-area triangles instead of rejecting the file
 };
 using ShapeGeometry = std::variant<SphereShape, BoxShape, RectangleShape, MeshFileShape>;
 

@@ -229,7 +229,7 @@ MeshFileShape read_mesh(ObjectReader& r, const std::string& base_dir) {
                  [](unsigned char ch) { return char(std::tolower(ch)); });
   if (ext != ".obj" && ext != ".gltf" && ext != ".glb")
     c.fail("expected a mesh file ending in .obj, .gltf or .glb, got " + c.describe());
-  return {resolve_path(file, base_dir)};
+  return {resolve_path(file, base_dir), r.boolean_or("skip_degenerate", false)};
 }
 
 ShapeGeometry read_geometry(ObjectReader& r, const std::string& type, const std::string& base_dir) {
@@ -254,7 +254,7 @@ ShapeGeometry read_geometry(ObjectReader& r, const std::string& type, const std:
     read_parallelogram(r, rect.corner, rect.edge1, rect.edge2);
     return rect;
   }
-  r.allow({"type", "file", "material", "transform"});
+  r.allow({"type", "file", "skip_degenerate", "material", "transform"});
   return read_mesh(r, base_dir);
 }
 
