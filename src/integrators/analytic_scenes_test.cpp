@@ -20,7 +20,7 @@ SceneDesc camera_at(Vec3 position, Vec3 look_at, Vec2i resolution) {
 }
 
 int add_material(SceneDesc& desc, Bsdf bsdf, RGB emission = {}, bool two_sided = false) {
-  desc.materials.push_back({"m" + std::to_string(desc.materials.size()), bsdf, emission, two_sided});
+  desc.materials.push_back({std::to_string(desc.materials.size()), bsdf, emission, two_sided});
   return int(desc.materials.size()) - 1;
 }
 
