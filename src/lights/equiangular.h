@@ -1,0 +1,30 @@
+// Equiangular sampling (Kulla & Fajardo 2012, "Importance Sampling Techniques for Path
+// Tracing in Participating Media"): distances t in [a, b] along a ray, with density
+// proportional to 1 / (D^2 + (t - delta)^2), which cancels the inverse-square falloff of a
+// point light at perpendicular distance D from the ray whose foot point is at t = delta.
+//
+// The pdf is a Cauchy density: pdf(t) = D / ((theta_b - theta_a) (D^2 + (t - delta)^2)) with
+// theta_x = atan((x - delta) / D). For D = 0 (the light lies on the ray's line: the
+// "flashlight" case of the seed) the density is proportional to 1/(t - delta)^2 and has the
+// closed form used in equiangular.cpp; it needs delta outside [a, b].
+#pragma once
+
+#include "core/vec.h"
+
+namespace caligo {
+
+// The ray segment [a, b] (a < b) and the light's position relative to the ray.
+struct EquiangularSetup {
+  float a, b;
+  float delta;  // ray parameter of the point closest to the light: dot(light - origin, dir) for a unit dir
+  float D;      // distance from the light to the ray's line, >= 0
+};
+
+// The setup for the segment [a, b] of a ray with unit direction towards a light position.
+EquiangularSetup make_equiangular_setup(Vec3 origin, Vec3 unit_dir, Vec3 light, float a, float b);
+
+float sample_equiangular(const EquiangularSetup& s, float u);
+float equiangular_pdf(const EquiangularSetup& s, float t);
+float invert_equiangular(const EquiangularSetup& s, float t);
+
+}  // namespace caligo

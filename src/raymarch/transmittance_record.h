@@ -1,0 +1,90 @@
+// The TransmittanceRecord of decoupled ray marching (Kulla & Fajardo 2012; the seed's "Ray
+// Marching" part): the march of one ray segment stored front to back as steps of constant
+// coefficients, so that transmittance at any t is a piecewise exponential found by binary
+// search, and distances can be sampled from it for any number of light samples without
+// marching again.
+//
+// Chromatic media: each channel has its own exponential. Distance sampling picks a channel
+// and inverts its exponential exactly; the reported pdf is the average over the channels
+// (one-sample MIS over channels), so estimates stay unbiased for any colour of sigma.
+//
+// Memory: steps and lobes live in vectors that clear() keeps, so a per-thread record does
+// not allocate once it has grown.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "core/rgb.h"
+#include "media/phase.h"
+
+namespace caligo {
+
+// One term of the phase-function mixture at a step: weight = that primitive's share of sigma_s.
+struct PhaseLobe {
+  float weight;
+  PhaseFunction phase;
+};
+
+struct MarchStep {
+  float t0, t1;               // [t0, t1), steps sorted by t and disjoint; gaps between them are vacuum
+  RGB sigma_t, sigma_s;       // constant over the step, 1/m
+  RGB transmittance;          // T(t0): from the record's start to the start of this step
+  RGB scatter_before;         // integral of sigma_s(t) T(t) dt from the start to t0, per channel
+  uint32_t first_lobe, lobe_count;
+};
+
+struct DistanceSample {
+  float t;
+  float pdf;  // per unit length (see the sampling functions for its normalisation)
+  int step;   // index of the step containing t
+};
+
+class TransmittanceRecord {
+ public:
+  // Empties the record (keeping its memory).
+  void clear();
+  // Appends [t0, t1) with constant coefficients; t0 must be >= the previous step's t1 and
+  // t1 > t0. Lobe weights should sum to 1 when sigma_s > 0.
+  void push(float t0, float t1, RGB sigma_t, RGB sigma_s, std::span<const PhaseLobe> lobes);
+  // Adds emitted radiance already integrated by the marcher (for the record's owner to read).
+  void add_emission(RGB radiance) { emission_ += radiance; }
+
+  bool empty() const { return steps_.empty(); }
+  std::span<const MarchStep> steps() const { return steps_; }
+  std::span<const PhaseLobe> lobes(const MarchStep& step) const;
+  RGB emission() const { return emission_; }
+  float t_begin() const;  // start of the first step (0 when empty)
+  float t_end() const;    // end of the last step (0 when empty)
+
+  // Index of the step containing t, or -1 in a gap or outside the record.
+  int find_step(float t) const;
+  // Transmittance from the record's start to t (1 before the first step, transmittance_end()
+  // after the last).
+  RGB transmittance(float t) const;
+  RGB transmittance_end() const;
+
+  // Density sampling for next-event estimation: t with pdf proportional to
+  // avg_c sigma_s,c(t) T_c(t), normalised over the record (always returns a point inside a
+  // step when the record scatters at all; std::nullopt when sigma_s is zero everywhere).
+  // u_channel picks the channel, u_distance the distance.
+  std::optional<DistanceSample> sample_scatter_density(float u_channel, float u_distance) const;
+  float scatter_density_pdf(float t) const;
+  // avg_c of the integral of sigma_s,c T_c over the whole record.
+  float scatter_weight_total() const;
+
+  // Free-flight sampling for indirect paths: with probability 1 - avg_c T_c(end) returns a
+  // collision distance with pdf(t) = avg_c sigma_t,c(t) T_c(t) (NOT renormalised), otherwise
+  // std::nullopt (the ray passes the whole record, probability avg_c T_c(end)).
+  std::optional<DistanceSample> sample_free_flight(float u_channel, float u_distance) const;
+  float free_flight_pdf(float t) const;
+
+ private:
+  std::vector<MarchStep> steps_;
+  std::vector<PhaseLobe> lobes_;
+  RGB emission_;
+};
+
+}  // namespace caligo
