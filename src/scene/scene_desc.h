@@ -12,6 +12,7 @@
 #include "core/vec.h"
 #include "lights/light.h"
 #include "materials/material.h"
+#include "volumes/volume.h"
 
 namespace caligo {
 
@@ -26,6 +27,7 @@ struct CameraDesc {
 struct RenderDefaults {
   int spp = 16;
   int max_depth = 8;       // surface bounces
+  int max_volume_bounces = 128;  // scattering events inside media
   uint64_t seed = 0;
 };
 
@@ -60,6 +62,7 @@ struct SceneDesc {
   std::vector<Material> materials;
   std::vector<ShapeDesc> shapes;
   std::vector<Light> lights;  // sphere and quad lights also become visible geometry
+  std::vector<VolumePrimitive> volumes;
 };
 
 }  // namespace caligo

@@ -13,6 +13,8 @@
 
 #include "core/math.h"
 #include "scene/json_reader.h"
+#include "scene/transform_parser.h"
+#include "scene/volume_parser.h"
 
 namespace caligo {
 namespace {
@@ -30,11 +32,6 @@ constexpr float kParallelSine = 1e-4f;
 
 // ---- shared checks ----
 
-Vec3 read_direction(const JsonCursor& c) {
-  const Vec3 v = c.vec3();
-  if (!(length_squared(v) > 0.0f)) c.fail("expected a non-zero direction, got " + c.describe());
-  return normalize(v);
-}
 
 // The direction from `from` to the point at `target`, which must differ from `from`.
 Vec3 read_target_direction(const JsonCursor& target, Vec3 from, std::string_view from_name) {
@@ -95,10 +92,12 @@ CameraDesc parse_camera(const JsonCursor& c) {
 
 RenderDefaults parse_render(const JsonCursor& c) {
   ObjectReader r(c, "the render settings");
-  r.allow({"spp", "max_depth", "seed"});
+  r.allow({"spp", "max_depth", "max_volume_bounces", "seed"});
   RenderDefaults render;
   render.spp = int(r.integer_or("spp", render.spp, Range::closed(1, kMaxSpp)));
   render.max_depth = int(r.integer_or("max_depth", render.max_depth, Range::closed(0, kMaxDepth)));
+  render.max_volume_bounces =
+      int(r.integer_or("max_volume_bounces", render.max_volume_bounces, Range::closed(0, kMaxDepth)));
   if (auto seed = r.optional("seed")) render.seed = seed->unsigned_integer();
   r.finish();
   return render;
@@ -156,61 +155,6 @@ int find_material(const JsonCursor& c, const std::vector<Material>& materials) {
   if (std::string guess = closest_match(name, names); !guess.empty())
     message += " (did you mean \"" + guess + "\"?)";
   c.fail(message + "; defined materials: " + join_names(names));
-}
-
-// ---- transforms ----
-
-Transform parse_rotation(const JsonCursor& c) {
-  ObjectReader r(c, "a rotation");
-  r.allow({"angle", "axis"});
-  const float angle = r.number("angle");
-  const Vec3 axis = read_direction(r.required("axis"));
-  r.finish();
-  return Transform::rotate(radians(angle), axis);
-}
-
-Transform parse_scale(const JsonCursor& c) {
-  const Vec3 s = c.is_number() ? Vec3(c.number()) : c.vec3();
-  if (s.x == 0.0f || s.y == 0.0f || s.z == 0.0f)
-    c.fail("expected non-zero scale factors, got " + c.describe() + " (it would flatten the object)");
-  return Transform::scale(s);
-}
-
-Transform parse_matrix(const JsonCursor& c) {
-  if (!c.is_array() || c.json().size() != 16)
-    c.fail("expected an array of 16 numbers (a row-major 4x4 matrix), got " + c.describe());
-  const auto e = c.elements("");
-  Mat4 m;
-  for (int i = 0; i < 16; ++i) m.m[i / 4][i % 4] = e[i].number();
-  const auto& last = m.m[3];
-  if (last[0] != 0.0f || last[1] != 0.0f || last[2] != 0.0f || last[3] != 1.0f)
-    c.fail("expected the last row to be [0, 0, 0, 1] (an affine transform), got [" + format_number(last[0]) +
-           ", " + format_number(last[1]) + ", " + format_number(last[2]) + ", " + format_number(last[3]) +
-           "]");
-  auto t = Transform::from_matrix(m);
-  if (!t) c.fail("expected an invertible matrix, got a singular one");
-  return *t;
-}
-
-Transform parse_transform_op(const JsonCursor& c) {
-  ObjectReader r(c, "a transform operation");
-  r.allow({"translate", "rotate", "scale", "matrix"});
-  if (c.json().size() != 1)
-    r.fail("expected exactly one of translate, rotate, scale, matrix in a transform operation, got " +
-           c.describe());
-  if (auto v = r.optional("translate")) return Transform::translate(v->vec3());
-  if (auto v = r.optional("rotate")) return parse_rotation(*v);
-  if (auto v = r.optional("scale")) return parse_scale(*v);
-  return parse_matrix(r.required("matrix"));
-}
-
-// Operations apply in the order written: [op1, op2, ...] gives ... * op2 * op1.
-Transform parse_transform(const JsonCursor& c) {
-  Transform t;
-  for (const JsonCursor& op : c.elements("an array of transform operations")) t = parse_transform_op(op) * t;
-  if (!Transform::from_matrix(t.matrix()))
-    c.fail("expected an invertible transform, got one whose composed matrix is singular");
-  return t;
 }
 
 // ---- shapes ----
@@ -382,7 +326,7 @@ SceneDesc parse_scene_text(const std::string& json_text, const std::string& file
                            const std::string& base_dir) {
   const Json root = parse_json_text(json_text, file_label);
   ObjectReader r(JsonCursor(root, file_label, ""), "a scene");
-  r.allow({"camera", "render", "materials", "shapes", "lights"});
+  r.allow({"camera", "render", "materials", "shapes", "lights", "media", "volumes"});
   SceneDesc scene;
   scene.file = file_label;
   scene.camera = parse_camera(r.required("camera"));
@@ -393,6 +337,10 @@ SceneDesc parse_scene_text(const std::string& json_text, const std::string& file
       scene.shapes.push_back(parse_shape(s, scene.materials, base_dir));
   if (auto c = r.optional("lights"))
     for (const JsonCursor& l : c->elements("an array of lights")) scene.lights.push_back(parse_light(l));
+  std::vector<NamedMedium> media;
+  if (auto c = r.optional("media")) media = parse_media(*c);
+  if (auto c = r.optional("volumes"))
+    for (const JsonCursor& v : c->elements("an array of volumes")) scene.volumes.push_back(parse_volume(v, media));
   r.finish();
   return scene;
 }

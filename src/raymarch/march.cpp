@@ -1,0 +1,109 @@
+#include "raymarch/march.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace caligo {
+namespace {
+
+// Coefficients summed over the primitives covering a span, at one point.
+struct StepCoefficients {
+  RGB sigma_t, sigma_s, emission;
+};
+
+StepCoefficients shade_span(const VolumeScene& volumes, std::span<const uint32_t> primitives, Vec3 p,
+                            float scale, std::vector<PhaseLobe>* lobes) {
+  StepCoefficients c;
+  if (lobes) lobes->clear();
+  for (uint32_t id : primitives) {
+    const MediumSample m = shade_volume(volumes.primitive(id), p);
+    c.sigma_t += m.sigma_t() * scale;
+    c.sigma_s += m.sigma_s * scale;
+    c.emission += m.emission * scale;
+    if (lobes && m.sigma_s.average() > 0.0f) lobes->push_back({m.sigma_s.average() * scale, m.phase});
+  }
+  // Overlapping primitives mix their phase functions in proportion to sigma_s.
+  if (lobes && c.sigma_s.average() > 0.0f)
+    for (PhaseLobe& l : *lobes) l.weight /= c.sigma_s.average();
+  return c;
+}
+
+// Radiance emitted over a step of length dt, seen through transmittance T0 at its start:
+// integral of T0 e^{-sigma_t s} emission ds over [0, dt].
+RGB integrate_emission(RGB t0, RGB sigma_t, RGB emission, float dt) {
+  RGB out;
+  for (int c = 0; c < 3; ++c) {
+    const float st = sigma_t[c];
+    const float f = st * dt > 1e-6f ? -std::expm1(-st * dt) / st : dt;
+    (c == 0 ? out.r : c == 1 ? out.g : out.b) = t0[c] * emission[c] * f;
+  }
+  return out;
+}
+
+int steps_for_span(const VolumeScene& volumes, std::span<const uint32_t> primitives, float length_m,
+                   const MarchSettings& settings) {
+  float h = kInfinity;
+  for (uint32_t id : primitives) h = std::min(h, primitive_step_size(volumes.primitive(id), settings));
+  if (!std::isfinite(h)) return 1;
+  return std::clamp(int(std::ceil(length_m / h)), 1, settings.max_steps_per_span);
+}
+
+// Calls step(t0, t1, t_shade, primitives) for every step of every span, front to back, until it returns false.
+template <typename StepFn>
+void for_each_step(const VolumeScene& volumes, const Ray& ray, float jitter, const MarchSettings& settings,
+                   MarchScratch& scratch, StepFn&& step) {
+  volumes.intervals(ray, scratch.intervals);
+  build_spans(scratch.intervals.intervals, scratch.spans, scratch.span_primitives);
+  const float dir_length = length(ray.direction);
+  for (const Span& span : scratch.spans) {
+    const std::span<const uint32_t> prims(scratch.span_primitives.data() + span.first, span.count);
+    const int n = steps_for_span(volumes, prims, (span.t1 - span.t0) * dir_length, settings);
+    const float dt = (span.t1 - span.t0) / float(n);
+    for (int i = 0; i < n; ++i) {
+      const float a = span.t0 + dt * float(i);
+      const float b = i + 1 == n ? span.t1 : a + dt;
+      const float t_shade = n == 1 ? 0.5f * (a + b) : a + jitter * (b - a);
+      if (!step(a, b, t_shade, prims, dir_length)) return;
+    }
+  }
+}
+
+}  // namespace
+
+float primitive_step_size(const VolumePrimitive& primitive, const MarchSettings& settings) {
+  if (is_homogeneous(primitive.shader)) return kInfinity;
+  if (primitive.shader.step_size > 0.0f) return primitive.shader.step_size;
+  return settings.auto_step_fraction * length(volume_bounds(primitive.shape).diagonal());
+}
+
+void march(const VolumeScene& volumes, const Ray& ray, float jitter, const MarchSettings& settings,
+           MarchScratch& scratch, TransmittanceRecord& out) {
+  out.clear();
+  if (volumes.empty()) return;
+  for_each_step(volumes, ray, jitter, settings, scratch,
+                [&](float a, float b, float t_shade, std::span<const uint32_t> prims, float scale) {
+                  const StepCoefficients c = shade_span(volumes, prims, ray.at(t_shade), scale, &scratch.lobes);
+                  const RGB t_start = out.transmittance_end();
+                  if (!c.emission.is_black()) out.add_emission(integrate_emission(t_start, c.sigma_t, c.emission, b - a));
+                  out.push(a, b, c.sigma_t, c.sigma_s, scratch.lobes);
+                  return out.transmittance_end().max_component() >= settings.opacity_threshold;
+                });
+}
+
+RGB march_transmittance(const VolumeScene& volumes, const Ray& ray, float jitter, const MarchSettings& settings,
+                        MarchScratch& scratch) {
+  if (volumes.empty()) return RGB(1.0f);
+  RGB optical_depth;
+  bool opaque = false;
+  for_each_step(volumes, ray, jitter, settings, scratch,
+                [&](float a, float b, float t_shade, std::span<const uint32_t> prims, float scale) {
+                  optical_depth += shade_span(volumes, prims, ray.at(t_shade), scale, nullptr).sigma_t * (b - a);
+                  opaque = std::min({optical_depth.r, optical_depth.g, optical_depth.b}) >
+                           -std::log(settings.opacity_threshold);
+                  return !opaque;
+                });
+  if (opaque) return RGB(0.0f);
+  return {std::exp(-optical_depth.r), std::exp(-optical_depth.g), std::exp(-optical_depth.b)};
+}
+
+}  // namespace caligo

@@ -1,0 +1,51 @@
+// Decoupled ray marching (the seed's "Ray Marching"; Kulla & Fajardo 2012): the volume
+// primitives along one ray segment are split into spans, their shaders run front to back
+// with a step size per primitive, and every step is stored in a TransmittanceRecord. No
+// lighting happens here: one record serves every light sample taken along the segment.
+//
+// Step rules: a span covered only by homogeneous primitives is one step; otherwise the
+// span is cut into equal steps no longer than the smallest step size among its
+// heterogeneous primitives, each shaded at a jittered position (the same jitter for the
+// whole ray, so the estimate stays smooth along it). Marching stops once every channel's
+// transmittance is below the opacity threshold: what lies behind contributes at most
+// that fraction and is dropped (a documented bias).
+//
+// t is in units of the ray direction's length; coefficients in the record are per unit t.
+#pragma once
+
+#include <vector>
+
+#include "core/ray.h"
+#include "raymarch/spans.h"
+#include "raymarch/transmittance_record.h"
+#include "volumes/volume_scene.h"
+
+namespace caligo {
+
+struct MarchSettings {
+  float opacity_threshold = 1e-4f;  // stop when max_c T_c falls below this
+  // Step size of heterogeneous primitives that set none: this fraction of their bounds' diagonal.
+  float auto_step_fraction = 1.0f / 64.0f;
+  int max_steps_per_span = 4096;
+};
+
+// Per-thread buffers, reused from ray to ray.
+struct MarchScratch {
+  IntervalScratch intervals;
+  std::vector<Span> spans;
+  std::vector<uint32_t> span_primitives;
+  std::vector<PhaseLobe> lobes;
+};
+
+// Marches [ray.tmin, ray.tmax] (tmax: the nearest opaque surface, or infinity) into `out`.
+void march(const VolumeScene& volumes, const Ray& ray, float jitter, const MarchSettings& settings,
+           MarchScratch& scratch, TransmittanceRecord& out);
+
+// Transmittance along [ray.tmin, ray.tmax] with the same step rules, without a record (shadow rays).
+RGB march_transmittance(const VolumeScene& volumes, const Ray& ray, float jitter, const MarchSettings& settings,
+                        MarchScratch& scratch);
+
+// The step size used for a primitive (its own, or the automatic one; infinity if homogeneous).
+float primitive_step_size(const VolumePrimitive& primitive, const MarchSettings& settings);
+
+}  // namespace caligo

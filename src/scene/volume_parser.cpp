@@ -1,0 +1,116 @@
+#include "scene/volume_parser.h"
+
+#include <algorithm>
+
+#include <nlohmann/json.hpp>
+
+#include "scene/transform_parser.h"
+
+namespace caligo {
+namespace {
+
+// Henyey-Greenstein style asymmetry: |g| = 1 is a delta distribution, which no phase
+// function here can represent or sample.
+const Range kAsymmetry = Range::open(-1, 1);
+
+PhaseFunction parse_phase(const JsonCursor& c) {
+  ObjectReader r(c, "a phase function");
+  const std::string type = r.choice("type", {"isotropic", "hg", "schlick", "double_hg"});
+  r.set_what("a " + type + " phase function");
+  PhaseFunction phase;
+  if (type == "isotropic") {
+    r.allow({"type"});
+  } else if (type == "hg") {
+    r.allow({"type", "g"});
+    phase = HenyeyGreensteinPhase{r.number("g", kAsymmetry)};
+  } else if (type == "schlick") {
+    r.allow({"type", "g", "k"});
+    const auto [which, value] = r.exactly_one("g", "k");
+    const float x = value.number(kAsymmetry);
+    phase = which == 0 ? SchlickPhase::from_g(x) : SchlickPhase{x};
+  } else {
+    r.allow({"type", "g1", "g2", "w"});
+    phase = DoubleHenyeyGreensteinPhase{r.number("g1", kAsymmetry), r.number("g2", kAsymmetry),
+                                        r.number("w", Range::closed(0, 1))};
+  }
+  r.finish();
+  return phase;
+}
+
+VolumeShader parse_medium(const JsonCursor& c) {
+  ObjectReader r(c, "a medium");
+  r.allow({"sigma_a", "sigma_s", "emission", "density", "phase", "falloff", "step_size"});
+  VolumeShader s;
+  s.sigma_a = r.rgb_or("sigma_a", RGB(0.0f));
+  s.sigma_s = r.rgb_or("sigma_s", RGB(0.0f));
+  s.emission = r.rgb_or("emission", RGB(0.0f));
+  s.density = r.number_or("density", 1.0f, Range::non_negative());
+  if (auto p = r.optional("phase")) s.phase = parse_phase(*p);
+  if (auto f = r.optional("falloff")) {
+    ObjectReader fr(*f, "a density falloff");
+    fr.allow({"exponent"});
+    s.field = RadialFalloffDensity{fr.number_or("exponent", 1.0f, Range::positive())};
+    fr.finish();
+  }
+  s.step_size = r.number_or("step_size", 0.0f, Range::positive());
+  r.finish();
+  return s;
+}
+
+const VolumeShader& find_medium(const JsonCursor& c, const std::vector<NamedMedium>& media) {
+  const std::string name = c.string();
+  std::vector<std::string> names;
+  for (const NamedMedium& m : media) {
+    if (m.name == name) return m.shader;
+    names.push_back(m.name);
+  }
+  std::string message = "unknown medium \"";
+  message += name;
+  message += '"';
+  if (names.empty()) c.fail(message + ": the scene defines no media");
+  if (std::string guess = closest_match(name, names); !guess.empty()) message += " (did you mean \"" + guess + "\"?)";
+  c.fail(message + "; defined media: " + join_names(names));
+}
+
+VolumeShape parse_volume_shape(ObjectReader& r, const std::string& type, const Transform& placement) {
+  if (type == "sphere") {
+    const Vec3 center = r.optional_vec3("center").value_or(Vec3());
+    return SphereVolumeShape{Sphere::make(center, r.number("radius", Range::positive()), placement)};
+  }
+  const Vec3 lo = r.vec3("min");
+  const JsonCursor hi_c = r.required("max");
+  const Vec3 hi = hi_c.vec3();
+  if (!(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z))
+    hi_c.fail("expected max > min in every component (min is " + format_vec3(lo) + "), got " + hi_c.describe());
+  return BoxVolumeShape{placement, lo, hi};
+}
+
+}  // namespace
+
+std::vector<NamedMedium> parse_media(const JsonCursor& c) {
+  if (!c.is_object()) c.fail("expected an object mapping medium names to media, got " + c.describe());
+  std::vector<NamedMedium> media;
+  for (const auto& [name, value] : c.json().items()) {
+    const JsonCursor m = c.member(name);
+    if (name.empty()) m.fail("expected a non-empty medium name");
+    media.push_back({name, parse_medium(m)});
+  }
+  return media;
+}
+
+VolumePrimitive parse_volume(const JsonCursor& c, const std::vector<NamedMedium>& media) {
+  ObjectReader r(c, "a volume");
+  const std::string type = r.choice("type", {"sphere", "box"});
+  r.set_what("a " + type + " volume");
+  if (type == "sphere")
+    r.allow({"type", "center", "radius", "medium", "transform"});
+  else
+    r.allow({"type", "min", "max", "medium", "transform"});
+  Transform placement;
+  if (auto t = r.optional("transform")) placement = parse_transform(*t);
+  VolumePrimitive v{parse_volume_shape(r, type, placement), find_medium(r.required("medium"), media)};
+  r.finish();
+  return v;
+}
+
+}  // namespace caligo
