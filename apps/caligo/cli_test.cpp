@@ -162,7 +162,18 @@ TEST_F(Cli, BadScenesGiveLocatedErrorsAndNoOutput) {
        "degenerate"},
       {"negative_colour", scene_with("\"reflectance\": 0.5", "\"reflectance\": [0.5, -0.1, 0.5]"),
        "/materials/white/reflectance"},
-      {"top_level_key", scene_with("\"render\"", "\"volumes\": [], \"render\""), "unknown key \"volumes\""},
+      {"top_level_key", scene_with("\"render\"", "\"fog\": [], \"render\""), "unknown key \"fog\""},
+      {"negative_sigma", scene_with("\"render\"", R"("media": {"m": {"sigma_s": -1}}, "render")"),
+       "/media/m/sigma_s"},
+      {"unknown_phase",
+       scene_with("\"render\"", R"("media": {"m": {"phase": {"type": "rayleigh"}}}, "render")"),
+       "/media/m/phase/type"},
+      {"g_out_of_range",
+       scene_with("\"render\"", R"("media": {"m": {"phase": {"type": "hg", "g": 1}}}, "render")"),
+       "/media/m/phase/g"},
+      {"unknown_medium",
+       scene_with("\"render\"", R"("volumes": [{"type": "sphere", "radius": 1, "medium": "mist"}], "render")"),
+       "/volumes/0/medium"},
   };
   write("nan.obj", "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n");
   write("flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");

@@ -18,6 +18,8 @@ struct RenderOptions {
   std::optional<int> threads;
   std::optional<uint64_t> seed;
   std::optional<int> max_depth;
+  std::optional<int> max_volume_bounces;
+  std::optional<std::string> distance_sampling;
   float exposure = 0.0f;
   bool list_builtins = false;
   bool quiet = false;

@@ -26,6 +26,9 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--threads", o.threads, "Worker threads (default: all cores)");
   cmd->add_option("--seed", o.seed, "Random seed (overrides the scene)");
   cmd->add_option("--max-depth", o.max_depth, "Maximum path depth (overrides the scene)");
+  cmd->add_option("--max-volume-bounces", o.max_volume_bounces, "Maximum scattering events in media (overrides the scene)");
+  cmd->add_option("--distance-sampling", o.distance_sampling,
+                  "Distance sampling for light in media: mis (default), density or equiangular");
   cmd->add_option("--exposure", o.exposure, "Exposure of the PNG preview, in stops");
   cmd->add_flag("--list-builtins", o.list_builtins, "List the built-in scenes and exit");
   cmd->add_flag("-q,--quiet", o.quiet, "No progress output");
@@ -72,6 +75,22 @@ RenderSettings settings_from(const RenderOptions& o, const SceneDesc& desc) {
   if (o.max_depth) {
     if (*o.max_depth < 0 || *o.max_depth > 10'000) throw InputError(kCommandLine, "--max-depth: expected 0 to 10000");
     s.max_depth = *o.max_depth;
+  }
+  if (o.max_volume_bounces) {
+    if (*o.max_volume_bounces < 0 || *o.max_volume_bounces > 10'000)
+      throw InputError(kCommandLine, "--max-volume-bounces: expected 0 to 10000");
+    s.max_volume_bounces = *o.max_volume_bounces;
+  }
+  if (o.distance_sampling) {
+    const std::string& d = *o.distance_sampling;
+    if (d == "mis")
+      s.distance_sampling = DistanceSampling::kMis;
+    else if (d == "density")
+      s.distance_sampling = DistanceSampling::kDensity;
+    else if (d == "equiangular")
+      s.distance_sampling = DistanceSampling::kEquiangular;
+    else
+      throw InputError(kCommandLine, "--distance-sampling: expected mis, density or equiangular, got \"" + d + "\"");
   }
   return s;
 }

@@ -3,6 +3,8 @@
 #include <algorithm>
 
 #include "core/sampling.h"
+#include "integrators/visibility.h"
+#include "integrators/volume_direct.h"
 #include "lights/light_sample.h"
 #include "materials/bsdf.h"
 
@@ -11,22 +13,22 @@ namespace {
 
 using sample_dim::bounce;
 
-// Shadow rays stop this fraction short of an area-light sample so they do not hit the light.
-constexpr float kShadowEpsilon = 1e-4f;
-
-// The state carried from one bounce to the next.
+// The state carried from one scattering event to the next.
 struct PathState {
   RGB throughput{1.0f};
   bool specular_bounce = true;  // the camera ray counts as specular: no MIS on what it sees
-  float bsdf_pdf = 0.0f;        // pdf of the direction that produced the current ray
-  Vec3 bsdf_origin;             // where that direction was sampled
+  float scatter_pdf = 0.0f;     // solid-angle pdf of the direction that produced the current ray
+  Vec3 scatter_origin;          // where that direction was sampled
+  int depth = 0;                // scattering events so far (surface and volume)
+  int surface_bounces = 0;
+  int volume_bounces = 0;
 };
 
 float mis_weight_for_hit(const Scene& scene, const PathState& state, int light, Vec3 wi, Vec3 p, Vec3 n) {
   if (state.specular_bounce) return 1.0f;
   const float light_pdf_sa =
-      scene.light_selection_pmf(light) * light_pdf(scene.lights()[size_t(light)], state.bsdf_origin, wi, p, n);
-  return power_heuristic(1, state.bsdf_pdf, 1, light_pdf_sa);
+      scene.light_selection_pmf(light) * light_pdf(scene.lights()[size_t(light)], state.scatter_origin, wi, p, n);
+  return power_heuristic(1, state.scatter_pdf, 1, light_pdf_sa);
 }
 
 RGB escaped(const Scene& scene, const PathState& state, Vec3 w) {
@@ -46,9 +48,9 @@ RGB emitted(const Scene& scene, const PathState& state, const SurfaceInteraction
   return si.material->emission * mis_weight_for_hit(scene, state, si.light, -wo, si.p, si.ng);
 }
 
-// Next-event estimation: one light chosen in proportion to power, one point on it.
-RGB sample_direct(const Scene& scene, const SurfaceInteraction& si, Vec3 wo, const Sampler& sampler, int depth,
-                  PathCounters& counters) {
+// Next-event estimation at a surface: one light chosen in proportion to power, one point on it.
+RGB surface_direct_light(const Scene& scene, const SurfaceInteraction& si, Vec3 wo, const Sampler& sampler, int depth,
+                         PathScratch& scratch, PathCounters& counters) {
   const DiscreteDistribution& selection = scene.light_selection();
   if (selection.empty()) return RGB(0.0f);
   float pick_pmf = 0.0f;
@@ -58,25 +60,20 @@ RGB sample_direct(const Scene& scene, const SurfaceInteraction& si, Vec3 wo, con
   if (!ls || ls->radiance.is_black() || !(ls->pdf > 0.0f)) return RGB(0.0f);
   const RGB f = bsdf_eval(si.material->bsdf, si.ns, wo, ls->wi) * abs_dot(si.ns, ls->wi);
   if (f.is_black() || dot(si.ng, ls->wi) * dot(si.ng, wo) <= 0.0f) return RGB(0.0f);
-
-  Ray shadow{offset_ray_origin(si.p, si.ng, ls->wi), ls->wi, 0.0f, kInfinity};
-  if (std::isfinite(ls->distance)) {
-    shadow.direction = si.p + ls->wi * ls->distance - shadow.origin;
-    shadow.tmax = 1.0f - kShadowEpsilon;
-  }
-  ++counters.rays;
-  if (scene.surfaces().occluded(shadow)) return RGB(0.0f);
+  const RGB tr = light_transmittance(scene, offset_ray_origin(si.p, si.ng, ls->wi), si.p, *ls,
+                                     sampler.get_1d(bounce(depth, sample_dim::kMarchJitter)), scratch, counters);
+  if (tr.is_black()) return RGB(0.0f);
   const float light_pdf_sa = pick_pmf * ls->pdf;
   const float weight =
       ls->delta ? 1.0f : power_heuristic(1, light_pdf_sa, 1, bsdf_pdf(si.material->bsdf, si.ns, wo, ls->wi));
-  return f * ls->radiance * (weight / light_pdf_sa);
+  return f * tr * ls->radiance * (weight / light_pdf_sa);
 }
 
 // Returns false when the path ends (absorbed or rouletted).
-bool russian_roulette(PathState& state, const Sampler& sampler, int depth, const PathSettings& settings) {
-  if (depth < settings.russian_roulette_depth) return true;
+bool russian_roulette(PathState& state, const Sampler& sampler, const PathSettings& settings) {
+  if (state.depth < settings.russian_roulette_depth) return true;
   const float survive = std::min(1.0f, state.throughput.max_component());
-  if (sampler.get_1d(bounce(depth, sample_dim::kRussianRoulette)) >= survive) return false;
+  if (sampler.get_1d(bounce(state.depth, sample_dim::kRussianRoulette)) >= survive) return false;
   state.throughput *= 1.0f / survive;
   return true;
 }
@@ -88,49 +85,125 @@ void record_first_hit(PathSample& out, const SurfaceInteraction& si, float t) {
   out.albedo = bsdf_albedo(si.material->bsdf);
 }
 
+// Phase 1 for surfaces: the nearest hit that is not a null surface. Null surfaces are
+// skipped along the same ray, so the volume segment in front of the hit stays one piece.
+std::optional<SurfaceHit> nearest_opaque_hit(const Scene& scene, const Ray& ray, const PathSettings& settings,
+                                             PathCounters& counters) {
+  Ray probe = ray;
+  for (int crossings = 0; crossings <= settings.max_null_crossings; ++crossings) {
+    ++counters.rays;
+    const auto hit = scene.surfaces().intersect(probe);
+    if (!hit) return std::nullopt;
+    if (!std::holds_alternative<NullBsdf>(scene.material(*hit).bsdf)) return hit;
+    // Step past the null surface by a relative epsilon of its distance.
+    probe.tmin = hit->t + std::max(1e-4f, hit->t * 1e-5f);
+  }
+  return std::nullopt;
+}
+
+// Samples the phase mixture at a record step; returns the new direction and its pdf.
+PhaseSample sample_mixed_phase(const TransmittanceRecord& record, const MarchStep& step, Vec3 wo, float u_lobe,
+                               Vec2 u) {
+  const auto lobes = record.lobes(step);
+  size_t chosen = 0;
+  for (float acc = 0.0f; chosen + 1 < lobes.size(); ++chosen) {
+    acc += lobes[chosen].weight;
+    if (u_lobe < acc) break;
+  }
+  PhaseSample s = phase_sample(lobes[chosen].phase, wo, u);
+  if (lobes.size() > 1) s.pdf = mixed_phase_eval(record, step, wo, s.wi);
+  return s;
+}
+
+enum class SegmentOutcome { kScattered, kPassed, kAbsorbed };
+
+// Phases 2 and 3 for the medium in front of the next surface (or to infinity).
+SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, const Sampler& sampler,
+                                const PathSettings& settings, PathState& state, PathSample& out,
+                                PathScratch& scratch, PathCounters& counters) {
+  TransmittanceRecord& record = scratch.record;
+  Ray segment = ray;
+  segment.tmax = t_surface;
+  march(scene.volumes(), segment, sampler.get_1d(bounce(state.depth, sample_dim::kMarchJitter)),
+        scratch.march_settings, scratch.march, record);
+  if (record.empty()) return SegmentOutcome::kPassed;
+  if (state.depth == 0) counters.camera_march_steps += record.steps().size();
+  out.radiance += state.throughput * record.emission();
+  const bool may_scatter = state.volume_bounces < settings.max_volume_bounces;
+  if (may_scatter)
+    out.radiance += state.throughput * volume_direct_light(scene, ray, record, sampler, state.depth,
+                                                           settings.distance_sampling, scratch, counters);
+
+  const auto collision = record.sample_free_flight(sampler.get_1d(bounce(state.depth, sample_dim::kFreeFlightChannel)),
+                                                   sampler.get_1d(bounce(state.depth, sample_dim::kFreeFlightDistance)));
+  if (!collision) {
+    const RGB t_end = record.transmittance_end();
+    state.throughput *= t_end / t_end.average();
+    return SegmentOutcome::kPassed;
+  }
+  if (!may_scatter) return SegmentOutcome::kAbsorbed;
+  const MarchStep& step = record.steps()[size_t(collision->step)];
+  state.throughput *= step.sigma_s * record.transmittance(collision->t) / collision->pdf;
+  if (state.throughput.is_black()) return SegmentOutcome::kAbsorbed;
+  const Vec3 x = ray.at(collision->t);
+  const PhaseSample ps = sample_mixed_phase(record, step, ray.direction,
+                                            sampler.get_1d(bounce(state.depth, sample_dim::kPhaseLobe)),
+                                            sampler.get_2d(bounce(state.depth, sample_dim::kPhaseDirection)));
+  state.specular_bounce = false;
+  state.scatter_pdf = ps.pdf;
+  state.scatter_origin = x;
+  ray = {x, ps.wi, 0.0f, kInfinity};
+  ++state.volume_bounces;
+  return SegmentOutcome::kScattered;
+}
+
 }  // namespace
 
 PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const PathSettings& settings,
-                      PathCounters& counters) {
+                      PathCounters& counters, PathScratch& scratch) {
   PathSample out;
   PathState state;
-  float t_travelled = 0.0f;  // along the camera ray, across null surfaces
-  int null_crossings = 0;
-  for (int depth = 0;;) {
-    ++counters.rays;
-    const auto hit = scene.surfaces().intersect(ray);
+  const bool has_volumes = !scene.volumes().empty();
+  for (;;) {
+    const auto hit = nearest_opaque_hit(scene, ray, settings, counters);
+    if (has_volumes) {
+      const SegmentOutcome outcome = integrate_medium(scene, ray, hit ? hit->t : kInfinity, sampler, settings, state,
+                                                      out, scratch, counters);
+      if (state.depth == 0 && !hit) out.alpha = 1.0f - scratch.record.transmittance_end().average();
+      if (outcome == SegmentOutcome::kAbsorbed) break;
+      if (outcome == SegmentOutcome::kScattered) {
+        ++state.depth;
+        if (!russian_roulette(state, sampler, settings)) break;
+        continue;
+      }
+    }
     if (!hit) {
       out.radiance += state.throughput * escaped(scene, state, ray.direction);
       break;
     }
     const SurfaceInteraction si = scene.interaction(ray, *hit);
     const Vec3 wo = -ray.direction;
-    if (std::holds_alternative<NullBsdf>(si.material->bsdf)) {
-      if (++null_crossings > settings.max_null_crossings) break;
-      if (depth == 0) t_travelled += hit->t;
-      ray = {offset_ray_origin(si.p, si.ng, ray.direction), ray.direction, 0.0f, kInfinity};
-      continue;
-    }
-    if (depth == 0) record_first_hit(out, si, t_travelled + hit->t);
+    if (state.depth == 0) record_first_hit(out, si, hit->t);
     out.radiance += state.throughput * emitted(scene, state, si, wo);
-    if (depth >= settings.max_depth) break;
+    if (state.surface_bounces >= settings.max_depth) break;
 
     if (!is_specular(si.material->bsdf))
-      out.radiance += state.throughput * sample_direct(scene, si, wo, sampler, depth, counters);
+      out.radiance += state.throughput * surface_direct_light(scene, si, wo, sampler, state.depth, scratch, counters);
 
-    const auto bs = bsdf_sample(si.material->bsdf, si.ns, wo, sampler.get_1d(bounce(depth, sample_dim::kBsdfLobe)),
-                                sampler.get_2d(bounce(depth, sample_dim::kBsdfDirection)));
+    const auto bs = bsdf_sample(si.material->bsdf, si.ns, wo, sampler.get_1d(bounce(state.depth, sample_dim::kBsdfLobe)),
+                                sampler.get_2d(bounce(state.depth, sample_dim::kBsdfDirection)));
     if (!bs || bs->weight.is_black()) break;
     // Reject directions the shading normal allows but the geometry does not (light leaks).
     const bool transmits = dot(si.ng, bs->wi) * dot(si.ng, wo) < 0.0f;
     if (transmits && !std::holds_alternative<DielectricBsdf>(si.material->bsdf)) break;
     state.throughput *= bs->weight;
     state.specular_bounce = bs->specular;
-    state.bsdf_pdf = bs->pdf;
-    state.bsdf_origin = si.p;
+    state.scatter_pdf = bs->pdf;
+    state.scatter_origin = si.p;
     ray = {offset_ray_origin(si.p, si.ng, bs->wi), bs->wi, 0.0f, kInfinity};
-    if (!russian_roulette(state, sampler, depth, settings)) break;
-    ++depth;
+    ++state.surface_bounces;
+    ++state.depth;
+    if (!russian_roulette(state, sampler, settings)) break;
   }
   return out;
 }

@@ -1,40 +1,65 @@
-// The surface path tracer: next-event estimation and BSDF sampling combined by multiple
-// importance sampling (power heuristic, Veach 1997), Russian roulette, a maximum depth.
+// The volumetric path tracer: the three phases of the seed (Kulla, "Volume Rendering
+// Techniques at Imageworks") for every segment of a path:
+//   1. medium tracking: the nearest opaque surface (null surfaces are crossed without
+//      restarting anything), then the volume primitives' intervals up to it;
+//   2. decoupled ray marching of those intervals into a TransmittanceRecord, gathering
+//      emission on the way;
+//   3. importance sampling: next-event estimation in the medium (equiangular and density
+//      sampling combined by MIS, see volume_direct.h), free-flight sampling of the next
+//      scattering distance from the same record, phase sampling, Russian roulette.
+// Surfaces use next-event estimation and BSDF sampling combined by the power heuristic.
 //
-// One call traces one camera path. The result is a pure function of the scene, the camera
+// One call traces one camera path; the result is a pure function of the scene, the camera
 // ray and the Sampler, so images do not depend on thread count or scheduling.
-// Volumes join in the next stage; the structure (one small function per event) leaves room
-// for them between intersect() and shading.
 #pragma once
 
 #include <cstdint>
 
 #include "core/rgb.h"
 #include "core/sampler.h"
+#include "raymarch/march.h"
+#include "raymarch/transmittance_record.h"
 #include "scene/scene.h"
 
 namespace caligo {
 
+// How next-event estimation in media picks the distance along a ray segment.
+enum class DistanceSampling {
+  kDensity,      // pdf proportional to sigma_s T
+  kEquiangular,  // pdf cancelling the light's inverse-square falloff (density for lights at infinity)
+  kMis,          // one sample of each, combined by the power heuristic
+};
+
 struct PathSettings {
-  int max_depth = 8;           // scattering events; 1 = direct lighting only
-  int russian_roulette_depth = 3;  // roulette starts after this many bounces
-  int max_null_crossings = 256;    // guards against endless chains of null surfaces
+  int max_depth = 8;                // surface scattering events; 1 = direct lighting only
+  int max_volume_bounces = 128;     // scattering events in media
+  int russian_roulette_depth = 3;   // roulette starts after this many events
+  int max_null_crossings = 256;     // guards against endless chains of null surfaces
+  DistanceSampling distance_sampling = DistanceSampling::kMis;
 };
 
 // What one camera path contributes to the film and its AOVs.
 struct PathSample {
   RGB radiance;
-  float alpha = 0.0f;        // 1 when the camera ray hit a visible surface
-  float hit_t = kInfinity;   // ray parameter of that first visible hit
+  float alpha = 0.0f;        // coverage: 1 on a visible surface, 1 - T through media
+  float hit_t = kInfinity;   // ray parameter of the first visible surface
   Vec3 normal;               // its shading normal (zero when nothing was hit)
   RGB albedo;                // its material's reflectance
 };
 
 struct PathCounters {
-  uint64_t rays = 0;         // every Embree query: camera, bounce and shadow rays
+  uint64_t rays = 0;            // every Embree query: camera, bounce and shadow rays
+  uint64_t camera_march_steps = 0;  // steps stored in camera rays' records
+};
+
+// Per-thread buffers, reused from path to path (no allocation per ray once grown).
+struct PathScratch {
+  MarchSettings march_settings;
+  MarchScratch march;
+  TransmittanceRecord record;
 };
 
 PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const PathSettings& settings,
-                      PathCounters& counters);
+                      PathCounters& counters, PathScratch& scratch);
 
 }  // namespace caligo

@@ -53,15 +53,16 @@ template <typename StepFn>
 void for_each_step(const VolumeScene& volumes, const Ray& ray, float jitter, const MarchSettings& settings,
                    MarchScratch& scratch, StepFn&& step) {
   volumes.intervals(ray, scratch.intervals);
-  build_spans(scratch.intervals.intervals, scratch.spans, scratch.span_primitives);
+  build_spans(scratch.intervals.intervals, scratch.span_scratch, scratch.spans, scratch.span_primitives);
   const float dir_length = length(ray.direction);
   for (const Span& span : scratch.spans) {
     const std::span<const uint32_t> prims(scratch.span_primitives.data() + span.first, span.count);
     const int n = steps_for_span(volumes, prims, (span.t1 - span.t0) * dir_length, settings);
     const float dt = (span.t1 - span.t0) / float(n);
     for (int i = 0; i < n; ++i) {
+      // Both ends from the same expression, so consecutive steps meet exactly.
       const float a = span.t0 + dt * float(i);
-      const float b = i + 1 == n ? span.t1 : a + dt;
+      const float b = i + 1 == n ? span.t1 : span.t0 + dt * float(i + 1);
       const float t_shade = n == 1 ? 0.5f * (a + b) : a + jitter * (b - a);
       if (!step(a, b, t_shade, prims, dir_length)) return;
     }

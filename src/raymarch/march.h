@@ -32,6 +32,7 @@ struct MarchSettings {
 // Per-thread buffers, reused from ray to ray.
 struct MarchScratch {
   IntervalScratch intervals;
+  SpanScratch span_scratch;
   std::vector<Span> spans;
   std::vector<uint32_t> span_primitives;
   std::vector<PhaseLobe> lobes;

@@ -13,6 +13,7 @@ struct RenderStats {
   double seconds = 0.0;
   uint64_t paths = 0;
   uint64_t rays = 0;
+  uint64_t camera_march_steps = 0;  // TransmittanceRecord steps of camera rays (per camera ray: / paths)
 };
 
 struct RenderResult {

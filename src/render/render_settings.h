@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "core/vec.h"
+#include "integrators/path_tracer.h"
 
 namespace caligo {
 
@@ -11,6 +12,8 @@ struct RenderSettings {
   Vec2i resolution{640, 480};
   int spp = 16;
   int max_depth = 8;
+  int max_volume_bounces = 128;
+  DistanceSampling distance_sampling = DistanceSampling::kMis;
   uint64_t seed = 0;
   int threads = 0;        // 0: all hardware threads
   int tile_size = 16;

@@ -17,6 +17,8 @@ constexpr const char* kDefault = R"json({
     "green": {"type": "diffuse", "reflectance": [0.14, 0.45, 0.091]},
     "glass": {"type": "dielectric", "ior": 1.5}
   },
+  "media": {"fog": {"sigma_s": 0.03, "sigma_a": 0.003, "phase": {"type": "hg", "g": 0.4}}},
+  "volumes": [{"type": "box", "min": [-2, 0, -2], "max": [2, 4, 5], "medium": "fog"}],
   "shapes": [
     {"type": "rectangle", "corner": [-2, 0, -2], "edge1": [0, 0, 7], "edge2": [4, 0, 0], "material": "white"},
     {"type": "rectangle", "corner": [-2, 4, -2], "edge1": [4, 0, 0], "edge2": [0, 0, 7], "material": "white"},
@@ -30,7 +32,8 @@ constexpr const char* kDefault = R"json({
   ],
   "lights": [
     {"type": "quad", "corner": [-0.75, 3.99, -0.75], "edge1": [1.5, 0, 0], "edge2": [0, 0, 1.5],
-     "color": [1, 0.85, 0.65], "radiance": 8}
+     "color": [1, 0.85, 0.65], "radiance": 8},
+    {"type": "point", "position": [1.4, 3.2, 2.2], "color": [1, 0.7, 0.4], "intensity": 2}
   ]
 }
 )json";
@@ -95,9 +98,49 @@ constexpr const char* kLightsShowcase = R"json({
 }
 )json";
 
+// A 10 W/sr lamp inside a sphere of homogeneous fog, seen from outside: the equiangular
+// sampling showcase (and its benchmark).
+constexpr const char* kLampInFog = R"json({
+  "camera": {"position": [0, 0, 6], "look_at": [0, 0, 0], "fov": 45, "resolution": [320, 240]},
+  "render": {"spp": 64, "max_volume_bounces": 128},
+  "media": {"fog": {"sigma_s": 0.4, "sigma_a": 0.02, "phase": {"type": "hg", "g": 0.3}}},
+  "volumes": [{"type": "sphere", "center": [0, 0, 0], "radius": 2, "medium": "fog"}],
+  "lights": [{"type": "point", "position": [0.4, 0.2, 0.3], "color": [1, 0.8, 0.55], "intensity": 10}]
+})json";
+
+// A spot light shining down through fog past a sphere: the shadow it casts is a dark shaft.
+constexpr const char* kSpotShafts = R"json({
+  "camera": {"position": [0, 1.6, 6.5], "look_at": [0, 1.4, 0], "fov": 50, "resolution": [320, 240]},
+  "render": {"spp": 64, "max_depth": 4, "max_volume_bounces": 16},
+  "materials": {"ground": {"type": "diffuse", "reflectance": 0.5},
+                "blocker": {"type": "diffuse", "reflectance": 0.3}},
+  "media": {"haze": {"sigma_s": 0.25, "sigma_a": 0.02, "phase": {"type": "hg", "g": 0.5}}},
+  "shapes": [
+    {"type": "rectangle", "corner": [-4, 0, -4], "edge1": [0, 0, 8], "edge2": [8, 0, 0], "material": "ground"},
+    {"type": "sphere", "center": [0.2, 2.2, 0], "radius": 0.45, "material": "blocker"}
+  ],
+  "volumes": [{"type": "box", "min": [-3.5, 0, -3.5], "max": [3.5, 4, 3.5], "medium": "haze"}],
+  "lights": [{"type": "spot", "position": [0, 3.9, 0], "look_at": [0, 0, 0], "inner_angle": 22,
+              "outer_angle": 28, "color": [1, 0.9, 0.75], "intensity": 30}]
+})json";
+
+// Two overlapping boxes of coloured media: in the overlap their coefficients add up.
+constexpr const char* kOverlap = R"json({
+  "camera": {"position": [0, 1, 5], "look_at": [0, 0.8, 0], "fov": 45, "resolution": [320, 240]},
+  "render": {"spp": 64, "max_volume_bounces": 64},
+  "media": {"red": {"sigma_s": [0.9, 0.15, 0.1], "sigma_a": 0.05},
+            "blue": {"sigma_s": [0.1, 0.3, 1.0], "sigma_a": 0.05, "phase": {"type": "hg", "g": -0.2}}},
+  "volumes": [{"type": "box", "min": [-1.5, 0, -1], "max": [0.4, 1.8, 1], "medium": "red"},
+              {"type": "box", "min": [-0.4, 0, -1], "max": [1.5, 1.8, 1], "medium": "blue",
+               "transform": [{"rotate": {"angle": 15, "axis": [0, 1, 0]}}]}],
+  "lights": [{"type": "point", "position": [0, 3, 2], "intensity": 12},
+             {"type": "environment", "radiance": 0.15}]
+})json";
+
 const std::vector<BuiltinScene>& all_builtins() {
   static const std::vector<BuiltinScene> scenes = {
-      {"default", "a closed Cornell-style room with a glass sphere, a rotated box and a ceiling light",
+      {"default",
+       "a closed Cornell-style room in thin fog, with a glass sphere, a rotated box, a ceiling light and a lamp",
        kDefault},
       {"furnace", "camera inside a closed sphere of albedo 0.5 emitting 1: every pixel converges to 2",
        kFurnace},
@@ -109,6 +152,9 @@ const std::vector<BuiltinScene>& all_builtins() {
        "spheres on a ground plane lit by one light of each type: spot, sphere, point, quad, directional "
        "(0.5 degree sun) and environment",
        kLightsShowcase},
+      {"lamp-in-fog", "a small point light inside a sphere of homogeneous scattering fog", kLampInFog},
+      {"spot-shafts", "a spot light through fog past an occluding sphere: a volumetric shadow", kSpotShafts},
+      {"overlap", "two overlapping boxes of coloured media, whose coefficients add where they overlap", kOverlap},
   };
   return scenes;
 }

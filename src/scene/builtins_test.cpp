@@ -74,8 +74,12 @@ TEST(Builtins, DefaultRoomIsClosedAroundTheCamera) {
   EXPECT_EQ(walls, 6);
   const Vec3 p = scene.camera.position;
   EXPECT_TRUE(p.x > -2 && p.x < 2 && p.y > 0 && p.y < 4 && p.z > -2 && p.z < 5);
-  ASSERT_EQ(scene.lights.size(), 1u);
+  ASSERT_EQ(scene.lights.size(), 2u);
   EXPECT_TRUE(std::holds_alternative<QuadLight>(scene.lights[0]));
+  EXPECT_TRUE(std::holds_alternative<PointLight>(scene.lights[1]));
+  // Thin fog fills the room.
+  ASSERT_EQ(scene.volumes.size(), 1u);
+  EXPECT_TRUE(std::holds_alternative<BoxVolumeShape>(scene.volumes[0].shape));
   EXPECT_EQ(scene.render.spp, 64);
   EXPECT_EQ(scene.render.max_depth, 8);
 }
@@ -89,6 +93,24 @@ TEST(Builtins, LightsShowcaseHasEveryFileLightType) {
     if (const auto* sun = std::get_if<DirectionalLight>(&l)) {
       EXPECT_LT(sun->cos_angular_radius, 1.0f);
     }
+}
+
+}  // namespace
+}  // namespace caligo
+
+namespace caligo {
+namespace {
+
+TEST(Builtins, VolumeScenesHaveTheirMedia) {
+  const SceneDesc lamp = parse_builtin(*find_builtin("lamp-in-fog"));
+  ASSERT_EQ(lamp.volumes.size(), 1u);
+  ASSERT_EQ(lamp.lights.size(), 1u);
+  const auto& fog = std::get<SphereVolumeShape>(lamp.volumes[0].shape);
+  // The lamp is inside its fog sphere.
+  EXPECT_LT(length(fog.sphere.object_to_world.inverse_point(std::get<PointLight>(lamp.lights[0]).position)), 1.0f);
+  const SceneDesc shafts = parse_builtin(*find_builtin("spot-shafts"));
+  EXPECT_TRUE(std::holds_alternative<SpotLight>(shafts.lights[0]));
+  EXPECT_EQ(parse_builtin(*find_builtin("overlap")).volumes.size(), 2u);
 }
 
 }  // namespace

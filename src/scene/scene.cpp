@@ -54,6 +54,7 @@ std::unique_ptr<Scene> Scene::build(const SceneDesc& desc) {
   for (const ShapeDesc& shape : desc.shapes) scene->add_shape(shape);
   for (size_t i = 0; i < desc.lights.size(); ++i) scene->add_light_geometry(int(i));
   scene->surfaces_.commit();
+  scene->volumes_ = VolumeScene(desc.volumes);
   scene->finish_lights();
   return scene;
 }

@@ -14,6 +14,7 @@
 #include "materials/material.h"
 #include "scene/camera.h"
 #include "scene/scene_desc.h"
+#include "volumes/volume_scene.h"
 
 namespace caligo {
 
@@ -33,6 +34,7 @@ class Scene {
 
   const SceneDesc& desc() const { return desc_; }
   const EmbreeScene& surfaces() const { return surfaces_; }
+  const VolumeScene& volumes() const { return volumes_; }
   const std::vector<Material>& materials() const { return materials_; }
   const std::vector<Light>& lights() const { return lights_; }
   const std::vector<int>& infinite_lights() const { return infinite_lights_; }
@@ -41,6 +43,9 @@ class Scene {
   float light_selection_pmf(int light) const { return light_selection_.empty() ? 0.0f : light_selection_.pmf(light); }
 
   SurfaceInteraction interaction(const Ray& ray, const SurfaceHit& hit) const;
+  const Material& material(const SurfaceHit& hit) const {
+    return materials_[size_t(geometry_[hit.geom_id].material)];
+  }
   Camera camera(Vec2i resolution) const { return Camera(desc_.camera, resolution); }
 
  private:
@@ -59,6 +64,7 @@ class Scene {
 
   SceneDesc desc_;
   EmbreeScene surfaces_;
+  VolumeScene volumes_;
   std::vector<Material> materials_;
   std::vector<GeometryInfo> geometry_;  // indexed by Embree geometry id
   std::vector<Light> lights_;

@@ -1,0 +1,80 @@
+// The reference ladder: deliberately simple, slow volume estimators that are easy to check
+// by reading, kept so tests can hold the production path tracer (path_tracer.h) against
+// them. They share nothing with its volume machinery (no march(), no TransmittanceRecord,
+// no equiangular or density-proportional distance sampling), only the scene queries, the
+// shaders (shade_volume, volume_interval, max_sigma_t), the lights, phase functions and BSDFs.
+//
+// Rungs, each simpler to trust than the next:
+//   1. reference_transmittance: optical depth by the midpoint rule (exact for homogeneous media).
+//   2. reference_single_scattering: light scattered once, by uniform distance sampling along
+//      the ray and brute-force transmittance on both sides; every light, every call.
+//   3. reference_delta_tracking: all orders of scattering by scalar delta tracking in one
+//      colour channel, next-event estimation with ratio tracking.
+//
+// Conventions of all three: rays have unit directions (t is in metres); overlapping volume
+// primitives add their coefficients, and the phase function at a point is the exact
+// per-channel mixture sum_i sigma_s,i phase_i / sigma_s. (Production weights the lobes by
+// each primitive's average sigma_s, which agrees with this unless overlapping primitives
+// have both different phase functions and differently coloured sigma_s.) Volume emission is
+// ignored throughout: the ladder checks scattering, not emission.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/ray.h"
+#include "core/rgb.h"
+#include "core/rng.h"
+#include "scene/scene.h"
+
+namespace caligo {
+
+// exp(-optical depth) along `ray` over [ray.tmin, min(t_max, far end of the volume intervals)].
+// Each primitive's stretch of the ray is integrated separately with `steps` equal midpoint
+// steps (primitives add, so this equals integrating their sum; per-primitive stretches keep
+// a homogeneous primitive exact instead of blurring its boundary across a step).
+// Surfaces are ignored: visibility is the caller's business.
+RGB reference_transmittance(const Scene& scene, const Ray& ray, float t_max, int steps);
+
+// The single-scattered medium radiance arriving at ray.origin along -ray.direction, and
+// nothing else: no surface shading, no surface or environment emission seen directly, no
+// volume emission. Light from every light reaches the scattering point unscattered (surfaces
+// block it, media attenuate it); the path ends at the nearest non-null surface. Averages
+// `samples` uniform distance samples over the ray's stretch of the volume intervals; area and
+// environment lights get a few light samples each per distance sample, delta lights one.
+RGB reference_single_scattering(const Scene& scene, const Ray& ray, int samples, Pcg32& rng);
+
+// Radiance along `ray` with all orders of volume scattering (up to `max_bounces` scattering
+// events, surface and volume together), by delta tracking with a per-ray constant majorant.
+// One colour channel is traced per call, chosen uniformly: the result holds 3x the estimate
+// in that channel and zero in the others, so its expectation is the full RGB radiance and
+// chromatic media need no spectral MIS. Every light is reached by next-event estimation only
+// (all lights, one sample each, ratio-tracking transmittance), so emission from surfaces and
+// the environment counts only when the camera ray sees it directly, before any scattering.
+// Diffuse surfaces scatter (NEE plus cosine sampling), null surfaces are crossed, black
+// surfaces absorb; volume emission is ignored.
+// Throws std::invalid_argument when the path meets a dielectric: specular transport would
+// need the emission-on-hit this estimator leaves out.
+RGB reference_delta_tracking(const Scene& scene, const Ray& ray, int max_bounces, Pcg32& rng);
+
+enum class ReferenceEstimator { kSingleScattering, kDeltaTracking };
+
+struct ReferenceOptions {
+  ReferenceEstimator estimator = ReferenceEstimator::kDeltaTracking;
+  int samples_per_pixel = 16;  // jittered camera rays per pixel
+  int max_bounces = 64;        // delta tracking: scattering events
+  int distance_samples = 1;    // single scattering: distance samples per camera ray
+  uint64_t seed = 0;
+};
+
+// Per-pixel means of an estimator over the camera's jittered pixel rays, row-major, like the
+// colour channels of render()'s image. Deterministic for a given seed (pixels run in parallel,
+// each with its own generator).
+std::vector<RGB> reference_image(const Scene& scene, Vec2i resolution, const ReferenceOptions& options);
+
+// The mean of reference_image over all pixels.
+RGB reference_mean_radiance(const Scene& scene, Vec2i resolution, const ReferenceOptions& options);
+RGB reference_mean_radiance(const Scene& scene, Vec2i resolution, int samples_per_pixel, ReferenceEstimator which,
+                            uint64_t seed);
+
+}  // namespace caligo

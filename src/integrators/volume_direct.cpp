@@ -1,0 +1,107 @@
+#include "integrators/volume_direct.h"
+
+#include <optional>
+
+#include "core/sampling.h"
+#include "integrators/visibility.h"
+#include "lights/equiangular.h"
+#include "lights/light_sample.h"
+
+namespace caligo {
+namespace {
+
+using sample_dim::bounce;
+
+// The point equiangular sampling aims at, for lights that have one.
+std::optional<Vec3> light_centre(const Light& light) {
+  if (const auto* l = std::get_if<PointLight>(&light)) return l->position;
+  if (const auto* l = std::get_if<SpotLight>(&light)) return l->position;
+  if (const auto* l = std::get_if<SphereLight>(&light)) return l->center;
+  if (const auto* l = std::get_if<QuadLight>(&light)) return l->corner + (l->edge1 + l->edge2) * 0.5f;
+  if (const auto* l = std::get_if<TriangleLight>(&light)) return (l->p0 + l->p1 + l->p2) / 3.0f;
+  return std::nullopt;
+}
+
+struct Candidate {
+  float t;
+  float pdf;  // of the strategy that produced t
+};
+
+// f(t) / p_light: the light arriving at x(t) and scattered back along the ray, for one light
+// sample at x(t), before dividing by the distance pdf.
+RGB scattered_light(const Scene& scene, const Ray& ray, const TransmittanceRecord& record, const Light& light,
+                    float pick_pmf, float t, Vec2 u_light, float jitter, PathScratch& scratch,
+                    PathCounters& counters) {
+  const int index = record.find_step(t);
+  if (index < 0) return RGB(0.0f);
+  const MarchStep& step = record.steps()[size_t(index)];
+  if (step.sigma_s.is_black()) return RGB(0.0f);
+  const Vec3 x = ray.at(t);
+  const auto ls = sample_light(light, x, u_light);
+  if (!ls || ls->radiance.is_black() || !(ls->pdf > 0.0f)) return RGB(0.0f);
+  const float phase = mixed_phase_eval(record, step, ray.direction, ls->wi);
+  if (!(phase > 0.0f)) return RGB(0.0f);
+  const RGB tr = light_transmittance(scene, x, x, *ls, jitter, scratch, counters);
+  if (tr.is_black()) return RGB(0.0f);
+  const float light_pdf_sa = pick_pmf * ls->pdf;
+  const float w = ls->delta ? 1.0f : power_heuristic(1, light_pdf_sa, 1, phase);
+  return step.sigma_s * record.transmittance(t) * tr * ls->radiance * (phase * w / light_pdf_sa);
+}
+
+float mis_weight(DistanceSampling strategy, float own_pdf, float other_pdf) {
+  if (strategy != DistanceSampling::kMis) return 1.0f;
+  return power_heuristic(1, own_pdf, 1, other_pdf);
+}
+
+}  // namespace
+
+float mixed_phase_eval(const TransmittanceRecord& record, const MarchStep& step, Vec3 wo, Vec3 wi) {
+  float sum = 0.0f;
+  for (const PhaseLobe& lobe : record.lobes(step)) sum += lobe.weight * phase_eval(lobe.phase, wo, wi);
+  return sum;
+}
+
+RGB volume_direct_light(const Scene& scene, const Ray& ray, const TransmittanceRecord& record,
+                        const Sampler& sampler, int depth, DistanceSampling strategy, PathScratch& scratch,
+                        PathCounters& counters) {
+  const DiscreteDistribution& selection = scene.light_selection();
+  if (selection.empty() || record.scatter_weight_total() <= 0.0f) return RGB(0.0f);
+  float pick_pmf = 0.0f;
+  const int light_index = selection.sample(sampler.get_1d(bounce(depth, sample_dim::kVolumeLightSelect)), &pick_pmf);
+  const Light& light = scene.lights()[size_t(light_index)];
+  const float jitter = sampler.get_1d(bounce(depth, sample_dim::kMarchJitter));
+
+  const auto centre = light_centre(light);
+  std::optional<EquiangularSetup> eq;
+  if (centre && strategy != DistanceSampling::kDensity)
+    eq = make_equiangular_setup(ray.origin, ray.direction, *centre, record.t_begin(), record.t_end());
+  const bool use_density = strategy != DistanceSampling::kEquiangular || !eq;
+  const bool use_equiangular = eq.has_value();
+  const DistanceSampling mix = use_density && use_equiangular ? DistanceSampling::kMis : DistanceSampling::kDensity;
+
+  RGB sum;
+  if (use_density) {
+    const auto ds = record.sample_scatter_density(sampler.get_1d(bounce(depth, sample_dim::kDensityChannel)),
+                                                  sampler.get_1d(bounce(depth, sample_dim::kDensityDistance)));
+    if (ds) {
+      const float other = use_equiangular ? equiangular_pdf(*eq, ds->t) : 0.0f;
+      const RGB f = scattered_light(scene, ray, record, light, pick_pmf, ds->t,
+                                    sampler.get_2d(bounce(depth, sample_dim::kDensityLight)), jitter, scratch, counters);
+      sum += f * (mis_weight(mix, ds->pdf, other) / ds->pdf);
+    }
+  }
+  if (use_equiangular) {
+    const float t = sample_equiangular(*eq, sampler.get_1d(bounce(depth, sample_dim::kEquiangularDistance)));
+    const float pdf = equiangular_pdf(*eq, t);
+    if (pdf > 0.0f) {
+      const float other = use_density ? record.scatter_density_pdf(t) : 0.0f;
+      const RGB f = scattered_light(scene, ray, record, light, pick_pmf, t,
+                                    sampler.get_2d(bounce(depth, sample_dim::kEquiangularLight)), jitter, scratch,
+                                    counters);
+      sum += f * (mis_weight(mix, pdf, other) / pdf);
+    }
+  }
+  return sum;
+}
+
+}  // namespace caligo

@@ -1,0 +1,103 @@
+// The volumetric path tracer against media with closed-form answers.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "render/render.h"
+
+namespace caligo {
+namespace {
+
+SceneDesc camera_at(Vec3 position, Vec3 look_at, Vec2i resolution, float fov = 40.0f) {
+  SceneDesc desc;
+  desc.file = "test";
+  desc.camera = {position, look_at, {0, 1, 0}, fov, resolution};
+  return desc;
+}
+
+VolumePrimitive fog_sphere(Vec3 c, float r, RGB sigma_a, RGB sigma_s, PhaseFunction phase = {}) {
+  VolumePrimitive v{SphereVolumeShape{Sphere::make(c, r, {})}, {sigma_a, sigma_s}};
+  v.shader.phase = phase;
+  return v;
+}
+
+RGB image_mean(const Image& image) {
+  double r = 0, g = 0, b = 0;
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x) {
+      const RGB c = image.rgb(x, y, 0);
+      r += c.r, g += c.g, b += c.b;
+    }
+  const double n = double(image.width()) * image.height();
+  return RGB(float(r / n), float(g / n), float(b / n));
+}
+
+Image render_desc(const SceneDesc& desc, int spp, DistanceSampling sampling = DistanceSampling::kMis,
+                  int max_volume_bounces = 1024) {
+  const auto scene = Scene::build(desc);
+  RenderSettings s = default_settings(desc);
+  s.spp = spp;
+  s.max_volume_bounces = max_volume_bounces;
+  s.distance_sampling = sampling;
+  return render(*scene, s).image;
+}
+
+// A non-absorbing medium under a uniform sky scatters light but never loses any: every
+// camera ray, whatever it crosses, sees exactly the sky radiance (the volume furnace).
+TEST(VolumeScenes, AlbedoOneFurnace) {
+  SceneDesc desc = camera_at({0, 0, 5}, {0, 0, 0}, {16, 16}, 30.0f);
+  desc.volumes.push_back(fog_sphere({0, 0, 0}, 1.5f, RGB(0.0f), RGB(2.0f, 1.0f, 0.5f), HenyeyGreensteinPhase{0.6f}));
+  desc.volumes.push_back(fog_sphere({0.5f, 0, 0}, 0.8f, RGB(0.0f), RGB(1.0f)));
+  desc.lights.push_back(EnvironmentLight{RGB(1.0f)});
+  const RGB mean = image_mean(render_desc(desc, 64));
+  EXPECT_NEAR(mean.r, 1.0f, 0.01f);
+  EXPECT_NEAR(mean.g, 1.0f, 0.01f);
+  EXPECT_NEAR(mean.b, 1.0f, 0.01f);
+}
+
+// Camera inside the medium: the same furnace must hold.
+TEST(VolumeScenes, AlbedoOneFurnaceFromInside) {
+  SceneDesc desc = camera_at({0, 0, 0.3f}, {0, 0, -1}, {8, 8}, 60.0f);
+  desc.volumes.push_back(fog_sphere({0, 0, 0}, 2.0f, RGB(0.0f), RGB(1.5f)));
+  desc.lights.push_back(EnvironmentLight{RGB(0.5f)});
+  EXPECT_NEAR(image_mean(render_desc(desc, 128)).g, 0.5f, 0.005f);
+}
+
+// An absorbing, emitting slab in front of a black background: L = e / sigma_a (1 - exp(-sigma_a d)),
+// and a sky behind it is attenuated by exp(-sigma_a d). No scattering, so no noise.
+TEST(VolumeScenes, EmissionAndAbsorptionAlongTheAxis) {
+  SceneDesc desc = camera_at({0, 0, 5}, {0, 0, 0}, {1, 1}, 0.01f);
+  VolumePrimitive slab{BoxVolumeShape{{}, {-1, -1, -0.5f}, {1, 1, 0.5f}}, {RGB(0.7f), RGB(0.0f), RGB(1.4f)}};
+  desc.volumes.push_back(slab);
+  desc.lights.push_back(EnvironmentLight{RGB(3.0f)});
+  const float expected = 1.4f / 0.7f * (1.0f - std::exp(-0.7f)) + 3.0f * std::exp(-0.7f);
+  // Paths that collide are absorbed (albedo 0); the others carry the sky: unbiased, binomial noise.
+  EXPECT_NEAR(image_mean(render_desc(desc, 80000)).g, expected, 0.01f * expected);
+}
+
+// Every distance-sampling strategy is unbiased: their means agree.
+TEST(VolumeScenes, DistanceSamplingStrategiesAgree) {
+  SceneDesc desc = camera_at({0, 0, 6}, {0, 0, 0}, {12, 12}, 45.0f);
+  desc.volumes.push_back(fog_sphere({0, 0, 0}, 2.0f, RGB(0.05f), RGB(0.4f), HenyeyGreensteinPhase{0.3f}));
+  desc.lights.push_back(PointLight{{0.4f, 0.2f, 0.3f}, RGB(10.0f)});
+  const float mis = image_mean(render_desc(desc, 256, DistanceSampling::kMis, 1)).g;
+  const float density = image_mean(render_desc(desc, 256, DistanceSampling::kDensity, 1)).g;
+  const float equiangular = image_mean(render_desc(desc, 256, DistanceSampling::kEquiangular, 1)).g;
+  EXPECT_NEAR(density, mis, 0.02f * mis);
+  EXPECT_NEAR(equiangular, mis, 0.02f * mis);
+}
+
+// A surface seen through fog is attenuated by T(t_hit); a null surface in the fog changes nothing.
+TEST(VolumeScenes, NullSurfaceInsideAMediumIsInvisible) {
+  SceneDesc desc = camera_at({0, 0, 6}, {0, 0, 0}, {8, 8}, 30.0f);
+  desc.volumes.push_back(fog_sphere({0, 0, 0}, 2.0f, RGB(0.1f), RGB(0.3f)));
+  desc.lights.push_back(PointLight{{0, 0.5f, 0}, RGB(5.0f)});
+  const Image without = render_desc(desc, 16);
+  desc.materials.push_back({"portal", NullBsdf{}, {}, false});
+  desc.shapes.push_back({SphereShape{{0, 0, 0}, 1.0f}, {}, 0});
+  const Image with = render_desc(desc, 16);
+  EXPECT_TRUE(without == with);
+}
+
+}  // namespace
+}  // namespace caligo
