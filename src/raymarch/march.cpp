@@ -53,7 +53,13 @@ template <typename StepFn>
 void for_each_step(const VolumeScene& volumes, const Ray& ray, float jitter, const MarchSettings& settings,
                    MarchScratch& scratch, StepFn&& step) {
   volumes.intervals(ray, scratch.intervals);
-  build_spans(scratch.intervals.intervals, scratch.span_scratch, scratch.spans, scratch.span_primitives);
+  const auto& intervals = scratch.intervals.intervals;
+  if (intervals.size() == 1) {  // the common case needs no sweep
+    scratch.spans.assign(1, Span{intervals[0].t0, intervals[0].t1, 0, 1});
+    scratch.span_primitives.assign(1, intervals[0].primitive);
+  } else {
+    build_spans(intervals, scratch.span_scratch, scratch.spans, scratch.span_primitives);
+  }
   const float dir_length = length(ray.direction);
   for (const Span& span : scratch.spans) {
     const std::span<const uint32_t> prims(scratch.span_primitives.data() + span.first, span.count);
@@ -64,6 +70,8 @@ void for_each_step(const VolumeScene& volumes, const Ray& ray, float jitter, con
       const float a = span.t0 + dt * float(i);
       const float b = i + 1 == n ? span.t1 : span.t0 + dt * float(i + 1);
       const float t_shade = n == 1 ? 0.5f * (a + b) : a + jitter * (b - a);
+      ++scratch.steps;
+      scratch.shader_evaluations += prims.size();
       if (!step(a, b, t_shade, prims, dir_length)) return;
     }
   }

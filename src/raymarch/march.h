@@ -36,6 +36,8 @@ struct MarchScratch {
   std::vector<Span> spans;
   std::vector<uint32_t> span_primitives;
   std::vector<PhaseLobe> lobes;
+  uint64_t steps = 0;               // statistics: steps marched (records and shadow rays)
+  uint64_t shader_evaluations = 0;  // statistics: volume shader calls
 };
 
 // Marches [ray.tmin, ray.tmax] (tmax: the nearest opaque surface, or infinity) into `out`.

@@ -70,7 +70,12 @@ RenderResult render(const Scene& scene, const RenderSettings& settings, Progress
     });
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return {film.resolve(settings.spp), {seconds, paths, rays.load(), march_steps.load()}};
+  RenderStats stats{seconds, paths, rays.load(), march_steps.load()};
+  for (const PathScratch& s : scratch) {
+    stats.march_steps += s.march.steps;
+    stats.shader_evaluations += s.march.shader_evaluations;
+  }
+  return {film.resolve(settings.spp), stats};
 }
 
 }  // namespace caligo

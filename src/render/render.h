@@ -14,6 +14,8 @@ struct RenderStats {
   uint64_t paths = 0;
   uint64_t rays = 0;
   uint64_t camera_march_steps = 0;  // TransmittanceRecord steps of camera rays (per camera ray: / paths)
+  uint64_t march_steps = 0;         // every marched step: camera, bounce and shadow rays
+  uint64_t shader_evaluations = 0;  // every volume shader call
 };
 
 struct RenderResult {
