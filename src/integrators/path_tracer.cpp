@@ -101,20 +101,6 @@ std::optional<SurfaceHit> nearest_opaque_hit(const Scene& scene, const Ray& ray,
   return std::nullopt;
 }
 
-// Samples the phase mixture at a record step; returns the new direction and its pdf.
-PhaseSample sample_mixed_phase(const TransmittanceRecord& record, const MarchStep& step, Vec3 wo, float u_lobe,
-                               Vec2 u) {
-  const auto lobes = record.lobes(step);
-  size_t chosen = 0;
-  for (float acc = 0.0f; chosen + 1 < lobes.size(); ++chosen) {
-    acc += lobes[chosen].weight;
-    if (u_lobe < acc) break;
-  }
-  PhaseSample s = phase_sample(lobes[chosen].phase, wo, u);
-  if (lobes.size() > 1) s.pdf = mixed_phase_eval(record, step, wo, s.wi);
-  return s;
-}
-
 enum class SegmentOutcome { kScattered, kPassed, kAbsorbed };
 
 // Phases 2 and 3 for the medium in front of the next surface (or to infinity).
@@ -146,9 +132,11 @@ SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, c
   state.throughput *= step.sigma_s * record.transmittance(collision->t) / collision->pdf;
   if (state.throughput.is_black()) return SegmentOutcome::kAbsorbed;
   const Vec3 x = ray.at(collision->t);
-  const PhaseSample ps = sample_mixed_phase(record, step, ray.direction,
-                                            sampler.get_1d(bounce(state.depth, sample_dim::kPhaseLobe)),
-                                            sampler.get_2d(bounce(state.depth, sample_dim::kPhaseDirection)));
+  const MixedPhaseSample ps = sample_mixed_phase(record, step, ray.direction,
+                                                 sampler.get_1d(bounce(state.depth, sample_dim::kPhaseLobe)),
+                                                 sampler.get_2d(bounce(state.depth, sample_dim::kPhaseDirection)));
+  state.throughput *= ps.weight;
+  if (state.throughput.is_black()) return SegmentOutcome::kAbsorbed;
   state.specular_bounce = false;
   state.scatter_pdf = ps.pdf;
   state.scatter_origin = x;

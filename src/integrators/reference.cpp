@@ -127,7 +127,8 @@ RGB scattered_once(const Scene& scene, const Segment& seg, float t, Pcg32& rng) 
       if (!ls || ls->radiance.is_black() || !(ls->pdf > 0.0f)) continue;
       const RGB f = scattering_times_phase(seg, t, ray.direction, ls->wi);
       if (f.is_black() || !unoccluded(scene, x, *ls)) continue;
-      const RGB tr = reference_transmittance(scene, Ray{x, ls->wi, 0.0f, kInfinity}, ls->distance, kTransmittanceSteps);
+      const RGB tr =
+          reference_transmittance(scene, Ray{x, ls->wi, 0.0f, kInfinity}, ls->distance, kTransmittanceSteps);
       in_scattered += f * tr * ls->radiance * (1.0f / (ls->pdf * float(n)));
     }
   }
@@ -161,11 +162,13 @@ float ratio_tracking(const Segment& seg, int channel, Pcg32& rng) {
 // Light arriving at `origin` from a light sample: surfaces block, media attenuate.
 float light_transmittance(const Scene& scene, Vec3 origin, const LightSample& ls, int channel, Pcg32& rng) {
   if (!unoccluded(scene, origin, ls)) return 0.0f;
-  return ratio_tracking(make_segment(scene, Ray{origin, ls.wi, 0.0f, kInfinity}, ls.distance, channel), channel, rng);
+  return ratio_tracking(make_segment(scene, Ray{origin, ls.wi, 0.0f, kInfinity}, ls.distance, channel),
+                        channel, rng);
 }
 
 // Next-event estimation at a medium collision: every light, one sample each.
-float medium_direct_light(const Scene& scene, const Segment& seg, float t, float sigma_s, int channel, Pcg32& rng) {
+float medium_direct_light(const Scene& scene, const Segment& seg, float t, float sigma_s, int channel,
+                          Pcg32& rng) {
   const Vec3 x = seg.ray.at(t);
   float sum = 0.0f;
   for (const Light& light : scene.lights()) {
@@ -196,7 +199,8 @@ Vec3 sample_phase_mixture(const Segment& seg, float t, float sigma_s, int channe
   return phase_sample(*chosen, seg.ray.direction, next_2d(rng)).wi;
 }
 
-float surface_direct_light(const Scene& scene, const SurfaceInteraction& si, Vec3 wo, int channel, Pcg32& rng) {
+float surface_direct_light(const Scene& scene, const SurfaceInteraction& si, Vec3 wo, int channel,
+                           Pcg32& rng) {
   float sum = 0.0f;
   for (const Light& light : scene.lights()) {
     const auto ls = sample_light(light, si.p, next_2d(rng));
@@ -233,7 +237,8 @@ RGB reference_transmittance(const Scene& scene, const Ray& ray, float t_max, int
     if (!iv) continue;
     const float dt = (iv->second - iv->first) / float(steps);
     RGB sum;
-    for (int i = 0; i < steps; ++i) sum += shade_volume(p, ray.at(iv->first + (float(i) + 0.5f) * dt)).sigma_t();
+    for (int i = 0; i < steps; ++i)
+      sum += shade_volume(p, ray.at(iv->first + (float(i) + 0.5f) * dt)).sigma_t();
     depth += sum * (dt * metres_per_t);
   }
   return exp_negative(depth);
@@ -245,7 +250,8 @@ RGB reference_single_scattering(const Scene& scene, const Ray& ray, int samples,
   if (seg.empty() || samples <= 0) return RGB(0.0f);
   const float length = seg.t_hi - seg.t_lo;
   RGB sum;
-  for (int i = 0; i < samples; ++i) sum += scattered_once(scene, seg, seg.t_lo + rng.next_float() * length, rng);
+  for (int i = 0; i < samples; ++i)
+    sum += scattered_once(scene, seg, seg.t_lo + rng.next_float() * length, rng);
   return sum * (length / float(samples));  // the uniform pdf is 1 / length
 }
 
@@ -259,7 +265,8 @@ RGB reference_delta_tracking(const Scene& scene, const Ray& camera_ray, int max_
     const Segment seg = make_segment(scene, ray, hit ? hit->t : kInfinity, channel);
     if (const auto t = sample_collision(seg, channel, rng)) {
       const ChannelCoefficients c = coefficients(seg, *t, channel);
-      if (rng.next_float() * c.sigma_t >= c.sigma_s || bounces >= max_bounces) break;  // absorbed
+      // Absorbed (probability sigma_a / sigma_t), or out of scattering events.
+      if (rng.next_float() * c.sigma_t >= c.sigma_s || bounces >= max_bounces) break;
       radiance += throughput * medium_direct_light(scene, seg, *t, c.sigma_s, channel, rng);
       ray = Ray{ray.at(*t), sample_phase_mixture(seg, *t, c.sigma_s, channel, rng), 0.0f, kInfinity};
       ++bounces;
@@ -318,8 +325,8 @@ RGB reference_mean_radiance(const Scene& scene, Vec2i resolution, const Referenc
   return RGB(float(r / n), float(g / n), float(b / n));
 }
 
-RGB reference_mean_radiance(const Scene& scene, Vec2i resolution, int samples_per_pixel, ReferenceEstimator which,
-                            uint64_t seed) {
+RGB reference_mean_radiance(const Scene& scene, Vec2i resolution, int samples_per_pixel,
+                            ReferenceEstimator which, uint64_t seed) {
   ReferenceOptions options;
   options.estimator = which;
   options.samples_per_pixel = samples_per_pixel;

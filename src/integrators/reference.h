@@ -74,7 +74,7 @@ std::vector<RGB> reference_image(const Scene& scene, Vec2i resolution, const Ref
 
 // The mean of reference_image over all pixels.
 RGB reference_mean_radiance(const Scene& scene, Vec2i resolution, const ReferenceOptions& options);
-RGB reference_mean_radiance(const Scene& scene, Vec2i resolution, int samples_per_pixel, ReferenceEstimator which,
-                            uint64_t seed);
+RGB reference_mean_radiance(const Scene& scene, Vec2i resolution, int samples_per_pixel,
+                            ReferenceEstimator which, uint64_t seed);
 
 }  // namespace caligo

@@ -39,13 +39,14 @@ RGB scattered_light(const Scene& scene, const Ray& ray, const TransmittanceRecor
   const Vec3 x = ray.at(t);
   const auto ls = sample_light(light, x, u_light);
   if (!ls || ls->radiance.is_black() || !(ls->pdf > 0.0f)) return RGB(0.0f);
-  const float phase = mixed_phase_eval(record, step, ray.direction, ls->wi);
-  if (!(phase > 0.0f)) return RGB(0.0f);
+  const RGB phase = mixed_phase_eval(record, step, ray.direction, ls->wi);
+  if (phase.is_black()) return RGB(0.0f);
   const RGB tr = light_transmittance(scene, x, x, *ls, jitter, scratch, counters);
   if (tr.is_black()) return RGB(0.0f);
   const float light_pdf_sa = pick_pmf * ls->pdf;
-  const float w = ls->delta ? 1.0f : power_heuristic(1, light_pdf_sa, 1, phase);
-  return step.sigma_s * record.transmittance(t) * tr * ls->radiance * (phase * w / light_pdf_sa);
+  const float w =
+      ls->delta ? 1.0f : power_heuristic(1, light_pdf_sa, 1, mixed_phase_pdf(record, step, ray.direction, ls->wi));
+  return step.sigma_s * record.transmittance(t) * tr * ls->radiance * phase * (w / light_pdf_sa);
 }
 
 float mis_weight(DistanceSampling strategy, float own_pdf, float other_pdf) {
@@ -55,10 +56,40 @@ float mis_weight(DistanceSampling strategy, float own_pdf, float other_pdf) {
 
 }  // namespace
 
-float mixed_phase_eval(const TransmittanceRecord& record, const MarchStep& step, Vec3 wo, Vec3 wi) {
-  float sum = 0.0f;
+RGB mixed_phase_eval(const TransmittanceRecord& record, const MarchStep& step, Vec3 wo, Vec3 wi) {
+  RGB sum;
   for (const PhaseLobe& lobe : record.lobes(step)) sum += lobe.weight * phase_eval(lobe.phase, wo, wi);
   return sum;
+}
+
+float mixed_phase_pdf(const TransmittanceRecord& record, const MarchStep& step, Vec3 wo, Vec3 wi) {
+  const auto lobes = record.lobes(step);
+  if (lobes.size() == 1) return phase_pdf(lobes[0].phase, wo, wi);
+  float sum = 0.0f, total = 0.0f;
+  for (const PhaseLobe& lobe : lobes) {
+    sum += lobe.weight.average() * phase_pdf(lobe.phase, wo, wi);
+    total += lobe.weight.average();
+  }
+  return total > 0.0f ? sum / total : 0.0f;
+}
+
+MixedPhaseSample sample_mixed_phase(const TransmittanceRecord& record, const MarchStep& step, Vec3 wo, float u_lobe,
+                                    Vec2 u) {
+  const auto lobes = record.lobes(step);
+  if (lobes.size() == 1) {
+    const PhaseSample s = phase_sample(lobes[0].phase, wo, u);
+    return {s.wi, lobes[0].weight, s.pdf};  // weight 1 in every channel that scatters
+  }
+  float total = 0.0f;
+  for (const PhaseLobe& lobe : lobes) total += lobe.weight.average();
+  size_t chosen = 0;
+  for (float acc = 0.0f; chosen + 1 < lobes.size(); ++chosen) {
+    acc += lobes[chosen].weight.average() / total;
+    if (u_lobe < acc) break;
+  }
+  const Vec3 wi = phase_sample(lobes[chosen].phase, wo, u).wi;
+  const float pdf = mixed_phase_pdf(record, step, wo, wi);
+  return {wi, pdf > 0.0f ? mixed_phase_eval(record, step, wo, wi) / pdf : RGB(0.0f), pdf};
 }
 
 RGB volume_direct_light(const Scene& scene, const Ray& ray, const TransmittanceRecord& record,

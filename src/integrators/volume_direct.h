@@ -17,7 +17,17 @@ RGB volume_direct_light(const Scene& scene, const Ray& ray, const TransmittanceR
                         const Sampler& sampler, int depth, DistanceSampling strategy, PathScratch& scratch,
                         PathCounters& counters);
 
-// The phase-function mixture stored at a record step.
-float mixed_phase_eval(const TransmittanceRecord& record, const MarchStep& step, Vec3 wo, Vec3 wi);
+// The phase-function mixture stored at a record step, per colour channel.
+RGB mixed_phase_eval(const TransmittanceRecord& record, const MarchStep& step, Vec3 wo, Vec3 wi);
+// The density with which sample_mixed_phase() picks wi: lobes chosen by their average weight.
+float mixed_phase_pdf(const TransmittanceRecord& record, const MarchStep& step, Vec3 wo, Vec3 wi);
+
+struct MixedPhaseSample {
+  Vec3 wi;
+  RGB weight;  // mixed_phase_eval / mixed_phase_pdf
+  float pdf;
+};
+MixedPhaseSample sample_mixed_phase(const TransmittanceRecord& record, const MarchStep& step, Vec3 wo, float u_lobe,
+                                    Vec2 u);
 
 }  // namespace caligo

@@ -20,11 +20,14 @@ StepCoefficients shade_span(const VolumeScene& volumes, std::span<const uint32_t
     c.sigma_t += m.sigma_t() * scale;
     c.sigma_s += m.sigma_s * scale;
     c.emission += m.emission * scale;
-    if (lobes && m.sigma_s.average() > 0.0f) lobes->push_back({m.sigma_s.average() * scale, m.phase});
+    if (lobes && !m.sigma_s.is_black()) lobes->push_back({m.sigma_s * scale, m.phase});
   }
-  // Overlapping primitives mix their phase functions in proportion to sigma_s.
-  if (lobes && c.sigma_s.average() > 0.0f)
-    for (PhaseLobe& l : *lobes) l.weight /= c.sigma_s.average();
+  // Overlapping primitives mix their phase functions in proportion to sigma_s, per channel.
+  if (lobes)
+    for (PhaseLobe& l : *lobes)
+      l.weight = RGB(c.sigma_s.r > 0.0f ? l.weight.r / c.sigma_s.r : 0.0f,
+                     c.sigma_s.g > 0.0f ? l.weight.g / c.sigma_s.g : 0.0f,
+                     c.sigma_s.b > 0.0f ? l.weight.b / c.sigma_s.b : 0.0f);
   return c;
 }
 

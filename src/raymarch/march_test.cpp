@@ -43,7 +43,8 @@ TEST(March, TwoHalfDensityOverlapsEqualOneFullDensity) {
   // The phase mixture of the two halves has two lobes weighing one half each.
   const auto lobes = a.lobes(a.steps()[0]);
   ASSERT_EQ(lobes.size(), 2u);
-  EXPECT_NEAR(lobes[0].weight + lobes[1].weight, 1.0f, 1e-6f);
+  EXPECT_NEAR(lobes[0].weight.r + lobes[1].weight.r, 1.0f, 1e-6f);
+  EXPECT_NEAR(lobes[0].weight.b + lobes[1].weight.b, 1.0f, 1e-6f);
 }
 
 TEST(March, OverlapSplitsIntoSpansAndStopsAtTheSurface) {

@@ -22,9 +22,11 @@
 
 namespace caligo {
 
-// One term of the phase-function mixture at a step: weight = that primitive's share of sigma_s.
+// One term of the phase-function mixture at a step. The weight is that primitive's share of
+// sigma_s in each colour channel: where differently coloured media overlap, each channel
+// scatters with its own mixture.
 struct PhaseLobe {
-  float weight;
+  RGB weight;
   PhaseFunction phase;
 };
 
@@ -47,7 +49,7 @@ class TransmittanceRecord {
   // Empties the record (keeping its memory).
   void clear();
   // Appends [t0, t1) with constant coefficients; t0 must be >= the previous step's t1 and
-  // t1 > t0. Lobe weights should sum to 1 when sigma_s > 0.
+  // t1 > t0. Lobe weights should sum to 1 in every channel with sigma_s > 0.
   void push(float t0, float t1, RGB sigma_t, RGB sigma_s, std::span<const PhaseLobe> lobes);
   // Adds emitted radiance already integrated by the marcher (for the record's owner to read).
   void add_emission(RGB radiance) { emission_ += radiance; }

@@ -266,7 +266,7 @@ TEST(TransmittanceRecord, PushDropsEmptyStepsAndRejectsOverlap) {
 }
 
 TEST(TransmittanceRecord, ClearKeepsCapacityAndEmission) {
-  const std::vector<PhaseLobe> lobes = {{1.0f, IsotropicPhase{}}};
+  const std::vector<PhaseLobe> lobes = {{RGB(1.0f), IsotropicPhase{}}};
   TransmittanceRecord r;
   const auto fill = [&] {
     for (int i = 0; i < 40; ++i) r.push(float(i), float(i + 1), RGB(0.1f), RGB(0.05f), lobes);
@@ -287,16 +287,16 @@ TEST(TransmittanceRecord, ClearKeepsCapacityAndEmission) {
 
 TEST(TransmittanceRecord, LobesReturnsThePushedLobes) {
   TransmittanceRecord r;
-  const std::vector<PhaseLobe> two = {{0.25f, IsotropicPhase{}}, {0.75f, HenyeyGreensteinPhase{0.6f}}};
-  const std::vector<PhaseLobe> one = {{1.0f, SchlickPhase{-0.3f}}};
+  const std::vector<PhaseLobe> two = {{RGB(0.25f), IsotropicPhase{}}, {RGB(0.75f), HenyeyGreensteinPhase{0.6f}}};
+  const std::vector<PhaseLobe> one = {{RGB(1.0f), SchlickPhase{-0.3f}}};
   r.push(0.0f, 1.0f, RGB(1.0f), RGB(1.0f), two);
   r.push(1.0f, 2.0f, RGB(1.0f), RGB(0.0f), {});
   r.push(3.0f, 4.0f, RGB(1.0f), RGB(1.0f), one);
   const auto a = r.lobes(r.steps()[0]), b = r.lobes(r.steps()[1]), c = r.lobes(r.steps()[2]);
   ASSERT_EQ(a.size(), 2u);
-  EXPECT_EQ(a[0].weight, 0.25f);
+  EXPECT_EQ(a[0].weight, RGB(0.25f));
   EXPECT_TRUE(std::holds_alternative<IsotropicPhase>(a[0].phase));
-  EXPECT_EQ(a[1].weight, 0.75f);
+  EXPECT_EQ(a[1].weight, RGB(0.75f));
   EXPECT_EQ(std::get<HenyeyGreensteinPhase>(a[1].phase).g, 0.6f);
   EXPECT_TRUE(b.empty());
   ASSERT_EQ(c.size(), 1u);
