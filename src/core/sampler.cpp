@@ -102,13 +102,14 @@ Sampler::Sampler(uint64_t seed, Vec2i pixel, uint32_t sample_index)
 float Sampler::get_1d(uint32_t dimension) const {
   const DimensionSeeds seeds = dimension_seeds(pixel_key_, dimension);
   const uint32_t i = nested_uniform_scramble(index_, seeds.shuffle);
-  return to_unit_float(nested_uniform_scramble(sobol_dim0(i), seeds.scramble_x));
+  // nested_uniform_scramble(sobol_dim0(i)) with the two bit reversals that cancel removed.
+  return to_unit_float(reverse_bits(laine_karras_permutation(i, seeds.scramble_x)));
 }
 
 Vec2 Sampler::get_2d(uint32_t dimension) const {
   const DimensionSeeds seeds = dimension_seeds(pixel_key_, dimension);
   const uint32_t i = nested_uniform_scramble(index_, seeds.shuffle);
-  return {to_unit_float(nested_uniform_scramble(sobol_dim0(i), seeds.scramble_x)),
+  return {to_unit_float(reverse_bits(laine_karras_permutation(i, seeds.scramble_x))),
           to_unit_float(nested_uniform_scramble(sobol_dim1(i), seeds.scramble_y))};
 }
 

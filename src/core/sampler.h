@@ -40,6 +40,7 @@ enum Bounce : uint32_t {
   kFreeFlightDistance,   // 1D: collision distance
   kPhaseLobe,            // 1D: lobe of a mixed phase function
   kPhaseDirection,       // 2D: scattered direction
+  kVolumeNeeRoulette,    // 1D: whether a thinly scattering segment gets next-event estimation
   kPerBounce
 };
 constexpr uint32_t bounce(int depth, Bounce which) {

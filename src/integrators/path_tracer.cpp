@@ -61,7 +61,7 @@ RGB surface_direct_light(const Scene& scene, const SurfaceInteraction& si, Vec3 
   const RGB f = bsdf_eval(si.material->bsdf, si.ns, wo, ls->wi) * abs_dot(si.ns, ls->wi);
   if (f.is_black() || dot(si.ng, ls->wi) * dot(si.ng, wo) <= 0.0f) return RGB(0.0f);
   const RGB tr = light_transmittance(scene, offset_ray_origin(si.p, si.ng, ls->wi), si.p, *ls,
-                                     sampler.get_1d(bounce(depth, sample_dim::kMarchJitter)), scratch, counters);
+                                     march_jitter(scene, sampler, depth), scratch, counters);
   if (tr.is_black()) return RGB(0.0f);
   const float light_pdf_sa = pick_pmf * ls->pdf;
   const float weight =
@@ -110,15 +110,24 @@ SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, c
   TransmittanceRecord& record = scratch.record;
   Ray segment = ray;
   segment.tmax = t_surface;
-  march(scene.volumes(), segment, sampler.get_1d(bounce(state.depth, sample_dim::kMarchJitter)),
+  march(scene.volumes(), segment, march_jitter(scene, sampler, state.depth),
         scratch.march_settings, scratch.march, record);
   if (record.empty()) return SegmentOutcome::kPassed;
   if (state.depth == 0) counters.camera_march_steps += record.steps().size();
   out.radiance += state.throughput * record.emission();
   const bool may_scatter = state.volume_bounces < settings.max_volume_bounces;
-  if (may_scatter)
-    out.radiance += state.throughput * volume_direct_light(scene, ray, record, sampler, state.depth,
-                                                           settings.distance_sampling, scratch, counters);
+  if (may_scatter) {
+    // Segments that barely scatter (thin fog between two walls) contribute little in-scattered
+    // light but cost two shadow rays: next-event estimation runs with a probability that
+    // follows the segment's scattering probability, and is reweighted (unbiased roulette).
+    const float nee_probability = std::min(1.0f, settings.volume_nee_scale * record.scatter_weight_total());
+    const float u = sampler.get_1d(bounce(state.depth, sample_dim::kVolumeNeeRoulette));
+    if (nee_probability > 0.0f && u < nee_probability)
+      out.radiance += state.throughput *
+                      volume_direct_light(scene, ray, record, sampler, state.depth, settings.distance_sampling,
+                                          scratch, counters) /
+                      nee_probability;
+  }
 
   const auto collision = record.sample_free_flight(sampler.get_1d(bounce(state.depth, sample_dim::kFreeFlightChannel)),
                                                    sampler.get_1d(bounce(state.depth, sample_dim::kFreeFlightDistance)));
@@ -146,6 +155,10 @@ SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, c
 }
 
 }  // namespace
+
+float march_jitter(const Scene& scene, const Sampler& sampler, int depth) {
+  return scene.volumes().all_homogeneous() ? 0.5f : sampler.get_1d(bounce(depth, sample_dim::kMarchJitter));
+}
 
 PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const PathSettings& settings,
                       PathCounters& counters, PathScratch& scratch) {

@@ -36,6 +36,8 @@ struct PathSettings {
   int russian_roulette_depth = 3;   // roulette starts after this many events
   int max_null_crossings = 256;     // guards against endless chains of null surfaces
   DistanceSampling distance_sampling = DistanceSampling::kMis;
+  // Volume next-event estimation runs with probability min(1, scale * P(scatter in segment)).
+  float volume_nee_scale = 2.0f;
 };
 
 // What one camera path contributes to the film and its AOVs.
@@ -58,6 +60,10 @@ struct PathScratch {
   MarchScratch march;
   TransmittanceRecord record;
 };
+
+// The position of heterogeneous march steps for this path vertex (constant when no
+// primitive is heterogeneous, which saves a sample).
+float march_jitter(const Scene& scene, const Sampler& sampler, int depth);
 
 PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const PathSettings& settings,
                       PathCounters& counters, PathScratch& scratch);

@@ -100,7 +100,7 @@ RGB volume_direct_light(const Scene& scene, const Ray& ray, const TransmittanceR
   float pick_pmf = 0.0f;
   const int light_index = selection.sample(sampler.get_1d(bounce(depth, sample_dim::kVolumeLightSelect)), &pick_pmf);
   const Light& light = scene.lights()[size_t(light_index)];
-  const float jitter = sampler.get_1d(bounce(depth, sample_dim::kMarchJitter));
+  const float jitter = march_jitter(scene, sampler, depth);
 
   const auto centre = light_centre(light);
   std::optional<EquiangularSetup> eq;

@@ -3,13 +3,25 @@
 namespace caligo {
 
 VolumeScene::VolumeScene(std::vector<VolumePrimitive> primitives) : primitives_(std::move(primitives)) {
-  for (const VolumePrimitive& p : primitives_) index_.add(volume_bounds(p.shape));
+  for (const VolumePrimitive& p : primitives_) {
+    index_.add(volume_bounds(p.shape));
+    all_homogeneous_ = all_homogeneous_ && is_homogeneous(p.shader);
+  }
   index_.commit();
 }
 
+// Below this many primitives, testing each one directly is cheaper than a BVH traversal
+// (a user-geometry traversal costs more than a few analytic interval tests).
+constexpr size_t kLinearScanLimit = 8;
+
 void VolumeScene::intervals(const Ray& ray, IntervalScratch& scratch) const {
   scratch.intervals.clear();
-  if (primitives_.empty()) return;
+  if (primitives_.size() <= kLinearScanLimit) {
+    for (uint32_t id = 0; id < primitives_.size(); ++id)
+      if (const auto range = volume_interval(primitives_[id].shape, ray))
+        scratch.intervals.push_back({range->first, range->second, id});
+    return;
+  }
   index_.candidates(ray, scratch.candidates);
   for (uint32_t id : scratch.candidates)
     if (const auto range = volume_interval(primitives_[id].shape, ray))

@@ -23,6 +23,8 @@ class VolumeScene {
   explicit VolumeScene(std::vector<VolumePrimitive> primitives);
 
   bool empty() const { return primitives_.empty(); }
+  // True when every primitive is homogeneous: marches then need no jitter.
+  bool all_homogeneous() const { return all_homogeneous_; }
   const std::vector<VolumePrimitive>& primitives() const { return primitives_; }
   const VolumePrimitive& primitive(uint32_t i) const { return primitives_[i]; }
 
@@ -33,6 +35,7 @@ class VolumeScene {
  private:
   std::vector<VolumePrimitive> primitives_;
   BoundsIndex index_;
+  bool all_homogeneous_ = true;
 };
 
 }  // namespace caligo

@@ -71,3 +71,33 @@ TEST(VolumeShader, DensityScalesCoefficientsAndFalloffPeaksAtTheCentre) {
 
 }  // namespace
 }  // namespace caligo
+
+namespace caligo {
+namespace {
+
+// Above the linear-scan limit the BVH answers; both paths must find the same intervals.
+TEST(VolumeScene, BvhAndLinearScanAgree) {
+  std::vector<VolumePrimitive> many;
+  for (int i = 0; i < 40; ++i)
+    many.push_back({SphereVolumeShape{Sphere::make({float(i % 7) - 3.0f, float(i / 7) - 3.0f, 5.0f}, 0.6f, {})},
+                    {RGB(0.1f), RGB(0.1f)}});
+  const VolumeScene bvh(many);
+  IntervalScratch scratch;
+  for (int r = 0; r < 100; ++r) {
+    const Ray ray{{0, 0, 0}, normalize(Vec3(float(r % 10) * 0.07f - 0.3f, float(r / 10) * 0.07f - 0.3f, 1.0f))};
+    bvh.intervals(ray, scratch);
+    auto found = scratch.intervals;
+    std::sort(found.begin(), found.end(), [](auto a, auto b) { return a.primitive < b.primitive; });
+    std::vector<VolumeInterval> expected;
+    for (uint32_t i = 0; i < many.size(); ++i)
+      if (const auto range = volume_interval(many[i].shape, ray)) expected.push_back({range->first, range->second, i});
+    ASSERT_EQ(found.size(), expected.size()) << "ray " << r;
+    for (size_t k = 0; k < found.size(); ++k) {
+      EXPECT_EQ(found[k].primitive, expected[k].primitive);
+      EXPECT_EQ(found[k].t0, expected[k].t0);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace caligo
