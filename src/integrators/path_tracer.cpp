@@ -115,7 +115,11 @@ SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, c
   if (record.empty()) return SegmentOutcome::kPassed;
   if (state.depth == 0) counters.camera_march_steps += record.steps().size();
   out.radiance += state.throughput * record.emission();
-  const bool may_scatter = state.volume_bounces < settings.max_volume_bounces;
+  // A path that has used up its surface bounces may not scatter in media either: max_depth
+  // bounds the whole path's surface events, and a scattering event after the last one
+  // would lengthen it.
+  const bool may_scatter =
+      state.volume_bounces < settings.max_volume_bounces && state.surface_bounces < settings.max_depth;
   if (may_scatter) {
     // Segments that barely scatter (thin fog between two walls) contribute little in-scattered
     // light but cost two shadow rays: next-event estimation runs with a probability that
