@@ -31,11 +31,11 @@ enum Bounce : uint32_t {
   kRussianRoulette,      // 1D: path termination
   kMarchJitter,          // 1D: where heterogeneous steps are shaded
   kVolumeLightSelect,    // 1D: light for next-event estimation from the medium
+  kDistanceStrategy,     // 1D: equiangular or density sampling (one-sample MIS)
   kDensityChannel,       // 1D: colour channel of density (sigma_s T) sampling
   kDensityDistance,      // 1D: distance of density sampling
-  kDensityLight,         // 2D: light sample at the density-sampled point
   kEquiangularDistance,  // 1D: distance of equiangular sampling
-  kEquiangularLight,     // 2D: light sample at the equiangular point
+  kVolumeLightPosition,  // 2D: light sample at the chosen distance
   kFreeFlightChannel,    // 1D: colour channel of free-flight sampling
   kFreeFlightDistance,   // 1D: collision distance
   kPhaseLobe,            // 1D: lobe of a mixed phase function

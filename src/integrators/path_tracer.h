@@ -27,7 +27,7 @@ namespace caligo {
 enum class DistanceSampling {
   kDensity,      // pdf proportional to sigma_s T
   kEquiangular,  // pdf cancelling the light's inverse-square falloff (density for lights at infinity)
-  kMis,          // one sample of each, combined by the power heuristic
+  kMis,          // one of the two at random, weighted by the balance heuristic (one-sample MIS)
 };
 
 struct PathSettings {

@@ -22,11 +22,6 @@ std::optional<Vec3> light_centre(const Light& light) {
   return std::nullopt;
 }
 
-struct Candidate {
-  float t;
-  float pdf;  // of the strategy that produced t
-};
-
 // f(t) / p_light: the light arriving at x(t) and scattered back along the ray, for one light
 // sample at x(t), before dividing by the distance pdf.
 RGB scattered_light(const Scene& scene, const Ray& ray, const TransmittanceRecord& record, const Light& light,
@@ -49,10 +44,6 @@ RGB scattered_light(const Scene& scene, const Ray& ray, const TransmittanceRecor
   return step.sigma_s * record.transmittance(t) * tr * ls->radiance * phase * (w / light_pdf_sa);
 }
 
-float mis_weight(DistanceSampling strategy, float own_pdf, float other_pdf) {
-  if (strategy != DistanceSampling::kMis) return 1.0f;
-  return power_heuristic(1, own_pdf, 1, other_pdf);
-}
 
 }  // namespace
 
@@ -100,39 +91,30 @@ RGB volume_direct_light(const Scene& scene, const Ray& ray, const TransmittanceR
   float pick_pmf = 0.0f;
   const int light_index = selection.sample(sampler.get_1d(bounce(depth, sample_dim::kVolumeLightSelect)), &pick_pmf);
   const Light& light = scene.lights()[size_t(light_index)];
-  const float jitter = march_jitter(scene, sampler, depth);
 
   const auto centre = light_centre(light);
   std::optional<EquiangularSetup> eq;
   if (centre && strategy != DistanceSampling::kDensity)
     eq = make_equiangular_setup(ray.origin, ray.direction, *centre, record.t_begin(), record.t_end());
-  const bool use_density = strategy != DistanceSampling::kEquiangular || !eq;
-  const bool use_equiangular = eq.has_value();
-  const DistanceSampling mix = use_density && use_equiangular ? DistanceSampling::kMis : DistanceSampling::kDensity;
+  const float equiangular_share = !eq ? 0.0f : strategy == DistanceSampling::kMis ? 0.5f : 1.0f;
 
-  RGB sum;
-  if (use_density) {
+  float t;
+  if (sampler.get_1d(bounce(depth, sample_dim::kDistanceStrategy)) < equiangular_share) {
+    t = sample_equiangular(*eq, sampler.get_1d(bounce(depth, sample_dim::kEquiangularDistance)));
+  } else {
     const auto ds = record.sample_scatter_density(sampler.get_1d(bounce(depth, sample_dim::kDensityChannel)),
                                                   sampler.get_1d(bounce(depth, sample_dim::kDensityDistance)));
-    if (ds) {
-      const float other = use_equiangular ? equiangular_pdf(*eq, ds->t) : 0.0f;
-      const RGB f = scattered_light(scene, ray, record, light, pick_pmf, ds->t,
-                                    sampler.get_2d(bounce(depth, sample_dim::kDensityLight)), jitter, scratch, counters);
-      sum += f * (mis_weight(mix, ds->pdf, other) / ds->pdf);
-    }
+    if (!ds) return RGB(0.0f);
+    t = ds->t;
   }
-  if (use_equiangular) {
-    const float t = sample_equiangular(*eq, sampler.get_1d(bounce(depth, sample_dim::kEquiangularDistance)));
-    const float pdf = equiangular_pdf(*eq, t);
-    if (pdf > 0.0f) {
-      const float other = use_density ? record.scatter_density_pdf(t) : 0.0f;
-      const RGB f = scattered_light(scene, ray, record, light, pick_pmf, t,
-                                    sampler.get_2d(bounce(depth, sample_dim::kEquiangularLight)), jitter, scratch,
-                                    counters);
-      sum += f * (mis_weight(mix, pdf, other) / pdf);
-    }
-  }
-  return sum;
+  // One-sample MIS with the balance heuristic: the estimate divides by the mixture's density.
+  const float pdf = (eq ? equiangular_share * equiangular_pdf(*eq, t) : 0.0f) +
+                    (1.0f - equiangular_share) * record.scatter_density_pdf(t);
+  if (!(pdf > 0.0f)) return RGB(0.0f);
+  return scattered_light(scene, ray, record, light, pick_pmf, t,
+                         sampler.get_2d(bounce(depth, sample_dim::kVolumeLightPosition)),
+                         march_jitter(scene, sampler, depth), scratch, counters) /
+         pdf;
 }
 
 }  // namespace caligo
