@@ -13,7 +13,8 @@ std::vector<Ray> random_rays(const Scene& scene, int count) {
   Pcg32 rng(1, 1);
   const Vec3 origin = scene.desc().camera.position;
   std::vector<Ray> rays;
-  for (int i = 0; i < count; ++i) rays.push_back({origin, sample_uniform_sphere({rng.next_float(), rng.next_float()})});
+  for (int i = 0; i < count; ++i)
+    rays.push_back({origin, sample_uniform_sphere({rng.next_float(), rng.next_float()})});
   return rays;
 }
 

@@ -22,7 +22,12 @@ void BM_RenderDefault(benchmark::State& state) {
   state.counters["paths/s"] = benchmark::Counter(double(paths), benchmark::Counter::kIsRate);
   state.counters["rays/s"] = benchmark::Counter(double(rays), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_RenderDefault)->Args({160, 16})->Args({640, 64})->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
+BENCHMARK(BM_RenderDefault)
+    ->Args({160, 16})
+    ->Args({640, 64})
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime()
+    ->Iterations(1);
 
 }  // namespace
 }  // namespace caligo

@@ -25,7 +25,8 @@ RenderSettings lamp_settings(DistanceSampling sampling, int spp, uint64_t seed) 
 
 const Image& reference() {
   static const Image image =
-      render(bench::builtin_scene("lamp-in-fog"), lamp_settings(DistanceSampling::kMis, kReferenceSpp, 12345)).image;
+      render(bench::builtin_scene("lamp-in-fog"), lamp_settings(DistanceSampling::kMis, kReferenceSpp, 12345))
+          .image;
   return image;
 }
 

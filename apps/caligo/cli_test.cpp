@@ -28,9 +28,8 @@ std::string slurp(const fs::path& p) {
 class Cli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("caligo-cli-" + std::to_string(::getpid()) + "-" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = fs::temp_directory_path() / ("caligo-cli-" + std::to_string(::getpid()) + "-" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -121,7 +120,8 @@ const char* kValidScene = R"({
 })";
 
 std::string scene_with(const std::string& needle, const std::string& replacement,
-                       const std::string& shape = R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white"})") {
+                       const std::string& shape =
+                           R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white"})") {
   std::string s = kValidScene;
   s.replace(s.find("SHAPE"), 5, shape);
   if (!needle.empty()) {
@@ -141,23 +141,29 @@ struct BadCase {
 TEST_F(Cli, BadScenesGiveLocatedErrorsAndNoOutput) {
   const std::vector<BadCase> cases = {
       {"syntax", scene_with("\"render\"", "\"render\" ::"), "line 3"},
-      {"unknown_key", scene_with("\"fov\"", "\"colour\": 1, \"fov\""), "/camera/colour: unknown key \"colour\""},
+      {"unknown_key", scene_with("\"fov\"", "\"colour\": 1, \"fov\""),
+       "/camera/colour: unknown key \"colour\""},
       {"wrong_type", scene_with("\"intensity\": 5", "\"intensity\": \"bright\""), "/lights/0/intensity"},
       {"missing_key", scene_with("\"position\": [0, 2, 0], ", ""), "/lights/0"},
-      {"not_finite", scene_with("", "", R"({"type": "sphere", "center": [0, 0, 0], "radius": 1e39, "material": "white"})"),
+      {"not_finite",
+       scene_with("", "", R"({"type": "sphere", "center": [0, 0, 0], "radius": 1e39, "material": "white"})"),
        "/shapes/0/radius"},
-      {"negative_radius", scene_with("", "", R"({"type": "sphere", "center": [0, 0, 0], "radius": -1, "material": "white"})"),
+      {"negative_radius",
+       scene_with("", "", R"({"type": "sphere", "center": [0, 0, 0], "radius": -1, "material": "white"})"),
        "/shapes/0/radius"},
-      {"zero_box", scene_with("", "", R"({"type": "box", "min": [0,0,0], "max": [1,0,1], "material": "white"})"),
+      {"zero_box",
+       scene_with("", "", R"({"type": "box", "min": [0,0,0], "max": [1,0,1], "material": "white"})"),
        "/shapes/0"},
       {"absurd_resolution", scene_with("[16, 16]", "[100000, 16]"), "/camera/resolution"},
       {"zero_spp", scene_with("\"spp\": 1", "\"spp\": 0"), "/render/spp"},
-      {"unknown_material", scene_with("", "", R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "chrome"})"),
+      {"unknown_material",
+       scene_with("", "", R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "chrome"})"),
        "/shapes/0/material"},
       {"unknown_light_type", scene_with("\"type\": \"point\"", "\"type\": \"laser\""), "/lights/0/type"},
       {"missing_mesh", scene_with("", "", R"({"type": "mesh", "file": "nowhere.obj", "material": "white"})"),
        "nowhere.obj"},
-      {"nan_mesh", scene_with("", "", R"({"type": "mesh", "file": "nan.obj", "material": "white"})"), "non-finite"},
+      {"nan_mesh", scene_with("", "", R"({"type": "mesh", "file": "nan.obj", "material": "white"})"),
+       "non-finite"},
       {"degenerate_mesh", scene_with("", "", R"({"type": "mesh", "file": "flat.obj", "material": "white"})"),
        "degenerate"},
       {"negative_colour", scene_with("\"reflectance\": 0.5", "\"reflectance\": [0.5, -0.1, 0.5]"),
@@ -172,7 +178,8 @@ TEST_F(Cli, BadScenesGiveLocatedErrorsAndNoOutput) {
        scene_with("\"render\"", R"("media": {"m": {"phase": {"type": "hg", "g": 1}}}, "render")"),
        "/media/m/phase/g"},
       {"unknown_medium",
-       scene_with("\"render\"", R"("volumes": [{"type": "sphere", "radius": 1, "medium": "mist"}], "render")"),
+       scene_with("\"render\"",
+                  R"("volumes": [{"type": "sphere", "radius": 1, "medium": "mist"}], "render")"),
        "/volumes/0/medium"},
   };
   write("nan.obj", "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n");

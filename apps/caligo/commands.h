@@ -11,8 +11,8 @@ class App;
 namespace caligo {
 
 struct RenderOptions {
-  std::string scene;          // a scene file or a built-in's name
-  std::string output;         // .exr path; a .png preview is written beside it
+  std::string scene;   // a scene file or a built-in's name
+  std::string output;  // .exr path; a .png preview is written beside it
   std::optional<int> spp;
   std::optional<std::string> resolution;  // "WxH"
   std::optional<int> threads;

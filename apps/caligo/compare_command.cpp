@@ -26,8 +26,8 @@ int run_compare(const CompareOptions& o) {
   } catch (const std::invalid_argument& e) {
     throw InputError(SourceLocation{o.a, ""}, e.what());
   }
-  std::printf("rmse %.9g\nrelative_mse %.9g\nmean_difference %.9g\nmax_abs_difference %.9g\npixels %zu\n", m.rmse,
-              m.relative_mse, m.mean_difference, m.max_abs_difference, m.pixels);
+  std::printf("rmse %.9g\nrelative_mse %.9g\nmean_difference %.9g\nmax_abs_difference %.9g\npixels %zu\n",
+              m.rmse, m.relative_mse, m.mean_difference, m.max_abs_difference, m.pixels);
   if (o.max_rmse && m.rmse > *o.max_rmse) {
     std::fprintf(stderr, "caligo: rmse %.6g exceeds --max-rmse %.6g\n", m.rmse, *o.max_rmse);
     return 1;

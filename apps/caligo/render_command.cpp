@@ -26,7 +26,8 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--threads", o.threads, "Worker threads (default: all cores)");
   cmd->add_option("--seed", o.seed, "Random seed (overrides the scene)");
   cmd->add_option("--max-depth", o.max_depth, "Maximum path depth (overrides the scene)");
-  cmd->add_option("--max-volume-bounces", o.max_volume_bounces, "Maximum scattering events in media (overrides the scene)");
+  cmd->add_option("--max-volume-bounces", o.max_volume_bounces,
+                  "Maximum scattering events in media (overrides the scene)");
   cmd->add_option("--distance-sampling", o.distance_sampling,
                   "Distance sampling for light in media: mis (default), density or equiangular");
   cmd->add_option("--exposure", o.exposure, "Exposure of the PNG preview, in stops");
@@ -50,12 +51,13 @@ Vec2i parse_resolution(const std::string& text) {
 
 SceneDesc load_scene(const std::string& name) {
   if (name.empty()) throw InputError(kCommandLine, "no scene given (a .json file or a built-in name)");
-  if (const BuiltinScene* builtin = find_builtin(name)) return parse_scene_text(builtin->json, "builtin:" + builtin->name, ".");
+  if (const BuiltinScene* builtin = find_builtin(name))
+    return parse_scene_text(builtin->json, "builtin:" + builtin->name, ".");
   if (!std::filesystem::exists(name)) {
     std::string names;
     for (const BuiltinScene& b : builtin_scenes()) names += (names.empty() ? "" : ", ") + b.name;
-    throw InputError(SourceLocation{name, ""}, "no such scene file, and no built-in of that name (built-ins: " +
-                                                   names + ")");
+    throw InputError(SourceLocation{name, ""},
+                     "no such scene file, and no built-in of that name (built-ins: " + names + ")");
   }
   return parse_scene_file(name);
 }
@@ -73,7 +75,8 @@ RenderSettings settings_from(const RenderOptions& o, const SceneDesc& desc) {
   }
   if (o.seed) s.seed = *o.seed;
   if (o.max_depth) {
-    if (*o.max_depth < 0 || *o.max_depth > 10'000) throw InputError(kCommandLine, "--max-depth: expected 0 to 10000");
+    if (*o.max_depth < 0 || *o.max_depth > 10'000)
+      throw InputError(kCommandLine, "--max-depth: expected 0 to 10000");
     s.max_depth = *o.max_depth;
   }
   if (o.max_volume_bounces) {
@@ -90,7 +93,8 @@ RenderSettings settings_from(const RenderOptions& o, const SceneDesc& desc) {
     else if (d == "equiangular")
       s.distance_sampling = DistanceSampling::kEquiangular;
     else
-      throw InputError(kCommandLine, "--distance-sampling: expected mis, density or equiangular, got \"" + d + "\"");
+      throw InputError(kCommandLine,
+                       "--distance-sampling: expected mis, density or equiangular, got \"" + d + "\"");
   }
   return s;
 }
@@ -101,23 +105,25 @@ std::string default_output(const std::string& scene) {
 
 // Checks the output location before rendering, so a long render never ends in a failed write.
 void check_output(const std::filesystem::path& exr) {
-  if (exr.extension() != ".exr") throw InputError(SourceLocation{exr.string(), ""}, "output must be an .exr file");
+  if (exr.extension() != ".exr")
+    throw InputError(SourceLocation{exr.string(), ""}, "output must be an .exr file");
   const std::filesystem::path dir = exr.parent_path().empty() ? "." : exr.parent_path();
   if (!std::filesystem::is_directory(dir))
-    throw InputError(SourceLocation{exr.string(), ""}, "output directory \"" + dir.string() + "\" does not exist");
+    throw InputError(SourceLocation{exr.string(), ""},
+                     "output directory \"" + dir.string() + "\" does not exist");
 }
 
 void print_summary(const std::string& scene, const RenderSettings& s, const RenderStats& stats,
                    const std::string& output) {
-  std::fprintf(stderr,
-               "caligo: %s %dx%d, %d spp: %s wall, %.3g paths/s, %.3g rays/s, %d threads -> %s\n", scene.c_str(),
-               s.resolution.x, s.resolution.y, s.spp, format_duration(stats.seconds).c_str(),
+  std::fprintf(stderr, "caligo: %s %dx%d, %d spp: %s wall, %.3g paths/s, %.3g rays/s, %d threads -> %s\n",
+               scene.c_str(), s.resolution.x, s.resolution.y, s.spp, format_duration(stats.seconds).c_str(),
                double(stats.paths) / stats.seconds, double(stats.rays) / stats.seconds,
                s.threads > 0 ? s.threads : int(std::thread::hardware_concurrency()), output.c_str());
 }
 
 int list_builtins() {
-  for (const BuiltinScene& b : builtin_scenes()) std::printf("%-18s %s\n", b.name.c_str(), b.description.c_str());
+  for (const BuiltinScene& b : builtin_scenes())
+    std::printf("%-18s %s\n", b.name.c_str(), b.description.c_str());
   return 0;
 }
 
@@ -131,7 +137,8 @@ int run_render(const RenderOptions& o) {
   check_output(exr);
   const auto scene = Scene::build(desc);
 
-  const RenderResult result = render(*scene, settings, o.quiet ? Progress::Style::kQuiet : Progress::Style::kAuto);
+  const RenderResult result =
+      render(*scene, settings, o.quiet ? Progress::Style::kQuiet : Progress::Style::kAuto);
   std::filesystem::path png = exr;
   png.replace_extension(".png");
   write_exr(exr.string(), result.image);

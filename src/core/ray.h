@@ -19,7 +19,8 @@ struct Ray {
 // new ray does not re-hit the surface it leaves. Scaled with the point's magnitude because
 // float error in a hit point grows with its distance from the origin.
 inline Vec3 offset_ray_origin(Vec3 p, Vec3 ng, Vec3 w) {
-  const float scale = 1e-4f * std::max(1.0f, max_component(Vec3(std::abs(p.x), std::abs(p.y), std::abs(p.z))));
+  const float scale =
+      1e-4f * std::max(1.0f, max_component(Vec3(std::abs(p.x), std::abs(p.y), std::abs(p.z))));
   const Vec3 offset = ng * scale;
   return dot(w, ng) > 0.0f ? p + offset : p - offset;
 }

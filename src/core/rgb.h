@@ -14,9 +14,24 @@ struct RGB {
   constexpr explicit RGB(float s) : r(s), g(s), b(s) {}
 
   constexpr float operator[](int i) const { return i == 0 ? r : (i == 1 ? g : b); }
-  constexpr RGB& operator+=(RGB o) { r += o.r; g += o.g; b += o.b; return *this; }
-  constexpr RGB& operator*=(RGB o) { r *= o.r; g *= o.g; b *= o.b; return *this; }
-  constexpr RGB& operator*=(float s) { r *= s; g *= s; b *= s; return *this; }
+  constexpr RGB& operator+=(RGB o) {
+    r += o.r;
+    g += o.g;
+    b += o.b;
+    return *this;
+  }
+  constexpr RGB& operator*=(RGB o) {
+    r *= o.r;
+    g *= o.g;
+    b *= o.b;
+    return *this;
+  }
+  constexpr RGB& operator*=(float s) {
+    r *= s;
+    g *= s;
+    b *= s;
+    return *this;
+  }
   friend constexpr bool operator==(RGB, RGB) = default;
 
   constexpr bool is_black() const { return r == 0 && g == 0 && b == 0; }

@@ -20,8 +20,8 @@ namespace caligo {
 // Named sample dimensions. A path vertex at depth d uses
 // kBounceBase + d * kPerBounce + <offset>; camera dimensions come first.
 namespace sample_dim {
-inline constexpr uint32_t kFilm = 0;         // 2D: position inside the pixel
-inline constexpr uint32_t kLens = 1;         // 2D: aperture (reserved for depth of field)
+inline constexpr uint32_t kFilm = 0;  // 2D: position inside the pixel
+inline constexpr uint32_t kLens = 1;  // 2D: aperture (reserved for depth of field)
 inline constexpr uint32_t kBounceBase = 2;
 enum Bounce : uint32_t {
   kLightSelect = 0,      // 1D: which light for next-event estimation
@@ -65,8 +65,8 @@ class Sampler {
 };
 
 // The building blocks, exposed for tests and benchmarks.
-uint32_t sobol_dim0(uint32_t index);           // van der Corput (bit reversal)
-uint32_t sobol_dim1(uint32_t index);           // second Sobol' dimension
+uint32_t sobol_dim0(uint32_t index);                          // van der Corput (bit reversal)
+uint32_t sobol_dim1(uint32_t index);                          // second Sobol' dimension
 uint32_t nested_uniform_scramble(uint32_t x, uint32_t seed);  // Owen scrambling of a 32-bit fraction
 
 }  // namespace caligo

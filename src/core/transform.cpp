@@ -139,8 +139,7 @@ Vec3 apply_point(const Mat4& m, Vec3 p) {
 
 Vec3 apply_vector(const Mat4& m, Vec3 v) {
   const auto& a = m.m;
-  return {a[0][0] * v.x + a[0][1] * v.y + a[0][2] * v.z,
-          a[1][0] * v.x + a[1][1] * v.y + a[1][2] * v.z,
+  return {a[0][0] * v.x + a[0][1] * v.y + a[0][2] * v.z, a[1][0] * v.x + a[1][1] * v.y + a[1][2] * v.z,
           a[2][0] * v.x + a[2][1] * v.y + a[2][2] * v.z};
 }
 
@@ -153,8 +152,7 @@ Vec3 Transform::inverse_vector(Vec3 v) const { return apply_vector(inv_, v); }
 
 Vec3 Transform::normal(Vec3 n) const {
   const auto& b = inv_.m;  // transpose of the inverse
-  return {b[0][0] * n.x + b[1][0] * n.y + b[2][0] * n.z,
-          b[0][1] * n.x + b[1][1] * n.y + b[2][1] * n.z,
+  return {b[0][0] * n.x + b[1][0] * n.y + b[2][0] * n.z, b[0][1] * n.x + b[1][1] * n.y + b[2][1] * n.z,
           b[0][2] * n.x + b[1][2] * n.y + b[2][2] * n.z};
 }
 

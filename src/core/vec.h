@@ -30,9 +30,24 @@ struct Vec3 {
   constexpr float& operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
 
   constexpr Vec3 operator-() const { return {-x, -y, -z}; }
-  constexpr Vec3& operator+=(Vec3 b) { x += b.x; y += b.y; z += b.z; return *this; }
-  constexpr Vec3& operator-=(Vec3 b) { x -= b.x; y -= b.y; z -= b.z; return *this; }
-  constexpr Vec3& operator*=(float s) { x *= s; y *= s; z *= s; return *this; }
+  constexpr Vec3& operator+=(Vec3 b) {
+    x += b.x;
+    y += b.y;
+    z += b.z;
+    return *this;
+  }
+  constexpr Vec3& operator-=(Vec3 b) {
+    x -= b.x;
+    y -= b.y;
+    z -= b.z;
+    return *this;
+  }
+  constexpr Vec3& operator*=(float s) {
+    x *= s;
+    y *= s;
+    z *= s;
+    return *this;
+  }
   friend constexpr bool operator==(Vec3, Vec3) = default;
 };
 

@@ -74,7 +74,8 @@ void BoundsIndex::commit() {
     rtcReleaseGeometry(geom);
   }
   rtcCommitScene(impl_->scene);
-  if (rtcGetDeviceError(impl_->device) != RTC_ERROR_NONE) throw std::runtime_error("Embree: cannot build the volume BVH");
+  if (rtcGetDeviceError(impl_->device) != RTC_ERROR_NONE)
+    throw std::runtime_error("Embree: cannot build the volume BVH");
 }
 
 size_t BoundsIndex::size() const { return impl_->boxes.size(); }
@@ -86,8 +87,18 @@ void BoundsIndex::candidates(const Ray& ray, std::vector<uint32_t>& out) const {
   rtcInitIntersectContext(&ctx.context);
   ctx.out = &out;
   RTCRayHit rh{};
-  rh.ray = {ray.origin.x, ray.origin.y, ray.origin.z, ray.tmin, ray.direction.x, ray.direction.y, ray.direction.z,
-            0.0f, ray.tmax, 0xffffffffu, 0, 0};
+  rh.ray = {ray.origin.x,
+            ray.origin.y,
+            ray.origin.z,
+            ray.tmin,
+            ray.direction.x,
+            ray.direction.y,
+            ray.direction.z,
+            0.0f,
+            ray.tmax,
+            0xffffffffu,
+            0,
+            0};
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(impl_->scene, &ctx.context, &rh);
 }

@@ -23,7 +23,8 @@ TEST(BoundsIndex, FindsExactlyTheBoxesTheRayCrosses) {
   std::vector<uint32_t> found;
   for (int r = 0; r < 200; ++r) {
     const Ray ray{{rng.next_float() * 4 - 2, rng.next_float() * 4 - 2, -15},
-                  normalize(Vec3(rng.next_float() - 0.5f, rng.next_float() - 0.5f, 1.0f)), 0.0f,
+                  normalize(Vec3(rng.next_float() - 0.5f, rng.next_float() - 0.5f, 1.0f)),
+                  0.0f,
                   5.0f + 20.0f * rng.next_float()};
     index.candidates(ray, found);
     std::sort(found.begin(), found.end());

@@ -126,8 +126,11 @@ void EmbreeScene::Impl::sphere_intersect(const RTCIntersectFunctionNArguments* a
     const float old_tfar = rh->ray.tfar;
     rh->ray.tfar = t;
     int valid = -1;
-    RTCFilterFunctionNArguments fargs{&valid, args->geometryUserPtr, args->context,
-                                      reinterpret_cast<RTCRayN*>(&rh->ray), reinterpret_cast<RTCHitN*>(&candidate),
+    RTCFilterFunctionNArguments fargs{&valid,
+                                      args->geometryUserPtr,
+                                      args->context,
+                                      reinterpret_cast<RTCRayN*>(&rh->ray),
+                                      reinterpret_cast<RTCHitN*>(&candidate),
                                       1};
     rtcFilterIntersection(args, &fargs);
     if (valid != 0) {
@@ -158,8 +161,8 @@ void EmbreeScene::Impl::sphere_occluded(const RTCOccludedFunctionNArguments* arg
     const float old_tfar = r->tfar;
     r->tfar = t;
     int valid = -1;
-    RTCFilterFunctionNArguments fargs{&valid, args->geometryUserPtr, args->context, args->ray,
-                                      reinterpret_cast<RTCHitN*>(&candidate), 1};
+    RTCFilterFunctionNArguments fargs{
+        &valid, args->geometryUserPtr, args->context, args->ray, reinterpret_cast<RTCHitN*>(&candidate), 1};
     rtcFilterOcclusion(args, &fargs);
     if (valid != 0) {
       r->tfar = -kInfinity;  // Embree's "occluded" marker
@@ -185,16 +188,16 @@ EmbreeScene& EmbreeScene::operator=(EmbreeScene&&) noexcept = default;
 uint32_t EmbreeScene::add_mesh(TriangleMesh mesh) {
   if (const std::string problem = validate_mesh(mesh); !problem.empty()) throw std::invalid_argument(problem);
   RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                               3 * sizeof(float), mesh.positions.size()));
+  auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
   for (size_t i = 0; i < mesh.positions.size(); ++i) {
     vertices[3 * i + 0] = mesh.positions[i].x;
     vertices[3 * i + 1] = mesh.positions[i].y;
     vertices[3 * i + 2] = mesh.positions[i].z;
     impl_->bounds.extend(mesh.positions[i]);
   }
-  auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                 3 * sizeof(uint32_t), mesh.triangle_count()));
+  auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+      geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), mesh.triangle_count()));
   std::copy(mesh.indices.begin(), mesh.indices.end(), indices);
   rtcCommitGeometry(geom);
   const uint32_t id = uint32_t(impl_->shapes.size());

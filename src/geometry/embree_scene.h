@@ -25,8 +25,8 @@ struct SurfaceHit {
   float t = 0.0f;
   uint32_t geom_id = 0;
   uint32_t prim_id = 0;
-  Vec2 uv;        // barycentrics (b1, b2) for triangles; unused for spheres
-  Vec3 ng;        // unit geometric normal: outward for spheres, cross(p1-p0, p2-p0) side for triangles
+  Vec2 uv;  // barycentrics (b1, b2) for triangles; unused for spheres
+  Vec3 ng;  // unit geometric normal: outward for spheres, cross(p1-p0, p2-p0) side for triangles
 };
 
 class EmbreeScene {

@@ -19,7 +19,8 @@ TEST(BoxMesh, TrianglesFaceOutwardsAndCoverTheSurface) {
   for (size_t t = 0; t < box.triangle_count(); ++t) {
     const Vec3 n = triangle_normal(box, t);
     const Vec3 p0 = box.positions[box.indices[3 * t]];
-    const Vec3 centroid = (p0 + box.positions[box.indices[3 * t + 1]] + box.positions[box.indices[3 * t + 2]]) / 3.0f;
+    const Vec3 centroid =
+        (p0 + box.positions[box.indices[3 * t + 1]] + box.positions[box.indices[3 * t + 2]]) / 3.0f;
     EXPECT_GT(dot(n, centroid), 0.0f) << "triangle " << t << " faces inwards";
     area += 0.5f * length(n);
   }

@@ -60,7 +60,8 @@ size_t remove_degenerate_triangles(TriangleMesh& mesh) {
   size_t kept = 0;
   for (size_t t = 0; t < mesh.triangle_count(); ++t) {
     if (!keep(&mesh.indices[3 * t])) continue;
-    std::copy_n(mesh.indices.begin() + std::ptrdiff_t(3 * t), 3, mesh.indices.begin() + std::ptrdiff_t(3 * kept));
+    std::copy_n(mesh.indices.begin() + std::ptrdiff_t(3 * t), 3,
+                mesh.indices.begin() + std::ptrdiff_t(3 * kept));
     ++kept;
   }
   const size_t removed = mesh.triangle_count() - kept;

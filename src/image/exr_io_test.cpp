@@ -39,8 +39,8 @@ class ExrIo : public ::testing::Test {
   fs::path dir_;
 };
 
-const std::vector<std::string> kAovChannels = {"R", "G", "B", "A", "Z", "N.X", "N.Y", "N.Z",
-                                               "albedo.R", "albedo.G", "albedo.B"};
+const std::vector<std::string> kAovChannels = {"R",   "G",   "B",        "A",        "Z",       "N.X",
+                                               "N.Y", "N.Z", "albedo.R", "albedo.G", "albedo.B"};
 
 // Distinct, awkward values everywhere: fractions with full mantissas, negatives, large values.
 Image test_image(int width, int height, const std::vector<std::string>& channels) {
@@ -105,10 +105,10 @@ TEST_F(ExrIo, HalfRoundTripIsWithinHalfPrecision) {
 
 TEST_F(ExrIo, ChannelOrderPutsRgbaFirstInEachLayer) {
   // The order in which OpenEXR lists them: sorted byte-wise.
-  std::vector<std::string> on_disk = {"A", "B", "G", "N.X", "N.Y", "N.Z", "R", "Z", "albedo.B",
-                                      "albedo.G", "albedo.R", "depth"};
-  std::vector<std::string> expected = {"R", "G", "B", "A", "Z", "depth", "N.X", "N.Y", "N.Z",
-                                       "albedo.R", "albedo.G", "albedo.B"};
+  std::vector<std::string> on_disk = {"A", "B", "G",        "N.X",      "N.Y",      "N.Z",
+                                      "R", "Z", "albedo.B", "albedo.G", "albedo.R", "depth"};
+  std::vector<std::string> expected = {"R",   "G",   "B",   "A",        "Z",        "depth",
+                                       "N.X", "N.Y", "N.Z", "albedo.R", "albedo.G", "albedo.B"};
   EXPECT_EQ(exr_channel_order(on_disk), expected);
 }
 

@@ -37,9 +37,8 @@ void write_png_now(const std::string& file, const std::string& path, int width, 
 
 void write_png(const std::string& path, int width, int height, const std::vector<uint8_t>& rgb8) {
   check_buffer(width, height, rgb8);
-  write_file_atomically(path, [&](const std::string& temp_path) {
-    write_png_now(temp_path, path, width, height, rgb8);
-  });
+  write_file_atomically(
+      path, [&](const std::string& temp_path) { write_png_now(temp_path, path, width, height, rgb8); });
 }
 
 }  // namespace caligo

@@ -37,10 +37,10 @@ std::vector<uint8_t> to_srgb8_preview(const Image& image, const PreviewSettings&
                                       size_t* non_finite_pixels = nullptr);
 
 // The stages, exposed for tests and for anyone who needs one of them alone.
-float exposure_scale(float stops);            // 2^stops
-float aces_filmic(float x);                   // step 2 above; [0, 1]
-float srgb_oetf(float linear);                // linear [0, 1] -> encoded [0, 1]
-uint8_t quantize_unorm8(float encoded);       // [0, 1] -> 0..255, rounded; clamps outside
+float exposure_scale(float stops);       // 2^stops
+float aces_filmic(float x);              // step 2 above; [0, 1]
+float srgb_oetf(float linear);           // linear [0, 1] -> encoded [0, 1]
+uint8_t quantize_unorm8(float encoded);  // [0, 1] -> 0..255, rounded; clamps outside
 // Steps 1-4 for one finite channel value.
 uint8_t preview_channel(float linear, const PreviewSettings& settings);
 

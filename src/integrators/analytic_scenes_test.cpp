@@ -86,7 +86,8 @@ TEST(AnalyticScenes, ConvexDiffuseObjectUnderUniformSky) {
   desc.lights.push_back(EnvironmentLight{RGB(2.0f)});
   const Image image = render_desc(desc, 64, 8).image;
   const RGB on_sphere = mean_rgb(image, [](const Image& im, int x, int y) { return im.at(x, y, 3) == 1.0f; });
-  const RGB background = mean_rgb(image, [](const Image& im, int x, int y) { return im.at(x, y, 3) == 0.0f; });
+  const RGB background =
+      mean_rgb(image, [](const Image& im, int x, int y) { return im.at(x, y, 3) == 0.0f; });
   EXPECT_NEAR(on_sphere.g, 1.2f, 0.01f * 1.2f);
   EXPECT_FLOAT_EQ(background.g, 2.0f);
 }

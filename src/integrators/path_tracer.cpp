@@ -26,8 +26,8 @@ struct PathState {
 
 float mis_weight_for_hit(const Scene& scene, const PathState& state, int light, Vec3 wi, Vec3 p, Vec3 n) {
   if (state.specular_bounce) return 1.0f;
-  const float light_pdf_sa =
-      scene.light_selection_pmf(light) * light_pdf(scene.lights()[size_t(light)], state.scatter_origin, wi, p, n);
+  const float light_pdf_sa = scene.light_selection_pmf(light) *
+                             light_pdf(scene.lights()[size_t(light)], state.scatter_origin, wi, p, n);
   return power_heuristic(1, state.scatter_pdf, 1, light_pdf_sa);
 }
 
@@ -49,8 +49,8 @@ RGB emitted(const Scene& scene, const PathState& state, const SurfaceInteraction
 }
 
 // Next-event estimation at a surface: one light chosen in proportion to power, one point on it.
-RGB surface_direct_light(const Scene& scene, const SurfaceInteraction& si, Vec3 wo, const Sampler& sampler, int depth,
-                         PathScratch& scratch, PathCounters& counters) {
+RGB surface_direct_light(const Scene& scene, const SurfaceInteraction& si, Vec3 wo, const Sampler& sampler,
+                         int depth, PathScratch& scratch, PathCounters& counters) {
   const DiscreteDistribution& selection = scene.light_selection();
   if (selection.empty()) return RGB(0.0f);
   float pick_pmf = 0.0f;
@@ -110,8 +110,8 @@ SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, c
   TransmittanceRecord& record = scratch.record;
   Ray segment = ray;
   segment.tmax = t_surface;
-  march(scene.volumes(), segment, march_jitter(scene, sampler, state.depth),
-        scratch.march_settings, scratch.march, record);
+  march(scene.volumes(), segment, march_jitter(scene, sampler, state.depth), scratch.march_settings,
+        scratch.march, record);
   if (record.empty()) return SegmentOutcome::kPassed;
   if (state.depth == 0) counters.camera_march_steps += record.steps().size();
   out.radiance += state.throughput * record.emission();
@@ -128,13 +128,14 @@ SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, c
     const float u = sampler.get_1d(bounce(state.depth, sample_dim::kVolumeNeeRoulette));
     if (nee_probability > 0.0f && u < nee_probability)
       out.radiance += state.throughput *
-                      volume_direct_light(scene, ray, record, sampler, state.depth, settings.distance_sampling,
-                                          scratch, counters) /
+                      volume_direct_light(scene, ray, record, sampler, state.depth,
+                                          settings.distance_sampling, scratch, counters) /
                       nee_probability;
   }
 
-  const auto collision = record.sample_free_flight(sampler.get_1d(bounce(state.depth, sample_dim::kFreeFlightChannel)),
-                                                   sampler.get_1d(bounce(state.depth, sample_dim::kFreeFlightDistance)));
+  const auto collision =
+      record.sample_free_flight(sampler.get_1d(bounce(state.depth, sample_dim::kFreeFlightChannel)),
+                                sampler.get_1d(bounce(state.depth, sample_dim::kFreeFlightDistance)));
   if (!collision) {
     const RGB t_end = record.transmittance_end();
     state.throughput *= t_end / t_end.average();
@@ -145,9 +146,9 @@ SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, c
   state.throughput *= step.sigma_s * record.transmittance(collision->t) / collision->pdf;
   if (state.throughput.is_black()) return SegmentOutcome::kAbsorbed;
   const Vec3 x = ray.at(collision->t);
-  const MixedPhaseSample ps = sample_mixed_phase(record, step, ray.direction,
-                                                 sampler.get_1d(bounce(state.depth, sample_dim::kPhaseLobe)),
-                                                 sampler.get_2d(bounce(state.depth, sample_dim::kPhaseDirection)));
+  const MixedPhaseSample ps = sample_mixed_phase(
+      record, step, ray.direction, sampler.get_1d(bounce(state.depth, sample_dim::kPhaseLobe)),
+      sampler.get_2d(bounce(state.depth, sample_dim::kPhaseDirection)));
   state.throughput *= ps.weight;
   if (state.throughput.is_black()) return SegmentOutcome::kAbsorbed;
   state.specular_bounce = false;
@@ -172,8 +173,8 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
   for (;;) {
     const auto hit = nearest_opaque_hit(scene, ray, settings, counters);
     if (has_volumes) {
-      const SegmentOutcome outcome = integrate_medium(scene, ray, hit ? hit->t : kInfinity, sampler, settings, state,
-                                                      out, scratch, counters);
+      const SegmentOutcome outcome = integrate_medium(scene, ray, hit ? hit->t : kInfinity, sampler, settings,
+                                                      state, out, scratch, counters);
       if (state.depth == 0 && !hit) out.alpha = 1.0f - scratch.record.transmittance_end().average();
       if (outcome == SegmentOutcome::kAbsorbed) break;
       if (outcome == SegmentOutcome::kScattered) {
@@ -193,10 +194,12 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
     if (state.surface_bounces >= settings.max_depth) break;
 
     if (!is_specular(si.material->bsdf))
-      out.radiance += state.throughput * surface_direct_light(scene, si, wo, sampler, state.depth, scratch, counters);
+      out.radiance +=
+          state.throughput * surface_direct_light(scene, si, wo, sampler, state.depth, scratch, counters);
 
-    const auto bs = bsdf_sample(si.material->bsdf, si.ns, wo, sampler.get_1d(bounce(state.depth, sample_dim::kBsdfLobe)),
-                                sampler.get_2d(bounce(state.depth, sample_dim::kBsdfDirection)));
+    const auto bs =
+        bsdf_sample(si.material->bsdf, si.ns, wo, sampler.get_1d(bounce(state.depth, sample_dim::kBsdfLobe)),
+                    sampler.get_2d(bounce(state.depth, sample_dim::kBsdfDirection)));
     if (!bs || bs->weight.is_black()) break;
     // Reject directions the shading normal allows but the geometry does not (light leaks).
     const bool transmits = dot(si.ng, bs->wi) * dot(si.ng, wo) < 0.0f;

@@ -31,10 +31,10 @@ enum class DistanceSampling {
 };
 
 struct PathSettings {
-  int max_depth = 8;                // surface scattering events; 1 = direct lighting only
-  int max_volume_bounces = 128;     // scattering events in media
-  int russian_roulette_depth = 3;   // roulette starts after this many events
-  int max_null_crossings = 256;     // guards against endless chains of null surfaces
+  int max_depth = 8;               // surface scattering events; 1 = direct lighting only
+  int max_volume_bounces = 128;    // scattering events in media
+  int russian_roulette_depth = 3;  // roulette starts after this many events
+  int max_null_crossings = 256;    // guards against endless chains of null surfaces
   DistanceSampling distance_sampling = DistanceSampling::kMis;
   // Volume next-event estimation runs with probability min(1, scale * P(scatter in segment)).
   float volume_nee_scale = 2.0f;
@@ -43,14 +43,14 @@ struct PathSettings {
 // What one camera path contributes to the film and its AOVs.
 struct PathSample {
   RGB radiance;
-  float alpha = 0.0f;        // coverage: 1 on a visible surface, 1 - T through media
-  float hit_t = kInfinity;   // ray parameter of the first visible surface
-  Vec3 normal;               // its shading normal (zero when nothing was hit)
-  RGB albedo;                // its material's reflectance
+  float alpha = 0.0f;       // coverage: 1 on a visible surface, 1 - T through media
+  float hit_t = kInfinity;  // ray parameter of the first visible surface
+  Vec3 normal;              // its shading normal (zero when nothing was hit)
+  RGB albedo;               // its material's reflectance
 };
 
 struct PathCounters {
-  uint64_t rays = 0;            // every Embree query: camera, bounce and shadow rays
+  uint64_t rays = 0;                // every Embree query: camera, bounce and shadow rays
   uint64_t camera_march_steps = 0;  // steps stored in camera rays' records
 };
 

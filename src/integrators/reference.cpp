@@ -255,21 +255,24 @@ RGB reference_single_scattering(const Scene& scene, const Ray& ray, int samples,
   return sum * (length / float(samples));  // the uniform pdf is 1 / length
 }
 
-RGB reference_delta_tracking(const Scene& scene, const Ray& camera_ray, int max_bounces, Pcg32& rng) {
+RGB reference_delta_tracking(const Scene& scene, const Ray& camera_ray, ReferenceLimits limits, Pcg32& rng) {
   const int channel = std::min(int(rng.next_float() * 3.0f), 2);
   float radiance = 0.0f, throughput = 1.0f;
   bool direct = true;  // no scattering yet: the camera sees what this ray reaches
   Ray ray = camera_ray;
-  for (int bounces = 0; throughput > 0.0f;) {
+  int surface_bounces = 0, volume_bounces = 0;
+  while (throughput > 0.0f) {
     const auto hit = nearest_opaque_hit(scene, ray);
     const Segment seg = make_segment(scene, ray, hit ? hit->t : kInfinity, channel);
     if (const auto t = sample_collision(seg, channel, rng)) {
       const ChannelCoefficients c = coefficients(seg, *t, channel);
       // Absorbed (probability sigma_a / sigma_t), or out of scattering events.
-      if (rng.next_float() * c.sigma_t >= c.sigma_s || bounces >= max_bounces) break;
+      if (rng.next_float() * c.sigma_t >= c.sigma_s || volume_bounces >= limits.max_volume_bounces ||
+          surface_bounces >= limits.max_surface_bounces)
+        break;
       radiance += throughput * medium_direct_light(scene, seg, *t, c.sigma_s, channel, rng);
       ray = Ray{ray.at(*t), sample_phase_mixture(seg, *t, c.sigma_s, channel, rng), 0.0f, kInfinity};
-      ++bounces;
+      ++volume_bounces;
       direct = false;
       continue;
     }
@@ -282,14 +285,15 @@ RGB reference_delta_tracking(const Scene& scene, const Ray& camera_ray, int max_
     if (direct) radiance += throughput * surface_emission(si, wo)[channel];
     if (std::holds_alternative<DielectricBsdf>(si.material->bsdf))
       throw std::invalid_argument("reference_delta_tracking: dielectrics are not supported");
-    if (!std::holds_alternative<DiffuseBsdf>(si.material->bsdf) || bounces >= max_bounces) break;
+    const bool diffuse = std::holds_alternative<DiffuseBsdf>(si.material->bsdf);
+    if (!diffuse || surface_bounces >= limits.max_surface_bounces) break;
     radiance += throughput * surface_direct_light(scene, si, wo, channel, rng);
     const float u_lobe = rng.next_float();
     const auto bs = bsdf_sample(si.material->bsdf, si.ns, wo, u_lobe, next_2d(rng));
     if (!bs || dot(si.ng, bs->wi) * dot(si.ng, wo) <= 0.0f) break;
     throughput *= bs->weight[channel];
     ray = Ray{offset_ray_origin(si.p, si.ng, bs->wi), bs->wi, 0.0f, kInfinity};
-    ++bounces;
+    ++surface_bounces;
     direct = false;
   }
   return in_channel(channel, 3.0f * radiance);
@@ -307,7 +311,8 @@ std::vector<RGB> reference_image(const Scene& scene, Vec2i resolution, const Ref
         const Ray ray = camera.generate_ray({float(x) + jitter.x, float(y) + jitter.y});
         const RGB v = options.estimator == ReferenceEstimator::kSingleScattering
                           ? reference_single_scattering(scene, ray, options.distance_samples, rng)
-                          : reference_delta_tracking(scene, ray, options.max_bounces, rng);
+                          : reference_delta_tracking(scene, ray,
+                                                     {options.max_bounces, options.max_surface_bounces}, rng);
         r += v.r, g += v.g, b += v.b;
       }
       const double n = std::max(1, options.samples_per_pixel);

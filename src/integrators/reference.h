@@ -44,8 +44,16 @@ RGB reference_transmittance(const Scene& scene, const Ray& ray, float t_max, int
 // environment lights get a few light samples each per distance sample, delta lights one.
 RGB reference_single_scattering(const Scene& scene, const Ray& ray, int samples, Pcg32& rng);
 
-// Radiance along `ray` with all orders of volume scattering (up to `max_bounces` scattering
-// events, surface and volume together), by delta tracking with a per-ray constant majorant.
+// How many scattering events a reference path may have, counted as the production integrator
+// counts them (PathSettings): surface bounces up to max_surface_bounces, volume scattering up
+// to max_volume_bounces, and no volume scattering once the surface bounces are used up.
+struct ReferenceLimits {
+  int max_volume_bounces = 64;
+  int max_surface_bounces = 64;
+};
+
+// Radiance along `ray` with all orders of scattering within `limits`, by delta tracking
+// with a per-ray constant majorant.
 // One colour channel is traced per call, chosen uniformly: the result holds 3x the estimate
 // in that channel and zero in the others, so its expectation is the full RGB radiance and
 // chromatic media need no spectral MIS. Every light is reached by next-event estimation only
@@ -55,16 +63,17 @@ RGB reference_single_scattering(const Scene& scene, const Ray& ray, int samples,
 // surfaces absorb; volume emission is ignored.
 // Throws std::invalid_argument when the path meets a dielectric: specular transport would
 // need the emission-on-hit this estimator leaves out.
-RGB reference_delta_tracking(const Scene& scene, const Ray& ray, int max_bounces, Pcg32& rng);
+RGB reference_delta_tracking(const Scene& scene, const Ray& ray, ReferenceLimits limits, Pcg32& rng);
 
 enum class ReferenceEstimator { kSingleScattering, kDeltaTracking };
 
 struct ReferenceOptions {
   ReferenceEstimator estimator = ReferenceEstimator::kDeltaTracking;
   int samples_per_pixel = 16;  // jittered camera rays per pixel
-  int max_bounces = 64;        // delta tracking: scattering events
+  int max_bounces = 64;        // delta tracking: volume scattering events
   int distance_samples = 1;    // single scattering: distance samples per camera ray
   uint64_t seed = 0;
+  int max_surface_bounces = 64;  // delta tracking: surface scattering events
 };
 
 // Per-pixel means of an estimator over the camera's jittered pixel rays, row-major, like the

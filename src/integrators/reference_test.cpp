@@ -236,7 +236,7 @@ TEST(ReferenceLadder, DeltaTrackingRejectsDielectrics) {
   const auto scene = Scene::build(desc);
   Pcg32 rng;
   const Ray ray{{0, 0, -4}, {0, 0, 1}, 0.0f, kInfinity};
-  EXPECT_THROW(reference_delta_tracking(*scene, ray, 8, rng), std::invalid_argument);
+  EXPECT_THROW(reference_delta_tracking(*scene, ray, {8, 8}, rng), std::invalid_argument);
 }
 
 // ---- production against the ladder ----

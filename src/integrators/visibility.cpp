@@ -9,8 +9,8 @@ namespace caligo {
 // Shadow rays stop this fraction short of an area-light sample so they do not hit the light.
 constexpr float kShadowEpsilon = 1e-4f;
 
-RGB light_transmittance(const Scene& scene, Vec3 origin, Vec3 sampled_from, const LightSample& ls, float jitter,
-                        PathScratch& scratch, PathCounters& counters) {
+RGB light_transmittance(const Scene& scene, Vec3 origin, Vec3 sampled_from, const LightSample& ls,
+                        float jitter, PathScratch& scratch, PathCounters& counters) {
   Ray shadow{origin, ls.wi, 0.0f, kInfinity};
   if (std::isfinite(ls.distance)) {
     shadow.direction = sampled_from + ls.wi * ls.distance - origin;

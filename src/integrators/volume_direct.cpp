@@ -40,10 +40,10 @@ RGB scattered_light(const Scene& scene, const Ray& ray, const TransmittanceRecor
   if (tr.is_black()) return RGB(0.0f);
   const float light_pdf_sa = pick_pmf * ls->pdf;
   const float w =
-      ls->delta ? 1.0f : power_heuristic(1, light_pdf_sa, 1, mixed_phase_pdf(record, step, ray.direction, ls->wi));
+      ls->delta ? 1.0f
+                : power_heuristic(1, light_pdf_sa, 1, mixed_phase_pdf(record, step, ray.direction, ls->wi));
   return step.sigma_s * record.transmittance(t) * tr * ls->radiance * phase * (w / light_pdf_sa);
 }
-
 
 }  // namespace
 
@@ -64,8 +64,8 @@ float mixed_phase_pdf(const TransmittanceRecord& record, const MarchStep& step, 
   return total > 0.0f ? sum / total : 0.0f;
 }
 
-MixedPhaseSample sample_mixed_phase(const TransmittanceRecord& record, const MarchStep& step, Vec3 wo, float u_lobe,
-                                    Vec2 u) {
+MixedPhaseSample sample_mixed_phase(const TransmittanceRecord& record, const MarchStep& step, Vec3 wo,
+                                    float u_lobe, Vec2 u) {
   const auto lobes = record.lobes(step);
   if (lobes.size() == 1) {
     const PhaseSample s = phase_sample(lobes[0].phase, wo, u);
@@ -89,7 +89,8 @@ RGB volume_direct_light(const Scene& scene, const Ray& ray, const TransmittanceR
   const DiscreteDistribution& selection = scene.light_selection();
   if (selection.empty() || record.scatter_weight_total() <= 0.0f) return RGB(0.0f);
   float pick_pmf = 0.0f;
-  const int light_index = selection.sample(sampler.get_1d(bounce(depth, sample_dim::kVolumeLightSelect)), &pick_pmf);
+  const int light_index =
+      selection.sample(sampler.get_1d(bounce(depth, sample_dim::kVolumeLightSelect)), &pick_pmf);
   const Light& light = scene.lights()[size_t(light_index)];
 
   const auto centre = light_centre(light);
@@ -102,8 +103,9 @@ RGB volume_direct_light(const Scene& scene, const Ray& ray, const TransmittanceR
   if (sampler.get_1d(bounce(depth, sample_dim::kDistanceStrategy)) < equiangular_share) {
     t = sample_equiangular(*eq, sampler.get_1d(bounce(depth, sample_dim::kEquiangularDistance)));
   } else {
-    const auto ds = record.sample_scatter_density(sampler.get_1d(bounce(depth, sample_dim::kDensityChannel)),
-                                                  sampler.get_1d(bounce(depth, sample_dim::kDensityDistance)));
+    const auto ds =
+        record.sample_scatter_density(sampler.get_1d(bounce(depth, sample_dim::kDensityChannel)),
+                                      sampler.get_1d(bounce(depth, sample_dim::kDensityDistance)));
     if (!ds) return RGB(0.0f);
     t = ds->t;
   }

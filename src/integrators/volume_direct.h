@@ -29,7 +29,7 @@ struct MixedPhaseSample {
   RGB weight;  // mixed_phase_eval / mixed_phase_pdf
   float pdf;
 };
-MixedPhaseSample sample_mixed_phase(const TransmittanceRecord& record, const MarchStep& step, Vec3 wo, float u_lobe,
-                                    Vec2 u);
+MixedPhaseSample sample_mixed_phase(const TransmittanceRecord& record, const MarchStep& step, Vec3 wo,
+                                    float u_lobe, Vec2 u);
 
 }  // namespace caligo

@@ -46,7 +46,8 @@ Image render_desc(const SceneDesc& desc, int spp, DistanceSampling sampling = Di
 // camera ray, whatever it crosses, sees exactly the sky radiance (the volume furnace).
 TEST(VolumeScenes, AlbedoOneFurnace) {
   SceneDesc desc = camera_at({0, 0, 5}, {0, 0, 0}, {16, 16}, 30.0f);
-  desc.volumes.push_back(fog_sphere({0, 0, 0}, 1.5f, RGB(0.0f), RGB(1.2f, 1.0f, 0.7f), HenyeyGreensteinPhase{0.6f}));
+  desc.volumes.push_back(
+      fog_sphere({0, 0, 0}, 1.5f, RGB(0.0f), RGB(1.2f, 1.0f, 0.7f), HenyeyGreensteinPhase{0.6f}));
   desc.volumes.push_back(fog_sphere({0.5f, 0, 0}, 0.8f, RGB(0.0f), RGB(1.0f)));
   desc.lights.push_back(EnvironmentLight{RGB(1.0f)});
   const RGB mean = image_mean(render_desc(desc, 256));

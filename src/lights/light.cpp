@@ -35,7 +35,9 @@ struct Power {
   float operator()(const QuadLight& l) const {
     return (l.two_sided ? 2.0f : 1.0f) * kPi * parallelogram_area(l.edge1, l.edge2) * l.radiance.average();
   }
-  float operator()(const DirectionalLight& l) const { return kPi * sqr(l.scene_radius) * l.irradiance.average(); }
+  float operator()(const DirectionalLight& l) const {
+    return kPi * sqr(l.scene_radius) * l.irradiance.average();
+  }
   float operator()(const EnvironmentLight& l) const {
     return 4.0f * kPi * kPi * sqr(l.scene_radius) * l.radiance.average();
   }

@@ -21,7 +21,8 @@ RGB one_sided(RGB radiance, bool two_sided, Vec3 n, Vec3 w) {
   return (two_sided || dot(n, w) > 0.0f) ? radiance : RGB(0.0f);
 }
 
-std::optional<LightSample> sample_area_point(Vec3 receiver, Vec3 p, Vec3 n, float area, RGB emitted_towards_receiver) {
+std::optional<LightSample> sample_area_point(Vec3 receiver, Vec3 p, Vec3 n, float area,
+                                             RGB emitted_towards_receiver) {
   const Vec3 d = p - receiver;
   const float dist = length(d);
   if (!(dist > 0.0f) || emitted_towards_receiver.is_black()) return std::nullopt;
@@ -43,7 +44,8 @@ std::optional<LightSample> sample_sphere(const SphereLight& l, Vec3 receiver, Ve
   if (dist2 <= r2 * 1.0001f) {
     const Vec3 n = sample_uniform_sphere(u);
     const Vec3 p = l.center + n * l.radius;
-    return sample_area_point(receiver, p, n, 4.0f * kPi * r2, one_sided(l.radiance, l.two_sided, n, receiver - p));
+    return sample_area_point(receiver, p, n, 4.0f * kPi * r2,
+                             one_sided(l.radiance, l.two_sided, n, receiver - p));
   }
   const float dist = std::sqrt(dist2);
   const float sin2_max = r2 / dist2;
@@ -151,7 +153,8 @@ float light_pdf(const Light& light, Vec3 receiver, Vec3 wi, Vec3 on_light, Vec3 
 RGB escaped_radiance(const Light& light, Vec3 w) {
   if (const auto* env = std::get_if<EnvironmentLight>(&light)) return env->radiance;
   if (const auto* sun = std::get_if<DirectionalLight>(&light)) {
-    if (sun->cos_angular_radius >= 1.0f || dot(-sun->direction, w) < sun->cos_angular_radius) return RGB(0.0f);
+    if (sun->cos_angular_radius >= 1.0f || dot(-sun->direction, w) < sun->cos_angular_radius)
+      return RGB(0.0f);
     return sun_radiance(*sun);
   }
   return RGB(0.0f);

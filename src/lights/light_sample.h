@@ -13,10 +13,10 @@
 namespace caligo {
 
 struct LightSample {
-  RGB radiance;       // arriving at the receiver along -wi (already / r^2 for point and spot)
-  Vec3 wi;            // unit direction from the receiver towards the light
-  float distance;     // to the sampled point; kInfinity for lights at infinity
-  float pdf;          // solid angle; 1 for delta lights
+  RGB radiance;    // arriving at the receiver along -wi (already / r^2 for point and spot)
+  Vec3 wi;         // unit direction from the receiver towards the light
+  float distance;  // to the sampled point; kInfinity for lights at infinity
+  float pdf;       // solid angle; 1 for delta lights
   bool delta = false;
 };
 

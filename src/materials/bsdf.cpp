@@ -78,7 +78,9 @@ struct Sample {
     return BsdfSample{*wt, RGB(1.0f / sqr(eta)), 1.0f - f, true};
   }
   std::optional<BsdfSample> operator()(const BlackBsdf&) const { return std::nullopt; }
-  std::optional<BsdfSample> operator()(const NullBsdf&) const { return BsdfSample{-wo, RGB(1.0f), 1.0f, true}; }
+  std::optional<BsdfSample> operator()(const NullBsdf&) const {
+    return BsdfSample{-wo, RGB(1.0f), 1.0f, true};
+  }
 };
 
 struct IsSpecular {

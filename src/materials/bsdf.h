@@ -15,8 +15,8 @@ namespace caligo {
 
 struct BsdfSample {
   Vec3 wi;
-  RGB weight;         // f * |cos theta_i| / pdf
-  float pdf = 0.0f;   // solid angle; meaningless for specular samples
+  RGB weight;        // f * |cos theta_i| / pdf
+  float pdf = 0.0f;  // solid angle; meaningless for specular samples
   bool specular = false;
 };
 

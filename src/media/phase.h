@@ -37,7 +37,8 @@ struct DoubleHenyeyGreensteinPhase {
   float w = 0.7f;  // weight of the first lobe, in [0, 1]
 };
 
-using PhaseFunction = std::variant<IsotropicPhase, HenyeyGreensteinPhase, SchlickPhase, DoubleHenyeyGreensteinPhase>;
+using PhaseFunction =
+    std::variant<IsotropicPhase, HenyeyGreensteinPhase, SchlickPhase, DoubleHenyeyGreensteinPhase>;
 
 struct PhaseSample {
   Vec3 wi;

@@ -51,7 +51,8 @@ int steps_for_span(const VolumeScene& volumes, std::span<const uint32_t> primiti
   return std::clamp(int(std::ceil(length_m / h)), 1, settings.max_steps_per_span);
 }
 
-// Calls step(t0, t1, t_shade, primitives) for every step of every span, front to back, until it returns false.
+// Calls step(t0, t1, t_shade, primitives) for every step of every span, front to back, until it returns
+// false.
 template <typename StepFn>
 void for_each_step(const VolumeScene& volumes, const Ray& ray, float jitter, const MarchSettings& settings,
                    MarchScratch& scratch, StepFn&& step) {
@@ -94,22 +95,25 @@ void march(const VolumeScene& volumes, const Ray& ray, float jitter, const March
   if (volumes.empty()) return;
   for_each_step(volumes, ray, jitter, settings, scratch,
                 [&](float a, float b, float t_shade, std::span<const uint32_t> prims, float scale) {
-                  const StepCoefficients c = shade_span(volumes, prims, ray.at(t_shade), scale, &scratch.lobes);
+                  const StepCoefficients c =
+                      shade_span(volumes, prims, ray.at(t_shade), scale, &scratch.lobes);
                   const RGB t_start = out.transmittance_end();
-                  if (!c.emission.is_black()) out.add_emission(integrate_emission(t_start, c.sigma_t, c.emission, b - a));
+                  if (!c.emission.is_black())
+                    out.add_emission(integrate_emission(t_start, c.sigma_t, c.emission, b - a));
                   out.push(a, b, c.sigma_t, c.sigma_s, scratch.lobes);
                   return out.transmittance_end().max_component() >= settings.opacity_threshold;
                 });
 }
 
-RGB march_transmittance(const VolumeScene& volumes, const Ray& ray, float jitter, const MarchSettings& settings,
-                        MarchScratch& scratch) {
+RGB march_transmittance(const VolumeScene& volumes, const Ray& ray, float jitter,
+                        const MarchSettings& settings, MarchScratch& scratch) {
   if (volumes.empty()) return RGB(1.0f);
   RGB optical_depth;
   bool opaque = false;
   for_each_step(volumes, ray, jitter, settings, scratch,
                 [&](float a, float b, float t_shade, std::span<const uint32_t> prims, float scale) {
-                  optical_depth += shade_span(volumes, prims, ray.at(t_shade), scale, nullptr).sigma_t * (b - a);
+                  optical_depth +=
+                      shade_span(volumes, prims, ray.at(t_shade), scale, nullptr).sigma_t * (b - a);
                   opaque = std::min({optical_depth.r, optical_depth.g, optical_depth.b}) >
                            -std::log(settings.opacity_threshold);
                   return !opaque;

@@ -45,8 +45,8 @@ void march(const VolumeScene& volumes, const Ray& ray, float jitter, const March
            MarchScratch& scratch, TransmittanceRecord& out);
 
 // Transmittance along [ray.tmin, ray.tmax] with the same step rules, without a record (shadow rays).
-RGB march_transmittance(const VolumeScene& volumes, const Ray& ray, float jitter, const MarchSettings& settings,
-                        MarchScratch& scratch);
+RGB march_transmittance(const VolumeScene& volumes, const Ray& ray, float jitter,
+                        const MarchSettings& settings, MarchScratch& scratch);
 
 // The step size used for a primitive (its own, or the automatic one; infinity if homogeneous).
 float primitive_step_size(const VolumePrimitive& primitive, const MarchSettings& settings);

@@ -27,7 +27,8 @@ TEST(March, SlabTransmittanceIsBeerLambert) {
 
 TEST(March, TwoHalfDensityOverlapsEqualOneFullDensity) {
   const RGB sa(0.1f, 0.2f, 0.3f), ss(0.8f, 0.4f, 0.2f);
-  const VolumeScene half({box({-1, -1, 1}, {1, 1, 4}, sa * 0.5f, ss * 0.5f), box({-1, -1, 1}, {1, 1, 4}, sa * 0.5f, ss * 0.5f)});
+  const VolumeScene half(
+      {box({-1, -1, 1}, {1, 1, 4}, sa * 0.5f, ss * 0.5f), box({-1, -1, 1}, {1, 1, 4}, sa * 0.5f, ss * 0.5f)});
   const VolumeScene full({box({-1, -1, 1}, {1, 1, 4}, sa, ss)});
   MarchScratch scratch;
   TransmittanceRecord a, b;
@@ -48,8 +49,8 @@ TEST(March, TwoHalfDensityOverlapsEqualOneFullDensity) {
 }
 
 TEST(March, OverlapSplitsIntoSpansAndStopsAtTheSurface) {
-  const VolumeScene scene({box({-1, -1, 1}, {1, 1, 3}, RGB(0.1f), RGB(0.1f)),
-                           box({-1, -1, 2}, {1, 1, 5}, RGB(0.2f), RGB(0.0f))});
+  const VolumeScene scene(
+      {box({-1, -1, 1}, {1, 1, 3}, RGB(0.1f), RGB(0.1f)), box({-1, -1, 2}, {1, 1, 5}, RGB(0.2f), RGB(0.0f))});
   MarchScratch scratch;
   TransmittanceRecord record;
   march(scene, {{0, 0, 0}, {0, 0, 1}, 0.0f, 4.0f}, 0.5f, {}, scratch, record);  // a surface at t = 4

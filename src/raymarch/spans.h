@@ -12,7 +12,7 @@
 namespace caligo {
 
 struct Span {
-  float t0, t1;          // t0 < t1; consecutive spans may touch but never overlap
+  float t0, t1;           // t0 < t1; consecutive spans may touch but never overlap
   uint32_t first, count;  // primitives covering the span: span_primitives[first .. first + count)
 };
 

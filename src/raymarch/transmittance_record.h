@@ -31,10 +31,10 @@ struct PhaseLobe {
 };
 
 struct MarchStep {
-  float t0, t1;               // [t0, t1), steps sorted by t and disjoint; gaps between them are vacuum
-  RGB sigma_t, sigma_s;       // constant over the step, 1/m
-  RGB transmittance;          // T(t0): from the record's start to the start of this step
-  RGB scatter_before;         // integral of sigma_s(t) T(t) dt from the start to t0, per channel
+  float t0, t1;          // [t0, t1), steps sorted by t and disjoint; gaps between them are vacuum
+  RGB sigma_t, sigma_s;  // constant over the step, 1/m
+  RGB transmittance;     // T(t0): from the record's start to the start of this step
+  RGB scatter_before;    // integral of sigma_s(t) T(t) dt from the start to t0, per channel
   uint32_t first_lobe, lobe_count;
 };
 

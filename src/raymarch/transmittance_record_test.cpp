@@ -287,7 +287,8 @@ TEST(TransmittanceRecord, ClearKeepsCapacityAndEmission) {
 
 TEST(TransmittanceRecord, LobesReturnsThePushedLobes) {
   TransmittanceRecord r;
-  const std::vector<PhaseLobe> two = {{RGB(0.25f), IsotropicPhase{}}, {RGB(0.75f), HenyeyGreensteinPhase{0.6f}}};
+  const std::vector<PhaseLobe> two = {{RGB(0.25f), IsotropicPhase{}},
+                                      {RGB(0.75f), HenyeyGreensteinPhase{0.6f}}};
   const std::vector<PhaseLobe> one = {{RGB(1.0f), SchlickPhase{-0.3f}}};
   r.push(0.0f, 1.0f, RGB(1.0f), RGB(1.0f), two);
   r.push(1.0f, 2.0f, RGB(1.0f), RGB(0.0f), {});

@@ -4,7 +4,8 @@
 
 namespace caligo {
 
-Film::Film(Vec2i resolution) : resolution_(resolution), pixels_(size_t(resolution.x) * size_t(resolution.y)) {}
+Film::Film(Vec2i resolution)
+    : resolution_(resolution), pixels_(size_t(resolution.x) * size_t(resolution.y)) {}
 
 void Film::add(int x, int y, const PathSample& s, float depth) {
   Pixel& p = pixels_[size_t(y) * size_t(resolution_.x) + size_t(x)];
@@ -27,10 +28,10 @@ Image Film::resolve(int spp) const {
   for (int y = 0; y < resolution_.y; ++y)
     for (int x = 0; x < resolution_.x; ++x) {
       const Pixel& p = pixels_[size_t(y) * size_t(resolution_.x) + size_t(x)];
-      const float values[] = {float(p.r * inv), float(p.g * inv), float(p.b * inv), float(p.alpha * inv),
-                              p.nearest_depth, p.normal.x * float(inv), p.normal.y * float(inv),
-                              p.normal.z * float(inv), p.albedo.r * float(inv), p.albedo.g * float(inv),
-                              p.albedo.b * float(inv)};
+      const float values[] = {float(p.r * inv),        float(p.g * inv),        float(p.b * inv),
+                              float(p.alpha * inv),    p.nearest_depth,         p.normal.x * float(inv),
+                              p.normal.y * float(inv), p.normal.z * float(inv), p.albedo.r * float(inv),
+                              p.albedo.g * float(inv), p.albedo.b * float(inv)};
       for (int c = 0; c < 11; ++c) image.at(x, y, c) = values[c];
     }
   return image;

@@ -22,7 +22,9 @@ std::string format_duration(double seconds) {
 }
 
 Progress::Progress(std::string label, uint64_t total_samples, Style style)
-    : label_(std::move(label)), total_(std::max<uint64_t>(total_samples, 1)), style_(style),
+    : label_(std::move(label)),
+      total_(std::max<uint64_t>(total_samples, 1)),
+      style_(style),
       start_(std::chrono::steady_clock::now()) {
   if (style_ == Style::kAuto) style_ = isatty(STDERR_FILENO) ? Style::kBar : Style::kLog;
   if (style_ != Style::kQuiet) reporter_ = std::thread([this] { run(); });
@@ -43,7 +45,8 @@ void Progress::finish() {
 
 void Progress::run() {
   std::unique_lock lock(mutex_);
-  const auto period = style_ == Style::kBar ? std::chrono::milliseconds(200) : std::chrono::milliseconds(1000);
+  const auto period =
+      style_ == Style::kBar ? std::chrono::milliseconds(200) : std::chrono::milliseconds(1000);
   while (!wake_.wait_for(lock, period, [this] { return stopping_; })) print(false);
 }
 
@@ -65,8 +68,9 @@ void Progress::print(bool final) {
     const int decile = int(fraction * 10.0);
     if (!final && decile <= last_logged_decile_) return;
     last_logged_decile_ = decile;
-    std::fprintf(stderr, "%s: %.0f%% (%.3g samples/s, elapsed %s, ETA %s)\n", label_.c_str(), 100.0 * fraction, rate,
-                 format_duration(elapsed).c_str(), final ? "0 ms" : format_duration(eta).c_str());
+    std::fprintf(stderr, "%s: %.0f%% (%.3g samples/s, elapsed %s, ETA %s)\n", label_.c_str(),
+                 100.0 * fraction, rate, format_duration(elapsed).c_str(),
+                 final ? "0 ms" : format_duration(eta).c_str());
   }
   std::fflush(stderr);
 }

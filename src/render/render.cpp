@@ -26,8 +26,8 @@ RenderSettings default_settings(const SceneDesc& desc) {
 namespace {
 
 // One tile: every pixel, every sample, in a fixed order.
-PathCounters render_tile(const Scene& scene, const Camera& camera, const RenderSettings& settings, const Tile& tile,
-                         Film& film, PathScratch& scratch) {
+PathCounters render_tile(const Scene& scene, const Camera& camera, const RenderSettings& settings,
+                         const Tile& tile, Film& film, PathScratch& scratch) {
   PathSettings path_settings;
   path_settings.max_depth = settings.max_depth;
   path_settings.max_volume_bounces = settings.max_volume_bounces;
@@ -55,7 +55,8 @@ RenderResult render(const Scene& scene, const RenderSettings& settings, Progress
   const Camera camera = scene.camera(settings.resolution);
   Film film(settings.resolution);
   const auto tiles = make_tiles(settings.resolution, settings.tile_size);
-  const uint64_t paths = uint64_t(settings.resolution.x) * uint64_t(settings.resolution.y) * uint64_t(settings.spp);
+  const uint64_t paths =
+      uint64_t(settings.resolution.x) * uint64_t(settings.resolution.y) * uint64_t(settings.spp);
   std::atomic<uint64_t> rays{0}, march_steps{0};
   tbb::enumerable_thread_specific<PathScratch> scratch;  // per-thread march buffers and record
 

@@ -15,7 +15,7 @@ struct RenderSettings {
   int max_volume_bounces = 128;
   DistanceSampling distance_sampling = DistanceSampling::kMis;
   uint64_t seed = 0;
-  int threads = 0;        // 0: all hardware threads
+  int threads = 0;  // 0: all hardware threads
   int tile_size = 16;
 };
 

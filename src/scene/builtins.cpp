@@ -143,7 +143,8 @@ constexpr const char* kOverlap = R"json({
 const std::vector<BuiltinScene>& all_builtins() {
   static const std::vector<BuiltinScene> scenes = {
       {"default",
-       "a closed Cornell-style room in thin fog, with a glass sphere, a rotated box, a ceiling light and a lamp",
+       "a closed Cornell-style room in thin fog, with a glass sphere, a rotated box, a ceiling light and a "
+       "lamp",
        kDefault},
       {"furnace", "camera inside a closed sphere of albedo 0.5 emitting 1: every pixel converges to 2",
        kFurnace},
@@ -157,7 +158,8 @@ const std::vector<BuiltinScene>& all_builtins() {
        kLightsShowcase},
       {"lamp-in-fog", "a small point light inside a sphere of homogeneous scattering fog", kLampInFog},
       {"spot-shafts", "a spot light through fog past an occluding sphere: a volumetric shadow", kSpotShafts},
-      {"overlap", "two overlapping boxes of coloured media, whose coefficients add where they overlap", kOverlap},
+      {"overlap", "two overlapping boxes of coloured media, whose coefficients add where they overlap",
+       kOverlap},
   };
   return scenes;
 }

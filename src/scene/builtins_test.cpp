@@ -107,7 +107,8 @@ TEST(Builtins, VolumeScenesHaveTheirMedia) {
   ASSERT_EQ(lamp.lights.size(), 1u);
   const auto& fog = std::get<SphereVolumeShape>(lamp.volumes[0].shape);
   // The lamp is inside its fog sphere.
-  EXPECT_LT(length(fog.sphere.object_to_world.inverse_point(std::get<PointLight>(lamp.lights[0]).position)), 1.0f);
+  EXPECT_LT(length(fog.sphere.object_to_world.inverse_point(std::get<PointLight>(lamp.lights[0]).position)),
+            1.0f);
   const SceneDesc shafts = parse_builtin(*find_builtin("spot-shafts"));
   EXPECT_TRUE(std::holds_alternative<SpotLight>(shafts.lights[0]));
   EXPECT_EQ(parse_builtin(*find_builtin("overlap")).volumes.size(), 2u);

@@ -15,7 +15,8 @@ bool emits(const Material& m) { return !m.emission.is_black(); }
 // sphere, which the sphere light's cone sampling requires.
 std::optional<SphereLight> as_sphere_light(const Sphere& s, const Material& m) {
   const Transform& t = s.object_to_world;
-  const float rx = length(t.vector({1, 0, 0})), ry = length(t.vector({0, 1, 0})), rz = length(t.vector({0, 0, 1}));
+  const float rx = length(t.vector({1, 0, 0})), ry = length(t.vector({0, 1, 0})),
+              rz = length(t.vector({0, 0, 1}));
   const float tolerance = 1e-4f * rx;
   if (std::abs(rx - ry) > tolerance || std::abs(rx - rz) > tolerance ||
       std::abs(dot(t.vector({1, 0, 0}), t.vector({0, 1, 0}))) > tolerance * rx)
@@ -36,7 +37,9 @@ std::string light_material_name(const char* kind, int index) {
 struct ShapeMesh {
   const ShapeDesc& shape;
   TriangleMesh operator()(const BoxShape& b) const { return box_mesh(b.min, b.max); }
-  TriangleMesh operator()(const RectangleShape& r) const { return rectangle_mesh(r.corner, r.edge1, r.edge2); }
+  TriangleMesh operator()(const RectangleShape& r) const {
+    return rectangle_mesh(r.corner, r.edge1, r.edge2);
+  }
   TriangleMesh operator()(const MeshFileShape& m) const {
     return load_mesh(m.path, shape.where,
                      m.skip_degenerate ? DegenerateTriangles::kRemove : DegenerateTriangles::kReject);
@@ -62,7 +65,8 @@ std::unique_ptr<Scene> Scene::build(const SceneDesc& desc) {
 int Scene::add_geometry(uint32_t geom_id, GeometryInfo info) {
   if (geom_id != geometry_.size()) throw std::logic_error("Embree geometry ids must be dense");
   geometry_.push_back(info);
-  surfaces_.set_casts_shadows(geom_id, !std::holds_alternative<NullBsdf>(materials_[size_t(info.material)].bsdf));
+  surfaces_.set_casts_shadows(geom_id,
+                              !std::holds_alternative<NullBsdf>(materials_[size_t(info.material)].bsdf));
   return int(geom_id);
 }
 
@@ -73,7 +77,9 @@ void Scene::add_shape(const ShapeDesc& shape) {
     GeometryInfo info{shape.material};
     if (emits(material)) {
       const auto light = as_sphere_light(sphere, material);
-      if (!light) throw InputError(shape.where, "an emissive sphere must be scaled uniformly (it becomes a sphere light)");
+      if (!light)
+        throw InputError(shape.where,
+                         "an emissive sphere must be scaled uniformly (it becomes a sphere light)");
       info.light = int(lights_.size());
       lights_.push_back(*light);
     }
@@ -98,8 +104,8 @@ void Scene::add_emitting_mesh(TriangleMesh mesh, int material, const SourceLocat
   const int first = int(lights_.size());
   for (size_t t = 0; t < mesh.triangle_count(); ++t) {
     const uint32_t* tri = &mesh.indices[3 * t];
-    lights_.push_back(TriangleLight{mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]], m.emission,
-                                    m.two_sided_emission});
+    lights_.push_back(TriangleLight{mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]],
+                                    m.emission, m.two_sided_emission});
   }
   try {
     add_geometry(surfaces_.add_mesh(std::move(mesh)), {material, first, true});
@@ -113,7 +119,8 @@ void Scene::add_light_geometry(int index) {
   const Light& light = lights_[size_t(index)];
   if (const auto* s = std::get_if<SphereLight>(&light)) {
     materials_.push_back({light_material_name("sphere", index), BlackBsdf{}, s->radiance, s->two_sided});
-    add_geometry(surfaces_.add_sphere(Sphere::make(s->center, s->radius, {})), {int(materials_.size()) - 1, index});
+    add_geometry(surfaces_.add_sphere(Sphere::make(s->center, s->radius, {})),
+                 {int(materials_.size()) - 1, index});
   } else if (const auto* q = std::get_if<QuadLight>(&light)) {
     materials_.push_back({light_material_name("quad", index), BlackBsdf{}, q->radiance, q->two_sided});
     add_geometry(surfaces_.add_mesh(rectangle_mesh(q->corner, q->edge1, q->edge2)),

@@ -20,11 +20,11 @@ namespace caligo {
 
 // What the integrator needs to know about a surface hit.
 struct SurfaceInteraction {
-  Vec3 p;                       // world position
-  Vec3 ng;                      // unit geometric normal (outward for closed shapes)
-  Vec3 ns;                      // unit shading normal, on the same side as ng
+  Vec3 p;   // world position
+  Vec3 ng;  // unit geometric normal (outward for closed shapes)
+  Vec3 ns;  // unit shading normal, on the same side as ng
   const Material* material = nullptr;
-  int light = -1;               // index into Scene::lights() when the surface emits
+  int light = -1;  // index into Scene::lights() when the surface emits
 };
 
 class Scene {
@@ -40,7 +40,9 @@ class Scene {
   const std::vector<int>& infinite_lights() const { return infinite_lights_; }
   // Probability of picking each light for next-event estimation (proportional to power).
   const DiscreteDistribution& light_selection() const { return light_selection_; }
-  float light_selection_pmf(int light) const { return light_selection_.empty() ? 0.0f : light_selection_.pmf(light); }
+  float light_selection_pmf(int light) const {
+    return light_selection_.empty() ? 0.0f : light_selection_.pmf(light);
+  }
 
   SurfaceInteraction interaction(const Ray& ray, const SurfaceHit& hit) const;
   const Material& material(const SurfaceHit& hit) const {
@@ -51,7 +53,7 @@ class Scene {
  private:
   struct GeometryInfo {
     int material = 0;
-    int light = -1;               // first light of this geometry, or -1
+    int light = -1;                    // first light of this geometry, or -1
     bool light_per_primitive = false;  // emissive meshes: one TriangleLight per triangle
   };
 

@@ -26,7 +26,7 @@ struct CameraDesc {
 
 struct RenderDefaults {
   int spp = 16;
-  int max_depth = 8;       // surface bounces
+  int max_depth = 8;             // surface bounces
   int max_volume_bounces = 128;  // scattering events inside media
   uint64_t seed = 0;
 };
@@ -43,15 +43,15 @@ struct RectangleShape {
 };
 // A triangle mesh from a file: OBJ (tinyobjloader) or glTF 2.0 (.gltf/.glb, tinygltf).
 struct MeshFileShape {
-  std::string path;  // absolute, or relative to the working directory
+  std::string path;              // absolute, or relative to the working directory
   bool skip_degenerate = false;  // remove zero-area triangles instead of rejecting the file
 };
 using ShapeGeometry = std::variant<SphereShape, BoxShape, RectangleShape, MeshFileShape>;
 
 struct ShapeDesc {
   ShapeGeometry geometry;
-  Transform transform;  // object to world
-  int material = 0;     // index into SceneDesc::materials
+  Transform transform;   // object to world
+  int material = 0;      // index into SceneDesc::materials
   SourceLocation where;  // e.g. {"room.json", "/shapes/3"}
 };
 

@@ -32,7 +32,6 @@ constexpr float kParallelSine = 1e-4f;
 
 // ---- shared checks ----
 
-
 // The direction from `from` to the point at `target`, which must differ from `from`.
 Vec3 read_target_direction(const JsonCursor& target, Vec3 from, std::string_view from_name) {
   const Vec3 to = target.vec3();
@@ -340,7 +339,8 @@ SceneDesc parse_scene_text(const std::string& json_text, const std::string& file
   std::vector<NamedMedium> media;
   if (auto c = r.optional("media")) media = parse_media(*c);
   if (auto c = r.optional("volumes"))
-    for (const JsonCursor& v : c->elements("an array of volumes")) scene.volumes.push_back(parse_volume(v, media));
+    for (const JsonCursor& v : c->elements("an array of volumes"))
+      scene.volumes.push_back(parse_volume(v, media));
   r.finish();
   return scene;
 }

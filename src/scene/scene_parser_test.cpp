@@ -416,7 +416,10 @@ const BadCase kBadCases[] = {
        s["shapes"][0]["transform"] = {{{"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 1, 1}}}};
      },
      "/shapes/0/transform/0/matrix", "expected the last row to be [0, 0, 0, 1]"},
-    {"NearlyFlatTransform", [](OJson& s) { s["shapes"][0]["transform"] = {{{"scale", {1, 1e-20, 1}}}}; },
+    {"NearlyFlatTransform",
+     [](OJson& s) {
+       s["shapes"][0]["transform"] = {{{"scale", {1, 1e-20, 1}}}};
+     },
      "/shapes/0/transform", "expected an invertible transform"},
     {"ZeroScale",
      [](OJson& s) {

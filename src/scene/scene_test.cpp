@@ -54,7 +54,8 @@ TEST(Scene, LightSelectionFollowsPower) {
 
 TEST(Scene, NonUniformlyScaledEmissiveSphereIsAnInputError) {
   SceneDesc desc = base();
-  desc.shapes.push_back({SphereShape{{0, 0, 0}, 1.0f}, Transform::scale({1, 2, 1}), 1, {"test.json", "/shapes/0"}});
+  desc.shapes.push_back(
+      {SphereShape{{0, 0, 0}, 1.0f}, Transform::scale({1, 2, 1}), 1, {"test.json", "/shapes/0"}});
   try {
     Scene::build(desc);
     FAIL() << "expected an InputError";

@@ -12,7 +12,6 @@ Vec3 read_direction(const JsonCursor& c) {
   return normalize(v);
 }
 
-
 namespace {
 
 Transform parse_rotation(const JsonCursor& c) {

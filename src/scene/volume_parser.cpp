@@ -68,7 +68,8 @@ const VolumeShader& find_medium(const JsonCursor& c, const std::vector<NamedMedi
   message += name;
   message += '"';
   if (names.empty()) c.fail(message + ": the scene defines no media");
-  if (std::string guess = closest_match(name, names); !guess.empty()) message += " (did you mean \"" + guess + "\"?)";
+  if (std::string guess = closest_match(name, names); !guess.empty())
+    message += " (did you mean \"" + guess + "\"?)";
   c.fail(message + "; defined media: " + join_names(names));
 }
 
@@ -81,7 +82,8 @@ VolumeShape parse_volume_shape(ObjectReader& r, const std::string& type, const T
   const JsonCursor hi_c = r.required("max");
   const Vec3 hi = hi_c.vec3();
   if (!(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z))
-    hi_c.fail("expected max > min in every component (min is " + format_vec3(lo) + "), got " + hi_c.describe());
+    hi_c.fail("expected max > min in every component (min is " + format_vec3(lo) + "), got " +
+              hi_c.describe());
   return BoxVolumeShape{placement, lo, hi};
 }
 

@@ -49,7 +49,8 @@ float density_at(const DensityField& field, const VolumeShape& shape, Vec3 p) {
     const auto& b = std::get<BoxVolumeShape>(shape);
     const Vec3 q = b.object_to_world.inverse_point(p);
     const Vec3 half = (b.hi - b.lo) * 0.5f;
-    local = Vec3((q.x - b.lo.x) / half.x - 1.0f, (q.y - b.lo.y) / half.y - 1.0f, (q.z - b.lo.z) / half.z - 1.0f);
+    local =
+        Vec3((q.x - b.lo.x) / half.x - 1.0f, (q.y - b.lo.y) / half.y - 1.0f, (q.z - b.lo.z) / half.z - 1.0f);
   }
   const float r2 = length_squared(local);
   return r2 >= 1.0f ? 0.0f : std::pow(1.0f - r2, falloff.exponent);
@@ -67,7 +68,9 @@ Bounds3 volume_bounds(const VolumeShape& shape) {
   return b.object_to_world.bounds({b.lo, b.hi});
 }
 
-bool is_homogeneous(const VolumeShader& shader) { return std::holds_alternative<ConstantDensity>(shader.field); }
+bool is_homogeneous(const VolumeShader& shader) {
+  return std::holds_alternative<ConstantDensity>(shader.field);
+}
 
 MediumSample shade_volume(const VolumePrimitive& primitive, Vec3 p) {
   const VolumeShader& s = primitive.shader;

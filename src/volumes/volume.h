@@ -34,9 +34,9 @@ struct RadialFalloffDensity {
 using DensityField = std::variant<ConstantDensity, RadialFalloffDensity>;
 
 struct VolumeShader {
-  RGB sigma_a;      // 1/m at density 1
-  RGB sigma_s;      // 1/m at density 1
-  RGB emission;     // W m^-3 sr^-1 at density 1
+  RGB sigma_a;   // 1/m at density 1
+  RGB sigma_s;   // 1/m at density 1
+  RGB emission;  // W m^-3 sr^-1 at density 1
   float density = 1.0f;
   PhaseFunction phase;
   DensityField field;

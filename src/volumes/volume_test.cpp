@@ -7,7 +7,9 @@
 namespace caligo {
 namespace {
 
-VolumePrimitive fog_sphere(Vec3 c, float r) { return {SphereVolumeShape{Sphere::make(c, r, {})}, {RGB(0.1f), RGB(0.5f)}}; }
+VolumePrimitive fog_sphere(Vec3 c, float r) {
+  return {SphereVolumeShape{Sphere::make(c, r, {})}, {RGB(0.1f), RGB(0.5f)}};
+}
 
 TEST(VolumeInterval, SphereFromOutsideAndInside) {
   const VolumeShape s = SphereVolumeShape{Sphere::make({0, 0, 5}, 1.0f, {})};
@@ -29,8 +31,8 @@ TEST(VolumeInterval, SphereFromOutsideAndInside) {
 }
 
 TEST(VolumeInterval, TransformedBox) {
-  const VolumeShape box = BoxVolumeShape{Transform::translate({0, 0, 10}) * Transform::rotate(kPi / 4, {0, 0, 1}),
-                                         {-1, -1, -1}, {1, 1, 1}};
+  const VolumeShape box = BoxVolumeShape{
+      Transform::translate({0, 0, 10}) * Transform::rotate(kPi / 4, {0, 0, 1}), {-1, -1, -1}, {1, 1, 1}};
   const auto i = volume_interval(box, {{0, 0, 0}, {0, 0, 1}});
   ASSERT_TRUE(i);
   EXPECT_NEAR(i->first, 9.0f, 1e-5f);
@@ -43,7 +45,8 @@ TEST(VolumeInterval, TransformedBox) {
 }
 
 TEST(VolumeScene, IntervalsOfOverlappingPrimitives) {
-  const VolumeScene scene({fog_sphere({0, 0, 5}, 1.0f), fog_sphere({0, 0, 5.5f}, 1.0f), fog_sphere({3, 0, 5}, 1.0f)});
+  const VolumeScene scene(
+      {fog_sphere({0, 0, 5}, 1.0f), fog_sphere({0, 0, 5.5f}, 1.0f), fog_sphere({3, 0, 5}, 1.0f)});
   IntervalScratch scratch;
   scene.intervals({{0, 0, 0}, {0, 0, 1}}, scratch);
   auto v = scratch.intervals;
@@ -79,18 +82,21 @@ namespace {
 TEST(VolumeScene, BvhAndLinearScanAgree) {
   std::vector<VolumePrimitive> many;
   for (int i = 0; i < 40; ++i)
-    many.push_back({SphereVolumeShape{Sphere::make({float(i % 7) - 3.0f, float(i / 7) - 3.0f, 5.0f}, 0.6f, {})},
-                    {RGB(0.1f), RGB(0.1f)}});
+    many.push_back(
+        {SphereVolumeShape{Sphere::make({float(i % 7) - 3.0f, float(i / 7) - 3.0f, 5.0f}, 0.6f, {})},
+         {RGB(0.1f), RGB(0.1f)}});
   const VolumeScene bvh(many);
   IntervalScratch scratch;
   for (int r = 0; r < 100; ++r) {
-    const Ray ray{{0, 0, 0}, normalize(Vec3(float(r % 10) * 0.07f - 0.3f, float(r / 10) * 0.07f - 0.3f, 1.0f))};
+    const Ray ray{{0, 0, 0},
+                  normalize(Vec3(float(r % 10) * 0.07f - 0.3f, float(r / 10) * 0.07f - 0.3f, 1.0f))};
     bvh.intervals(ray, scratch);
     auto found = scratch.intervals;
     std::sort(found.begin(), found.end(), [](auto a, auto b) { return a.primitive < b.primitive; });
     std::vector<VolumeInterval> expected;
     for (uint32_t i = 0; i < many.size(); ++i)
-      if (const auto range = volume_interval(many[i].shape, ray)) expected.push_back({range->first, range->second, i});
+      if (const auto range = volume_interval(many[i].shape, ray))
+        expected.push_back({range->first, range->second, i});
     ASSERT_EQ(found.size(), expected.size()) << "ray " << r;
     for (size_t k = 0; k < found.size(); ++k) {
       EXPECT_EQ(found[k].primitive, expected[k].primitive);
