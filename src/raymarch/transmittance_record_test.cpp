@@ -13,61 +13,15 @@
 
 #include "core/math.h"
 #include "core/rng.h"
+#include "core/testing/chi_squared.h"
 
 namespace caligo {
 namespace {
 
 // ---- Chi-squared machinery (as in core/sampling_test.cpp) --------------------------------------
 
-// Regularised upper incomplete gamma function Q(a, x): a power series for P = 1 - Q when x < a + 1,
-// otherwise a continued fraction for Q evaluated with the modified Lentz method.
-double gamma_q(double a, double x) {
-  if (x <= 0.0) return 1.0;
-  const double log_prefactor = -x + a * std::log(x) - std::lgamma(a);
-  if (x < a + 1.0) {
-    double term = 1.0 / a, sum = term;
-    for (int n = 1; n < 10000 && std::abs(term) > 1e-15 * std::abs(sum); ++n) {
-      term *= x / (a + n);
-      sum += term;
-    }
-    return std::max(0.0, 1.0 - sum * std::exp(log_prefactor));
-  }
-  const double tiny = 1e-300;
-  double b = x + 1.0 - a, c = 1.0 / tiny, d = 1.0 / b, h = d;
-  for (int i = 1; i < 10000; ++i) {
-    const double an = -i * (i - a);
-    b += 2.0;
-    d = an * d + b;
-    if (std::abs(d) < tiny) d = tiny;
-    c = b + an / c;
-    if (std::abs(c) < tiny) c = tiny;
-    d = 1.0 / d;
-    h *= d * c;
-    if (std::abs(d * c - 1.0) < 1e-15) break;
-  }
-  return std::exp(log_prefactor) * h;
-}
-
-// Pearson's test; bins expected to hold fewer than 5 samples are pooled.
-double chi2_p_value(const std::vector<double>& observed, const std::vector<double>& expected) {
-  double chi2 = 0.0, pooled_observed = 0.0, pooled_expected = 0.0;
-  int bins = 0;
-  for (size_t i = 0; i < observed.size(); ++i) {
-    if (expected[i] <= 0.0 && observed[i] > 0.0) return 0.0;
-    if (expected[i] < 5.0) {
-      pooled_observed += observed[i];
-      pooled_expected += expected[i];
-      continue;
-    }
-    chi2 += (observed[i] - expected[i]) * (observed[i] - expected[i]) / expected[i];
-    ++bins;
-  }
-  if (pooled_expected > 0.0) {
-    chi2 += (pooled_observed - pooled_expected) * (pooled_observed - pooled_expected) / pooled_expected;
-    ++bins;
-  }
-  return bins > 1 ? gamma_q(0.5 * (bins - 1), 0.5 * chi2) : 1.0;
-}
+using test_stats::chi2_p_value;
+using test_stats::chi2_survival;
 
 // ---- Records and brute-force references --------------------------------------------------------
 

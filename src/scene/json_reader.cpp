@@ -396,4 +396,32 @@ RGB ObjectReader::rgb_or(std::string_view key, RGB fallback, Range component_ran
   return c ? c->rgb(component_range) : fallback;
 }
 
+std::vector<std::pair<std::string, JsonCursor>> named_definitions(const JsonCursor& c, std::string_view kind,
+                                                                  std::string_view plural) {
+  if (!c.is_object())
+    c.fail("expected an object mapping " + std::string(kind) + " names to " + std::string(plural) + ", got " +
+           c.describe());
+  std::vector<std::pair<std::string, JsonCursor>> members;
+  for (const auto& [name, value] : c.json().items()) {
+    const JsonCursor m = c.member(name);
+    if (name.empty()) m.fail("expected a non-empty " + std::string(kind) + " name");
+    members.emplace_back(name, m);
+  }
+  return members;
+}
+
+size_t find_definition(const JsonCursor& c, const std::vector<std::string>& names, std::string_view kind,
+                       std::string_view plural) {
+  const std::string name = c.string();
+  const auto it = std::find(names.begin(), names.end(), name);
+  if (it != names.end()) return size_t(it - names.begin());
+  std::string message = "unknown ";
+  message += kind;
+  message += " \"" + name + "\"";
+  if (names.empty()) c.fail(message + ": the scene defines no " + std::string(plural));
+  if (std::string guess = closest_match(name, names); !guess.empty())
+    message += " (did you mean \"" + guess + "\"?)";
+  c.fail(message + "; defined " + std::string(plural) + ": " + join_names(names));
+}
+
 }  // namespace caligo

@@ -150,4 +150,13 @@ std::string closest_match(std::string_view word, const std::vector<std::string>&
 // Joins names for messages: "a, b, c".
 std::string join_names(const std::vector<std::string>& names);
 
+// The members of an object that maps names to definitions, such as "materials" or "media";
+// `kind` and `plural` name them in messages ("medium", "media"). Names must be non-empty.
+std::vector<std::pair<std::string, JsonCursor>> named_definitions(const JsonCursor& c, std::string_view kind,
+                                                                  std::string_view plural);
+// The index in `names` of the name `c` holds, or a failure such as
+// `unknown material "chrome" (did you mean "chrome2"?); defined materials: a, b`.
+size_t find_definition(const JsonCursor& c, const std::vector<std::string>& names, std::string_view kind,
+                       std::string_view plural);
+
 }  // namespace caligo

@@ -133,27 +133,16 @@ Material parse_material(const JsonCursor& c, const std::string& name) {
 }
 
 std::vector<Material> parse_materials(const JsonCursor& c) {
-  if (!c.is_object()) c.fail("expected an object mapping material names to materials, got " + c.describe());
   std::vector<Material> materials;
-  for (const auto& [name, value] : c.json().items()) {
-    const JsonCursor m = c.member(name);
-    if (name.empty()) m.fail("expected a non-empty material name");
+  for (const auto& [name, m] : named_definitions(c, "material", "materials"))
     materials.push_back(parse_material(m, name));
-  }
   return materials;
 }
 
 int find_material(const JsonCursor& c, const std::vector<Material>& materials) {
-  const std::string name = c.string();
   std::vector<std::string> names;
   for (const Material& m : materials) names.push_back(m.name);
-  auto it = std::find(names.begin(), names.end(), name);
-  if (it != names.end()) return int(it - names.begin());
-  if (names.empty()) c.fail("unknown material \"" + name + "\": the scene defines no materials");
-  std::string message = "unknown material \"" + name + "\"";
-  if (std::string guess = closest_match(name, names); !guess.empty())
-    message += " (did you mean \"" + guess + "\"?)";
-  c.fail(message + "; defined materials: " + join_names(names));
+  return int(find_definition(c, names, "material", "materials"));
 }
 
 // ---- shapes ----

@@ -58,19 +58,9 @@ VolumeShader parse_medium(const JsonCursor& c) {
 }
 
 const VolumeShader& find_medium(const JsonCursor& c, const std::vector<NamedMedium>& media) {
-  const std::string name = c.string();
   std::vector<std::string> names;
-  for (const NamedMedium& m : media) {
-    if (m.name == name) return m.shader;
-    names.push_back(m.name);
-  }
-  std::string message = "unknown medium \"";
-  message += name;
-  message += '"';
-  if (names.empty()) c.fail(message + ": the scene defines no media");
-  if (std::string guess = closest_match(name, names); !guess.empty())
-    message += " (did you mean \"" + guess + "\"?)";
-  c.fail(message + "; defined media: " + join_names(names));
+  for (const NamedMedium& m : media) names.push_back(m.name);
+  return media[find_definition(c, names, "medium", "media")].shader;
 }
 
 VolumeShape parse_volume_shape(ObjectReader& r, const std::string& type, const Transform& placement) {
@@ -90,13 +80,9 @@ VolumeShape parse_volume_shape(ObjectReader& r, const std::string& type, const T
 }  // namespace
 
 std::vector<NamedMedium> parse_media(const JsonCursor& c) {
-  if (!c.is_object()) c.fail("expected an object mapping medium names to media, got " + c.describe());
   std::vector<NamedMedium> media;
-  for (const auto& [name, value] : c.json().items()) {
-    const JsonCursor m = c.member(name);
-    if (name.empty()) m.fail("expected a non-empty medium name");
+  for (const auto& [name, m] : named_definitions(c, "medium", "media"))
     media.push_back({name, parse_medium(m)});
-  }
   return media;
 }
 
