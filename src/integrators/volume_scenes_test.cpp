@@ -102,3 +102,38 @@ TEST(VolumeScenes, NullSurfaceInsideAMediumIsInvisible) {
 
 }  // namespace
 }  // namespace caligo
+
+namespace caligo {
+namespace {
+
+// Single scattering of a point light in a homogeneous medium, along one camera ray, against
+// Simpson quadrature of the seed's integral
+//   L = integral over t of sigma_s T(t) phase(theta(t)) I / r(t)^2 T(r(t)) dt.
+TEST(VolumeScenes, SingleScatteringMatchesQuadrature) {
+  const float sigma_s = 0.3f, sigma_a = 0.1f, g = 0.4f, radius = 20.0f;
+  const Vec3 light(1.0f, 0.5f, -3.0f);
+  SceneDesc desc = camera_at({0, 0, 0}, {0, 0, -1}, {1, 1}, 1e-3f);
+  desc.volumes.push_back(fog_sphere({0, 0, 0}, radius, RGB(sigma_a), RGB(sigma_s), HenyeyGreensteinPhase{g}));
+  desc.lights.push_back(PointLight{light, RGB(5.0f)});
+  const float rendered = image_mean(render_desc(desc, 8192, DistanceSampling::kMis, 1)).g;
+
+  const double sigma_t = sigma_s + sigma_a;
+  const auto integrand = [&](double t) {
+    const Vec3 x(0, 0, float(-t));
+    const Vec3 to_light = light - x;
+    const double r = length(to_light);
+    // Exit distance from x towards the light, inside the sphere: all of r (the light is inside).
+    const double cos_theta = dot(Vec3(0, 0, -1), to_light / float(r));
+    return sigma_s * std::exp(-sigma_t * t) * henyey_greenstein(float(cos_theta), g) * 5.0 / (r * r) *
+           std::exp(-sigma_t * r);
+  };
+  const int n = 200000;  // even
+  const double h = radius / n;
+  double sum = integrand(0.0) + integrand(radius);
+  for (int i = 1; i < n; ++i) sum += (i % 2 ? 4.0 : 2.0) * integrand(i * h);
+  const double expected = sum * h / 3.0;
+  EXPECT_NEAR(rendered, expected, 0.01 * expected);
+}
+
+}  // namespace
+}  // namespace caligo
