@@ -115,7 +115,6 @@ TEST(VolumeScenes, SingleScatteringMatchesQuadrature) {
   SceneDesc desc = camera_at({0, 0, 0}, {0, 0, -1}, {1, 1}, 1e-3f);
   desc.volumes.push_back(fog_sphere({0, 0, 0}, radius, RGB(sigma_a), RGB(sigma_s), HenyeyGreensteinPhase{g}));
   desc.lights.push_back(PointLight{light, RGB(5.0f)});
-  const float rendered = image_mean(render_desc(desc, 8192, DistanceSampling::kMis, 1)).g;
 
   const double sigma_t = sigma_s + sigma_a;
   const auto integrand = [&](double t) {
@@ -132,7 +131,13 @@ TEST(VolumeScenes, SingleScatteringMatchesQuadrature) {
   double sum = integrand(0.0) + integrand(radius);
   for (int i = 1; i < n; ++i) sum += (i % 2 ? 4.0 : 2.0) * integrand(i * h);
   const double expected = sum * h / 3.0;
-  EXPECT_NEAR(rendered, expected, 0.01 * expected);
+  // One ray and stratified samples: each single strategy is a smooth 1D integrand and
+  // converges far below 1 %; one-sample MIS adds a discrete choice and converges slower.
+  EXPECT_NEAR(image_mean(render_desc(desc, 4096, DistanceSampling::kEquiangular, 1)).g, expected,
+              1e-3 * expected);
+  EXPECT_NEAR(image_mean(render_desc(desc, 4096, DistanceSampling::kDensity, 1)).g, expected,
+              1e-3 * expected);
+  EXPECT_NEAR(image_mean(render_desc(desc, 8192, DistanceSampling::kMis, 1)).g, expected, 0.01 * expected);
 }
 
 }  // namespace
