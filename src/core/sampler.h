@@ -31,10 +31,8 @@ enum Bounce : uint32_t {
   kRussianRoulette,      // 1D: path termination
   kMarchJitter,          // 1D: where heterogeneous steps are shaded
   kVolumeLightSelect,    // 1D: light for next-event estimation from the medium
-  kDistanceStrategy,     // 1D: equiangular or density sampling (one-sample MIS)
+  kDistanceSample,       // 2D: x picks equiangular or density sampling, y the distance
   kDensityChannel,       // 1D: colour channel of density (sigma_s T) sampling
-  kDensityDistance,      // 1D: distance of density sampling
-  kEquiangularDistance,  // 1D: distance of equiangular sampling
   kVolumeLightPosition,  // 2D: light sample at the chosen distance
   kFreeFlightChannel,    // 1D: colour channel of free-flight sampling
   kFreeFlightDistance,   // 1D: collision distance

@@ -97,15 +97,19 @@ RGB volume_direct_light(const Scene& scene, const Ray& ray, const TransmittanceR
   std::optional<EquiangularSetup> eq;
   if (centre && strategy != DistanceSampling::kDensity)
     eq = make_equiangular_setup(ray.origin, ray.direction, *centre, record.t_begin(), record.t_end());
-  const float equiangular_share = !eq ? 0.0f : strategy == DistanceSampling::kMis ? 0.5f : 1.0f;
+  // Equiangular sampling cancels the 1/r^2 that dominates the integrand near a light, so it
+  // gets three quarters of the samples; density sampling is the safety net for thick or
+  // heterogeneous media (measured on lamp-in-fog: see docs/benchmarks.md).
+  const float equiangular_share = !eq ? 0.0f : strategy == DistanceSampling::kMis ? 0.75f : 1.0f;
 
+  // One 2D sample chooses the strategy (x) and the distance (y), so the pairs stay stratified.
+  const Vec2 u = sampler.get_2d(bounce(depth, sample_dim::kDistanceSample));
   float t;
-  if (sampler.get_1d(bounce(depth, sample_dim::kDistanceStrategy)) < equiangular_share) {
-    t = sample_equiangular(*eq, sampler.get_1d(bounce(depth, sample_dim::kEquiangularDistance)));
+  if (u.x < equiangular_share) {
+    t = sample_equiangular(*eq, u.y);
   } else {
     const auto ds =
-        record.sample_scatter_density(sampler.get_1d(bounce(depth, sample_dim::kDensityChannel)),
-                                      sampler.get_1d(bounce(depth, sample_dim::kDensityDistance)));
+        record.sample_scatter_density(sampler.get_1d(bounce(depth, sample_dim::kDensityChannel)), u.y);
     if (!ds) return RGB(0.0f);
     t = ds->t;
   }

@@ -3,7 +3,8 @@
 // equiangular sampling about the light (its centre, for area lights; a point on the light
 // is then sampled by solid angle from the chosen distance) and from density sampling
 // (pdf proportional to sigma_s T from the record). With DistanceSampling::kMis one of the two
-// is chosen at random (probability 1/2 each) and the sample is divided by the mixture density:
+// is chosen at random (equiangular with probability 3/4) and the sample is divided by the
+// mixture density:
 // one-sample MIS with the balance heuristic, which Veach (1997, 9.2.4) shows is the best
 // weighting in the one-sample model. Equiangular wins near the light, density where the
 // medium is thick or far from it; the cost is one light connection, as for either alone.
