@@ -178,8 +178,9 @@ TEST_F(Cli, BadScenesGiveLocatedErrorsAndNoOutput) {
        scene_with("\"render\"", R"("media": {"m": {"phase": {"type": "hg", "g": 1}}}, "render")"),
        "/media/m/phase/g"},
       {"unknown_medium",
-       scene_with("\"render\"",
-                  R"("volumes": [{"type": "sphere", "radius": 1, "medium": "mist"}], "render")"),
+       scene_with(
+           "\"render\"",
+           R"("volumes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "medium": "mist"}], "render")"),
        "/volumes/0/medium"},
   };
   write("nan.obj", "v 0 0 0\nv 1 0 0\nv nan 1 0\nf 1 2 3\n");

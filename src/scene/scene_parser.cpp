@@ -172,13 +172,8 @@ ShapeGeometry read_geometry(ObjectReader& r, const std::string& type, const std:
   }
   if (type == "box") {
     r.allow({"type", "min", "max", "material", "transform"});
-    const Vec3 lo = r.vec3("min");
-    const JsonCursor hi_c = r.required("max");
-    const Vec3 hi = hi_c.vec3();
-    if (!(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z))
-      hi_c.fail("expected max > min in every component (min is " + format_vec3(lo) + "), got " +
-                hi_c.describe());
-    return BoxShape{lo, hi};
+    const BoxCorners box = read_box_corners(r);
+    return BoxShape{box.min, box.max};
   }
   if (type == "rectangle") {
     r.allow({"type", "corner", "edge1", "edge2", "material", "transform"});

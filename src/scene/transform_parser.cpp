@@ -69,4 +69,14 @@ Transform parse_transform(const JsonCursor& c) {
   return t;
 }
 
+BoxCorners read_box_corners(ObjectReader& r) {
+  const Vec3 lo = r.vec3("min");
+  const JsonCursor hi_c = r.required("max");
+  const Vec3 hi = hi_c.vec3();
+  if (!(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z))
+    hi_c.fail("expected max > min in every component (min is " + format_vec3(lo) + "), got " +
+              hi_c.describe());
+  return {lo, hi};
+}
+
 }  // namespace caligo

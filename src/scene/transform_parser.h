@@ -1,4 +1,5 @@
-// Reading transforms and directions from scene JSON (shared by shapes, lights and volumes).
+// Reading transforms, directions and box corners from scene JSON (shared by shapes, lights
+// and volumes).
 #pragma once
 
 #include "core/transform.h"
@@ -11,5 +12,11 @@ Vec3 read_direction(const JsonCursor& c);
 // An array of operations ({"translate"}, {"rotate"}, {"scale"}, {"matrix"}) applied in the
 // order written: [op1, op2, ...] is ... * op2 * op1. Fails on a singular result.
 Transform parse_transform(const JsonCursor& c);
+
+struct BoxCorners {
+  Vec3 min, max;
+};
+// The "min" and "max" keys of a box, with max > min in every component.
+BoxCorners read_box_corners(ObjectReader& r);
 
 }  // namespace caligo

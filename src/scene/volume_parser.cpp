@@ -65,16 +65,11 @@ const VolumeShader& find_medium(const JsonCursor& c, const std::vector<NamedMedi
 
 VolumeShape parse_volume_shape(ObjectReader& r, const std::string& type, const Transform& placement) {
   if (type == "sphere") {
-    const Vec3 center = r.optional_vec3("center").value_or(Vec3());
+    const Vec3 center = r.vec3("center");
     return SphereVolumeShape{Sphere::make(center, r.number("radius", Range::positive()), placement)};
   }
-  const Vec3 lo = r.vec3("min");
-  const JsonCursor hi_c = r.required("max");
-  const Vec3 hi = hi_c.vec3();
-  if (!(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z))
-    hi_c.fail("expected max > min in every component (min is " + format_vec3(lo) + "), got " +
-              hi_c.describe());
-  return BoxVolumeShape{placement, lo, hi};
+  const BoxCorners box = read_box_corners(r);
+  return BoxVolumeShape{placement, box.min, box.max};
 }
 
 }  // namespace
