@@ -593,3 +593,79 @@ TEST(ExampleScenes, EveryFileInScenesParses) {
 
 }  // namespace
 }  // namespace caligo
+
+namespace caligo {
+namespace {
+
+TEST(SceneParser, MediaAndVolumes) {
+  const SceneDesc scene = parse_scene_text(R"json({
+    "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},
+    "render": {"max_volume_bounces": 1024},
+    "media": {
+      "fog": {"sigma_s": [0.5, 0.4, 0.3], "sigma_a": 0.1, "emission": 2, "density": 3,
+              "phase": {"type": "hg", "g": 0.3}},
+      "puff": {"sigma_s": 1, "falloff": {"exponent": 2}, "step_size": 0.05,
+               "phase": {"type": "double_hg", "g1": 0.6, "g2": -0.2, "w": 0.8}},
+      "rt": {"sigma_s": 1, "phase": {"type": "schlick", "g": 0.5}}
+    },
+    "volumes": [
+      {"type": "sphere", "center": [0, 1, 0], "radius": 2, "medium": "fog"},
+      {"type": "box", "min": [-1, -1, -1], "max": [1, 1, 1], "medium": "puff",
+       "transform": [{"translate": [0, 0, 4]}]},
+      {"type": "sphere", "center": [0, 0, 0], "radius": 1, "medium": "rt"}
+    ]
+  })json",
+                                           "vol.json", "");
+  EXPECT_EQ(scene.render.max_volume_bounces, 1024);
+  ASSERT_EQ(scene.volumes.size(), 3u);
+  const VolumeShader& fog = scene.volumes[0].shader;
+  EXPECT_EQ(fog.sigma_s, RGB(0.5f, 0.4f, 0.3f));
+  EXPECT_EQ(fog.sigma_a, RGB(0.1f));
+  EXPECT_EQ(fog.emission, RGB(2.0f));
+  EXPECT_FLOAT_EQ(fog.density, 3.0f);
+  EXPECT_FLOAT_EQ(std::get<HenyeyGreensteinPhase>(fog.phase).g, 0.3f);
+  EXPECT_TRUE(is_homogeneous(fog));
+  const auto& sphere = std::get<SphereVolumeShape>(scene.volumes[0].shape).sphere;
+  EXPECT_NEAR(sphere.object_to_world.point({0, 1, 0}).y, 3.0f, 1e-6f);  // centre (0,1,0), radius 2
+
+  const VolumeShader& puff = scene.volumes[1].shader;
+  EXPECT_FLOAT_EQ(std::get<RadialFalloffDensity>(puff.field).exponent, 2.0f);
+  EXPECT_FLOAT_EQ(puff.step_size, 0.05f);
+  EXPECT_FLOAT_EQ(std::get<DoubleHenyeyGreensteinPhase>(puff.phase).w, 0.8f);
+  const Bounds3 box = volume_bounds(scene.volumes[1].shape);
+  EXPECT_NEAR(box.lo.z, 3.0f, 1e-6f);
+  EXPECT_NEAR(box.hi.z, 5.0f, 1e-6f);
+  // Schlick given by g: k = 1.55 g - 0.55 g^3.
+  EXPECT_NEAR(std::get<SchlickPhase>(scene.volumes[2].shader.phase).k, 1.55f * 0.5f - 0.55f * 0.125f, 1e-6f);
+}
+
+TEST(SceneParser, BadMediaAreLocated) {
+  const auto error_of = [](const std::string& media, const std::string& volumes) {
+    try {
+      parse_scene_text(R"({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]}, "media": )" + media +
+                           R"(, "volumes": )" + volumes + "}",
+                       "bad.json", "");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string sphere = R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1, "medium": "m"}])";
+  EXPECT_NE(error_of(R"({"m": {"sigma_a": [1, -1, 1]}})", sphere).find("bad.json: /media/m/sigma_a"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"m": {"phase": {"type": "hg", "g": -1}}})", sphere).find("/media/m/phase/g"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"m": {"phase": {"type": "mie"}}})", sphere).find("/media/m/phase/type"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"m": {"density": -2}})", sphere).find("/media/m/density"), std::string::npos);
+  EXPECT_NE(error_of(R"({"m": {"step_size": 0}})", sphere).find("/media/m/step_size"), std::string::npos);
+  EXPECT_NE(error_of(R"({"m": {"colour": 1}})", sphere).find("/media/m/colour: unknown key"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"fog": {}})", sphere).find("/volumes/0/medium: unknown medium \"m\""),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"m": {}})", R"([{"type": "cone", "medium": "m"}])").find("/volumes/0/type"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace caligo
