@@ -69,6 +69,17 @@ RenderSettings settings_from(const RenderOptions& o, const SceneDesc& desc) {
     s.spp = *o.spp;
   }
   if (o.resolution) s.resolution = parse_resolution(*o.resolution);
+  // The film and the image hold ~100 bytes per pixel: cap the total so an absurd (but
+  // per-side valid) resolution is an input error, not an out-of-memory crash.
+  constexpr uint64_t kMaxPixels = uint64_t(1) << 26;  // 64 Mpixel, ~6.7 GB
+  const uint64_t pixels = uint64_t(s.resolution.x) * uint64_t(s.resolution.y);
+  if (pixels > kMaxPixels) {
+    const SourceLocation where =
+        o.resolution ? kCommandLine : SourceLocation{desc.file, "/camera/resolution"};
+    throw InputError(where, "resolution " + std::to_string(s.resolution.x) + "x" +
+                                std::to_string(s.resolution.y) + " has " + std::to_string(pixels) +
+                                " pixels; at most " + std::to_string(kMaxPixels) + " are allowed");
+  }
   if (o.threads) {
     if (*o.threads < 1 || *o.threads > 1024) throw InputError(kCommandLine, "--threads: expected 1 to 1024");
     s.threads = *o.threads;
