@@ -82,7 +82,7 @@ size_t BoundsIndex::size() const { return impl_->boxes.size(); }
 
 void BoundsIndex::candidates(const Ray& ray, std::vector<uint32_t>& out) const {
   out.clear();
-  if (impl_->boxes.empty()) return;
+  if (impl_->boxes.empty() || !is_finite(ray.origin) || !is_finite(ray.direction)) return;
   CandidateContext ctx;
   rtcInitIntersectContext(&ctx.context);
   ctx.out = &out;

@@ -3,6 +3,7 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <variant>
@@ -243,7 +244,14 @@ void EmbreeScene::commit() {
   impl_->throw_if_error();
 }
 
+// Embree asserts (or misbehaves) on rays with non-finite components; such a ray comes only
+// from a degenerate computation upstream and is treated as hitting nothing.
+static bool valid_ray(const Ray& ray) {
+  return is_finite(ray.origin) && is_finite(ray.direction) && !std::isnan(ray.tmin);
+}
+
 std::optional<SurfaceHit> EmbreeScene::intersect(const Ray& ray) const {
+  if (!valid_ray(ray)) return std::nullopt;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh = to_embree(ray);
@@ -259,6 +267,7 @@ std::optional<SurfaceHit> EmbreeScene::intersect(const Ray& ray) const {
 }
 
 bool EmbreeScene::occluded(const Ray& ray) const {
+  if (!valid_ray(ray)) return true;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRay r = to_embree(ray).ray;
@@ -268,6 +277,7 @@ bool EmbreeScene::occluded(const Ray& ray) const {
 
 void EmbreeScene::all_hits(const Ray& ray, std::vector<SurfaceHit>& out) const {
   out.clear();
+  if (!valid_ray(ray)) return;
   AllHitsContext ctx;
   rtcInitIntersectContext(&ctx.context);
   ctx.context.filter = collect_hit;

@@ -171,6 +171,9 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
   PathState state;
   const bool has_volumes = !scene.volumes().empty();
   for (;;) {
+    // A degenerate computation upstream (a NaN direction or weight) ends the path here
+    // rather than poisoning the pixel; the film drops non-finite samples too.
+    if (!is_finite(ray.direction) || !state.throughput.is_finite()) break;
     const auto hit = nearest_opaque_hit(scene, ray, settings, counters);
     if (has_volumes) {
       const SegmentOutcome outcome = integrate_medium(scene, ray, hit ? hit->t : kInfinity, sampler, settings,

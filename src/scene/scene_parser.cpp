@@ -168,7 +168,7 @@ ShapeGeometry read_geometry(ObjectReader& r, const std::string& type, const std:
   if (type == "sphere") {
     r.allow({"type", "center", "radius", "material", "transform"});
     const Vec3 center = r.vec3("center");
-    return SphereShape{center, r.number("radius", Range::positive())};
+    return SphereShape{center, r.number("radius", size_range())};
   }
   if (type == "box") {
     r.allow({"type", "min", "max", "material", "transform"});
@@ -242,7 +242,7 @@ SphereLight read_sphere_light(ObjectReader& r) {
   r.allow({"type", "center", "radius", "two_sided", "color", "radiance", "power"});
   SphereLight light;
   light.center = r.vec3("center");
-  light.radius = r.number("radius", Range::positive());
+  light.radius = r.number("radius", size_range());
   light.two_sided = r.boolean_or("two_sided", false);
   const float area = 4.0f * kPi * sqr(light.radius);
   const float sides = light.two_sided ? 2.0f : 1.0f;

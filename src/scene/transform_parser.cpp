@@ -1,5 +1,7 @@
 #include "scene/transform_parser.h"
 
+#include <cmath>
+
 #include <nlohmann/json.hpp>
 
 #include "core/math.h"
@@ -27,6 +29,9 @@ Transform parse_scale(const JsonCursor& c) {
   const Vec3 s = c.is_number() ? Vec3(c.number()) : c.vec3();
   if (s.x == 0.0f || s.y == 0.0f || s.z == 0.0f)
     c.fail("expected non-zero scale factors, got " + c.describe() + " (it would flatten the object)");
+  for (int a = 0; a < 3; ++a)
+    if (std::abs(s[a]) < 1e-6f || std::abs(s[a]) > 1e6f)
+      c.fail("expected scale factors of magnitude in [1e-06, 1e+06], got " + c.describe());
   return Transform::scale(s);
 }
 
@@ -76,6 +81,11 @@ BoxCorners read_box_corners(ObjectReader& r) {
   if (!(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z))
     hi_c.fail("expected max > min in every component (min is " + format_vec3(lo) + "), got " +
               hi_c.describe());
+  const Vec3 extent = hi - lo;
+  for (int a = 0; a < 3; ++a)
+    if (!size_range().contains(extent[a]))
+      hi_c.fail("expected a box extent " + size_range().describe() + " m in every axis, got " +
+                format_vec3(extent));
   return {lo, hi};
 }
 

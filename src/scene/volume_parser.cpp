@@ -66,7 +66,7 @@ const VolumeShader& find_medium(const JsonCursor& c, const std::vector<NamedMedi
 VolumeShape parse_volume_shape(ObjectReader& r, const std::string& type, const Transform& placement) {
   if (type == "sphere") {
     const Vec3 center = r.vec3("center");
-    return SphereVolumeShape{Sphere::make(center, r.number("radius", Range::positive()), placement)};
+    return SphereVolumeShape{Sphere::make(center, r.number("radius", size_range()), placement)};
   }
   const BoxCorners box = read_box_corners(r);
   return BoxVolumeShape{placement, box.min, box.max};
