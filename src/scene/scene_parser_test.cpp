@@ -286,9 +286,9 @@ const BadCase kBadCases[] = {
     {"TooLargeForFloat", [](OJson& s) { s["shapes"][0]["radius"] = 1e39; }, "/shapes/0/radius",
      "expected a finite number, got 1e+39 (too large for a 32-bit float)"},
     {"NegativeRadius", [](OJson& s) { s["shapes"][0]["radius"] = -1; }, "/shapes/0/radius",
-     "expected a number > 0, got -1"},
+     "expected a number in [1e-06, 10000000], got -1"},
     {"ZeroRadius", [](OJson& s) { s["shapes"][0]["radius"] = 0; }, "/shapes/0/radius",
-     "expected a number > 0, got 0"},
+     "expected a number in [1e-06, 10000000], got 0"},
     {"FlatBox",
      [](OJson& s) {
        s["shapes"][1]["max"] = {1, 0, 1};
@@ -418,9 +418,16 @@ const BadCase kBadCases[] = {
      "/shapes/0/transform/0/matrix", "expected the last row to be [0, 0, 0, 1]"},
     {"NearlyFlatTransform",
      [](OJson& s) {
-       s["shapes"][0]["transform"] = {{{"scale", {1, 1e-20, 1}}}};
+       // Each factor is allowed; their product is not.
+       s["shapes"][0]["transform"] = {
+           {{"scale", {1, 1e-5, 1}}}, {{"scale", {1, 1e-5, 1}}}, {{"scale", {1, 1e-5, 1}}}};
      },
      "/shapes/0/transform", "expected an invertible transform"},
+    {"TinyScale",
+     [](OJson& s) {
+       s["shapes"][0]["transform"] = {{{"scale", {1, 1e-20, 1}}}};
+     },
+     "/shapes/0/transform/0/scale", "expected scale factors of magnitude in [1e-06, 1e+06]"},
     {"ZeroScale",
      [](OJson& s) {
        s["shapes"][0]["transform"] = {{{"scale", {1, 0, 1}}}};
