@@ -1,6 +1,7 @@
-// Per-thread bump allocation for per-ray scratch data (hit lists, and in later stages
-// interval lists and transmittance records): a ray's buffers come from its thread's arena
-// and are released all at once with reset(), so the hot loop never calls malloc.
+// Per-thread bump allocation: buffers come from a thread's arena and are released all at
+// once with reset(), so a hot loop never calls malloc. Not used by the renderer yet (its
+// per-ray buffers are per-thread reusable vectors, see PathScratch); meant for the pooled
+// interval lists of mesh and grid volumes in later stages.
 #pragma once
 
 #include <cstddef>

@@ -160,11 +160,4 @@ RGB escaped_radiance(const Light& light, Vec3 w) {
   return RGB(0.0f);
 }
 
-RGB area_light_radiance(const Light& light, Vec3 n, Vec3 w) {
-  if (const auto* s = std::get_if<SphereLight>(&light)) return one_sided(s->radiance, s->two_sided, n, w);
-  if (const auto* q = std::get_if<QuadLight>(&light)) return one_sided(q->radiance, q->two_sided, n, w);
-  if (const auto* t = std::get_if<TriangleLight>(&light)) return one_sided(t->radiance, t->two_sided, n, w);
-  return RGB(0.0f);
-}
-
 }  // namespace caligo

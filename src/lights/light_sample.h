@@ -31,7 +31,4 @@ float light_pdf(const Light& light, Vec3 receiver, Vec3 wi, Vec3 on_light, Vec3 
 // Radiance a ray leaving the scene in direction `w` receives from a light at infinity.
 RGB escaped_radiance(const Light& light, Vec3 w);
 
-// Radiance leaving an area light's surface at a point with unit normal n towards direction w.
-RGB area_light_radiance(const Light& light, Vec3 n, Vec3 w);
-
 }  // namespace caligo

@@ -34,13 +34,12 @@ StepCoefficients shade_span(const VolumeScene& volumes, std::span<const uint32_t
 // Radiance emitted over a step of length dt, seen through transmittance T0 at its start:
 // integral of T0 e^{-sigma_t s} emission ds over [0, dt].
 RGB integrate_emission(RGB t0, RGB sigma_t, RGB emission, float dt) {
-  RGB out;
-  for (int c = 0; c < 3; ++c) {
+  const auto channel = [&](int c) {
     const float st = sigma_t[c];
     const float f = st * dt > 1e-6f ? -std::expm1(-st * dt) / st : dt;
-    (c == 0 ? out.r : c == 1 ? out.g : out.b) = t0[c] * emission[c] * f;
-  }
-  return out;
+    return t0[c] * emission[c] * f;
+  };
+  return {channel(0), channel(1), channel(2)};
 }
 
 int steps_for_span(const VolumeScene& volumes, std::span<const uint32_t> primitives, float length_m,
