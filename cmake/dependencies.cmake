@@ -10,6 +10,10 @@ find_package(fmt CONFIG REQUIRED)
 find_package(tinyobjloader CONFIG REQUIRED)
 find_package(TinyGLTF CONFIG REQUIRED)
 find_package(Threads REQUIRED)
+# xsimd 8.1 (header-only) vectorises the real-time passes. Its exported target links an
+# `xtl` library that Debian's package does not need or ship: drop the link.
+find_package(xsimd CONFIG REQUIRED)
+set_target_properties(xsimd PROPERTIES INTERFACE_LINK_LIBRARIES "")
 if(CALIGO_BUILD_TESTS)
   find_package(GTest CONFIG REQUIRED)
 endif()

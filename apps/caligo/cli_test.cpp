@@ -230,3 +230,58 @@ TEST_F(Cli, BadCommandLinesExitWithTwo) {
 }
 
 }  // namespace
+
+// ---- caligo realtime ----
+
+const char* kSmallRealtimeScene = R"({
+  "camera": {"position": [0, 1.5, 5], "look_at": [0, 1, 0], "resolution": [64, 48],
+             "path": {"keys": [{"time": 0, "position": [0, 1.5, 5], "look_at": [0, 1, 0]},
+                               {"time": 1, "position": [1, 1.5, 5], "look_at": [0, 1, 0]}]}},
+  "materials": {"grey": {"type": "diffuse", "reflectance": 0.5}},
+  "shapes": [{"type": "rectangle", "corner": [-4, 0, -4], "edge1": [0, 0, 8], "edge2": [8, 0, 0], "material": "grey"}],
+  "lights": [{"type": "spot", "position": [0, 3, 0], "look_at": [0, 0, 0], "inner_angle": 15, "outer_angle": 25,
+              "intensity": 20}],
+  "media": {"fog": {"sigma_s": 0.2}},
+  "volumes": [{"type": "box", "min": [-4, 0, -4], "max": [4, 4, 4], "medium": "fog"}]
+})";
+
+TEST_F(Cli, RealtimeWritesFramesAndPrintsThePassTable) {
+  const fs::path scene = write("rt.json", kSmallRealtimeScene);
+  const RunResult r = run("realtime " + scene.string() + " --frames 4 --warmup 1 -o " + (dir_ / "frames").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (int i = 0; i < 4; ++i) EXPECT_TRUE(fs::exists(dir_ / "frames" / ("frame_000" + std::to_string(i) + ".png")));
+  for (const char* pass : {"depth", "shadow maps", "accumulation", "light 0 (spot)", "gather", "upsample",
+                           "temporal", "composite", "total"})
+    EXPECT_NE(r.out.find(pass), std::string::npos) << pass;
+  EXPECT_NE(r.out.find("caligo realtime:"), std::string::npos);
+}
+
+TEST_F(Cli, RealtimeWritesAnAnimatedGif) {
+  const fs::path scene = write("rt.json", kSmallRealtimeScene);
+  const RunResult r = run("realtime " + scene.string() + " --frames 3 -q -o " + (dir_ / "anim.gif").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_GT(fs::file_size(dir_ / "anim.gif"), 100u);
+}
+
+TEST_F(Cli, RealtimeComparesWithTheReference) {
+  const fs::path scene = write("rt.json", kSmallRealtimeScene);
+  const RunResult r = run("realtime " + scene.string() + " --frames 2 -q --reference-spp 4 --compare-reference -o " +
+                          (dir_ / "last.png").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("relative RMSE"), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir_ / "last.comparison.png"));
+}
+
+TEST_F(Cli, RealtimeRejectsBadOptionsBeforeRendering) {
+  const fs::path scene = write("rt.json", kSmallRealtimeScene);
+  for (const std::string& bad : {std::string("--scale eighth"), std::string("--frames 0"), std::string("--samples 0"),
+                                 std::string("--ms-floor 2"), std::string("--method magic"),
+                                 std::string("--scene-buffers gpu"), std::string("--res 0x10")}) {
+    const RunResult r = run("realtime " + scene.string() + " " + bad);
+    EXPECT_EQ(r.exit_code, 2) << bad;
+    EXPECT_NE(r.err.find("caligo: error: command line"), std::string::npos) << bad << ": " << r.err;
+  }
+  const RunResult missing = run("realtime " + scene.string() + " -o " + (dir_ / "no" / "such" / "x.gif").string());
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("does not exist"), std::string::npos);
+}

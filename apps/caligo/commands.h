@@ -4,6 +4,9 @@
 #include <optional>
 #include <string>
 
+#include "core/error.h"
+#include "scene/scene_desc.h"
+
 namespace CLI {
 class App;
 }
@@ -30,7 +33,38 @@ struct CompareOptions {
   std::optional<double> max_rmse;
 };
 
+struct RealtimeOptions {
+  std::string scene;
+  std::string output;  // a folder for frames, a .gif, or a .png/.exr for the last frame only
+  std::optional<int> frames;
+  std::optional<std::string> resolution;
+  std::optional<std::string> scale;          // full, half, quarter
+  std::string method = "march";              // the Lords of the Fallen ray marcher
+  std::string scene_buffers = "raster";      // raster or embree
+  std::optional<int> samples;
+  std::optional<int> tile_size;
+  std::optional<int> gather_radius;
+  std::optional<float> ms_floor;
+  std::optional<bool> temporal;
+  int warmup = 3;
+  bool exr = false;
+  bool scalar = false;
+  bool compare_reference = false;
+  int reference_spp = 256;
+  float exposure = 0.0f;
+  bool quiet = false;
+};
+
+inline const SourceLocation kCommandLine{"command line", ""};
+
+// A scene file or a built-in's name; InputError when it is neither.
+SceneDesc load_scene(const std::string& name);
+// "WxH" of --res; InputError otherwise.
+Vec2i parse_resolution(const std::string& text);
+
 void add_render_command(CLI::App& app, RenderOptions& options);
+void add_realtime_command(CLI::App& app, RealtimeOptions& options);
+int run_realtime(const RealtimeOptions& options);
 void add_compare_command(CLI::App& app, CompareOptions& options);
 int run_render(const RenderOptions& options);
 int run_compare(const CompareOptions& options);

@@ -23,7 +23,9 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   caligo::RenderOptions render;
   caligo::CompareOptions compare;
+  caligo::RealtimeOptions realtime;
   caligo::add_render_command(app, render);
+  caligo::add_realtime_command(app, realtime);
   caligo::add_compare_command(app, compare);
   // CLI11 would only say "a subcommand is required" for a misspelt one.
   const auto is_command = [&app](const std::string& name) {
@@ -32,7 +34,7 @@ int main(int argc, char** argv) {
     return false;
   };
   if (argc > 1 && argv[1][0] != '-' && !is_command(argv[1])) {
-    std::fprintf(stderr, "caligo: error: unknown command \"%s\" (commands: render, compare)\n", argv[1]);
+    std::fprintf(stderr, "caligo: error: unknown command \"%s\" (commands: render, realtime, compare)\n", argv[1]);
     return caligo::kExitInputError;
   }
   try {
@@ -51,6 +53,7 @@ int main(int argc, char** argv) {
   try {
     if (app.got_subcommand("render")) return caligo::run_render(render);
     if (app.got_subcommand("compare")) return caligo::run_compare(compare);
+    if (app.got_subcommand("realtime")) return caligo::run_realtime(realtime);
   } catch (const caligo::InputError& e) {
     return print_error(e.what(), caligo::kExitInputError);
   } catch (const std::exception& e) {

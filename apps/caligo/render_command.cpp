@@ -37,31 +37,6 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
 
 namespace {
 
-const SourceLocation kCommandLine{"command line", ""};
-
-Vec2i parse_resolution(const std::string& text) {
-  int w = 0, h = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X'))
-    throw InputError(kCommandLine, "--res: expected WxH such as 640x480, got \"" + text + "\"");
-  if (w < 1 || h < 1 || w > 16384 || h > 16384)
-    throw InputError(kCommandLine, "--res: each side must be between 1 and 16384, got \"" + text + "\"");
-  return {w, h};
-}
-
-SceneDesc load_scene(const std::string& name) {
-  if (name.empty()) throw InputError(kCommandLine, "no scene given (a .json file or a built-in name)");
-  if (const BuiltinScene* builtin = find_builtin(name))
-    return parse_scene_text(builtin->json, "builtin:" + builtin->name, ".");
-  if (!std::filesystem::exists(name)) {
-    std::string names;
-    for (const BuiltinScene& b : builtin_scenes()) names += (names.empty() ? "" : ", ") + b.name;
-    throw InputError(SourceLocation{name, ""},
-                     "no such scene file, and no built-in of that name (built-ins: " + names + ")");
-  }
-  return parse_scene_file(name);
-}
-
 RenderSettings settings_from(const RenderOptions& o, const SceneDesc& desc) {
   RenderSettings s = default_settings(desc);
   if (o.spp) {

@@ -14,4 +14,9 @@ namespace caligo {
 // OpenImageIO's message when writing fails; `path` is then untouched.
 void write_png(const std::string& path, int width, int height, const std::vector<uint8_t>& rgb8);
 
+// Writes an animated GIF (OpenImageIO's GIF writer, one subimage per frame, palette per
+// frame), atomically like write_png. Every frame holds width * height * 3 bytes.
+void write_gif(const std::string& path, int width, int height, const std::vector<std::vector<uint8_t>>& frames,
+               float frames_per_second);
+
 }  // namespace caligo

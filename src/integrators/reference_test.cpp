@@ -22,7 +22,7 @@ constexpr Vec3 kNearbyPoint{0.9f, 1.6f, -1.6f};
 
 VolumeShader shader(RGB sigma_a, RGB sigma_s, PhaseFunction phase = IsotropicPhase{},
                     DensityField field = ConstantDensity{}, float density = 1.0f, float step_size = 0.0f) {
-  return VolumeShader{sigma_a, sigma_s, RGB(0.0f), density, phase, field, step_size};
+  return VolumeShader{sigma_a, sigma_s, RGB(0.0f), density, phase, field, std::nullopt, step_size};
 }
 
 VolumePrimitive sphere_volume(Vec3 center, float radius, const VolumeShader& s) {

@@ -12,15 +12,21 @@ namespace {
 
 using sample_dim::bounce;
 
-// The point equiangular sampling aims at, for lights that have one.
-std::optional<Vec3> light_centre(const Light& light) {
-  if (const auto* l = std::get_if<PointLight>(&light)) return l->position;
-  if (const auto* l = std::get_if<SpotLight>(&light)) return l->position;
-  if (const auto* l = std::get_if<SphereLight>(&light)) return l->center;
-  if (const auto* l = std::get_if<QuadLight>(&light)) return l->corner + (l->edge1 + l->edge2) * 0.5f;
-  if (const auto* l = std::get_if<TriangleLight>(&light)) return (l->p0 + l->p1 + l->p2) / 3.0f;
-  return std::nullopt;
-}
+// The point equiangular sampling aims at, for lights that have one. Parallel light (box,
+// directional) and the environment have no centre: their in-scattering does not peak near
+// a point, so density sampling serves them.
+struct LightCentre {
+  std::optional<Vec3> operator()(const PointLight& l) const { return l.position; }
+  std::optional<Vec3> operator()(const SpotLight& l) const { return l.position; }
+  std::optional<Vec3> operator()(const SphereLight& l) const { return l.center; }
+  std::optional<Vec3> operator()(const QuadLight& l) const { return l.corner + (l.edge1 + l.edge2) * 0.5f; }
+  std::optional<Vec3> operator()(const TriangleLight& l) const { return (l.p0 + l.p1 + l.p2) / 3.0f; }
+  std::optional<Vec3> operator()(const BoxLight&) const { return std::nullopt; }
+  std::optional<Vec3> operator()(const DirectionalLight&) const { return std::nullopt; }
+  std::optional<Vec3> operator()(const EnvironmentLight&) const { return std::nullopt; }
+};
+
+std::optional<Vec3> light_centre(const Light& light) { return std::visit(LightCentre{}, light); }
 
 // f(t) / p_light: the light arriving at x(t) and scattered back along the ray, for one light
 // sample at x(t), before dividing by the distance pdf.

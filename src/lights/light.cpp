@@ -3,6 +3,8 @@
 #include <cmath>
 
 #include "core/math.h"
+#include "lights/gobo.h"
+#include "lights/ies.h"
 
 namespace caligo {
 namespace {
@@ -10,24 +12,46 @@ namespace {
 struct IsDelta {
   bool operator()(const PointLight&) const { return true; }
   bool operator()(const SpotLight&) const { return true; }
+  bool operator()(const BoxLight&) const { return true; }
   bool operator()(const DirectionalLight& l) const { return l.cos_angular_radius >= 1.0f; }
-  bool operator()(const auto&) const { return false; }
+  bool operator()(const SphereLight&) const { return false; }
+  bool operator()(const QuadLight&) const { return false; }
+  bool operator()(const TriangleLight&) const { return false; }
+  bool operator()(const EnvironmentLight&) const { return false; }
 };
 
+// A box light is parallel light but bounded: its rays start on a face in the scene, so it
+// is not "at infinity" (no escaped radiance, finite shadow rays).
 struct IsInfinite {
   bool operator()(const DirectionalLight&) const { return true; }
   bool operator()(const EnvironmentLight&) const { return true; }
-  bool operator()(const auto&) const { return false; }
+  bool operator()(const PointLight&) const { return false; }
+  bool operator()(const SpotLight&) const { return false; }
+  bool operator()(const BoxLight&) const { return false; }
+  bool operator()(const SphereLight&) const { return false; }
+  bool operator()(const QuadLight&) const { return false; }
+  bool operator()(const TriangleLight&) const { return false; }
 };
+
+float ies_mean(const IesAttachment& ies) { return ies.profile ? ies.profile->mean() : 1.0f; }
+float gobo_mean(const Gobo& gobo) { return gobo.image ? gobo.image->mean().average() : 1.0f; }
 
 float parallelogram_area(Vec3 e1, Vec3 e2) { return length(cross(e1, e2)); }
 
 struct Power {
-  float operator()(const PointLight& l) const { return 4.0f * kPi * l.intensity.average(); }
+  // Powers here only weight the choice of a light, so range windows are ignored and the IES
+  // profile and gobo enter through their means (for a spot, an approximation: the profile's
+  // mean over the sphere is not its mean over the cone).
+  float operator()(const PointLight& l) const { return 4.0f * kPi * l.intensity.average() * ies_mean(l.ies); }
   // The smoothstep falloff integrates to the cone midway between inner and outer (pbrt-v4's
   // approximation; exact for a linear ramp in cos theta).
   float operator()(const SpotLight& l) const {
-    return 2.0f * kPi * (1.0f - 0.5f * (l.cos_inner + l.cos_outer)) * l.intensity.average();
+    return 2.0f * kPi * (1.0f - 0.5f * (l.cos_inner + l.cos_outer)) * l.intensity.average() *
+           ies_mean(l.ies) * gobo_mean(l.gobo);
+  }
+  // Irradiance times the emitting face's area.
+  float operator()(const BoxLight& l) const {
+    return 4.0f * l.half_width * l.half_height * l.irradiance.average() * gobo_mean(l.gobo);
   }
   float operator()(const SphereLight& l) const {
     return (l.two_sided ? 2.0f : 1.0f) * kPi * 4.0f * kPi * sqr(l.radius) * l.radiance.average();

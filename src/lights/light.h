@@ -10,27 +10,77 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <variant>
 #include <vector>
 
 #include "core/bounds.h"
+#include "core/math.h"
 #include "core/rgb.h"
 #include "core/vec.h"
 
 namespace caligo {
 
+class GoboImage;   // lights/gobo.h
+class IesProfile;  // lights/ies.h
+
+// A projector texture (gobo, cookie) that multiplies a spot or box light's emission by the
+// colour at a texture coordinate. Texture coordinates are rotated by `rotation` about the
+// image centre, then shifted by `offset` (both in texture units, wrapping). `scroll` and
+// `spin` animate them (per second); SceneDesc::at_time folds them into offset and rotation.
+struct Gobo {
+  std::shared_ptr<const GoboImage> image;  // null: no gobo
+  Vec2 offset;
+  float rotation = 0.0f;  // radians
+  Vec2 scroll;            // texture units per second
+  float spin = 0.0f;      // radians per second
+};
+
+// A photometric (IES LM-63) intensity profile. Vertical angle 0 points along `axis`
+// (photometric nadir); horizontal angle 0 lies along Frame::from_z(axis).s.
+struct IesAttachment {
+  std::shared_ptr<const IesProfile> profile;  // null: no profile
+  Vec3 axis{0.0f, -1.0f, 0.0f};               // unit
+};
+
+// The windowed inverse square of game engines: emission is scaled by
+// (1 - (d / range)^4)^2 for d < range and 0 beyond, so the light's influence is a bounded
+// sphere (the seed's "attenuation range"). range = infinity keeps the pure inverse square.
 struct PointLight {
   Vec3 position;
   RGB intensity;  // W/sr
+  float range = kInfinity;
+  IesAttachment ies;
 };
 
 // Smooth falloff between the inner and outer cone (smoothstep in cos theta), as in pbrt-v4.
+// The gobo is projected through the outer cone: the square texture spans tan(outer angle).
 struct SpotLight {
   Vec3 position;
   Vec3 direction;  // unit, the cone axis
   float cos_inner = 1.0f;
   float cos_outer = 0.0f;
   RGB intensity;  // W/sr on the axis
+  float range = kInfinity;
+  Vec3 up{0.0f, 1.0f, 0.0f};  // unit, perpendicular to direction: the gobo's +v axis
+  Gobo gobo;
+  IesAttachment ies;
+};
+
+// The seed's "box light": parallel light filling an oriented box. The emitting face is the
+// rectangle centred at `position`, spanned by right * [-half_width, half_width] and
+// up * [-half_height, half_height] with right = cross(direction, up); light travels along
+// `direction` for `range` metres and stops there.
+// A delta light: every point inside the box receives `irradiance` from -direction.
+// The gobo maps the emitting face to [0,1]^2.
+struct BoxLight {
+  Vec3 position;
+  Vec3 direction;  // unit
+  Vec3 up;         // unit, perpendicular to direction
+  float half_width = 1.0f, half_height = 1.0f;
+  float range = 10.0f;
+  RGB irradiance;  // W/m^2 on a surface facing the light
+  Gobo gobo;
 };
 
 // A spherical emitter, sampled by the cone it subtends (uniform area sampling from inside).
@@ -74,7 +124,7 @@ struct TriangleLight {
 };
 
 using Light = std::variant<PointLight, SpotLight, SphereLight, QuadLight, DirectionalLight, EnvironmentLight,
-                           TriangleLight>;
+                           TriangleLight, BoxLight>;
 
 // True for lights with no area or solid angle (a BSDF-sampled ray can never hit them).
 bool is_delta(const Light& light);

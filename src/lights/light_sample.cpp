@@ -4,6 +4,7 @@
 
 #include "core/math.h"
 #include "core/sampling.h"
+#include "lights/light_profile.h"
 
 namespace caligo {
 namespace {
@@ -32,8 +33,10 @@ std::optional<LightSample> sample_area_point(Vec3 receiver, Vec3 p, Vec3 n, floa
   return LightSample{emitted_towards_receiver, wi, dist, pdf, false};
 }
 
-float spot_falloff(const SpotLight& l, Vec3 w_from_light) {
-  return smoothstep(l.cos_outer, l.cos_inner, dot(l.direction, w_from_light));
+// Delta lights go through delta_arrival, the function the real-time passes call too.
+std::optional<LightSample> from_arrival(std::optional<DeltaArrival> a) {
+  if (!a) return std::nullopt;
+  return LightSample{a->radiance, a->wi, a->distance, 1.0f, true};
 }
 
 // Uniform cone sampling of the directions a sphere subtends; from inside, uniform area sampling.
@@ -64,21 +67,14 @@ struct Sample {
   Vec2 u;
 
   std::optional<LightSample> operator()(const PointLight& l) const {
-    const Vec3 d = l.position - receiver;
-    const float dist2 = length_squared(d);
-    if (!(dist2 > 0.0f)) return std::nullopt;
-    const float dist = std::sqrt(dist2);
-    return LightSample{l.intensity / dist2, d / dist, dist, 1.0f, true};
+    return from_arrival(delta_arrival(l, receiver));
   }
   std::optional<LightSample> operator()(const SpotLight& l) const {
-    const Vec3 d = l.position - receiver;
-    const float dist2 = length_squared(d);
-    if (!(dist2 > 0.0f)) return std::nullopt;
-    const float dist = std::sqrt(dist2);
-    const Vec3 wi = d / dist;
-    const float falloff = spot_falloff(l, -wi);
-    if (falloff <= 0.0f) return std::nullopt;
-    return LightSample{l.intensity * (falloff / dist2), wi, dist, 1.0f, true};
+    return from_arrival(delta_arrival(l, receiver));
+  }
+  // The shadow ray ends on the emitting face (distance = depth inside the box).
+  std::optional<LightSample> operator()(const BoxLight& l) const {
+    return from_arrival(delta_arrival(l, receiver));
   }
   std::optional<LightSample> operator()(const SphereLight& l) const { return sample_sphere(l, receiver, u); }
   std::optional<LightSample> operator()(const QuadLight& l) const {
@@ -112,6 +108,7 @@ struct Pdf {
 
   float operator()(const PointLight&) const { return 0.0f; }
   float operator()(const SpotLight&) const { return 0.0f; }
+  float operator()(const BoxLight&) const { return 0.0f; }
   float operator()(const SphereLight& l) const {
     const float dist2 = length_squared(l.center - receiver);
     const float r2 = sqr(l.radius);
@@ -140,6 +137,23 @@ RGB sun_radiance(const DirectionalLight& l) {
   return l.irradiance / (kPi * sin2);
 }
 
+// Only lights at infinity are seen by rays leaving the scene; a delta sun cannot be hit.
+struct Escaped {
+  Vec3 w;
+
+  RGB operator()(const EnvironmentLight& l) const { return l.radiance; }
+  RGB operator()(const DirectionalLight& l) const {
+    if (l.cos_angular_radius >= 1.0f || dot(-l.direction, w) < l.cos_angular_radius) return RGB(0.0f);
+    return sun_radiance(l);
+  }
+  RGB operator()(const PointLight&) const { return RGB(0.0f); }
+  RGB operator()(const SpotLight&) const { return RGB(0.0f); }
+  RGB operator()(const BoxLight&) const { return RGB(0.0f); }
+  RGB operator()(const SphereLight&) const { return RGB(0.0f); }
+  RGB operator()(const QuadLight&) const { return RGB(0.0f); }
+  RGB operator()(const TriangleLight&) const { return RGB(0.0f); }
+};
+
 }  // namespace
 
 std::optional<LightSample> sample_light(const Light& light, Vec3 receiver, Vec2 u) {
@@ -150,14 +164,6 @@ float light_pdf(const Light& light, Vec3 receiver, Vec3 wi, Vec3 on_light, Vec3 
   return std::visit(Pdf{receiver, wi, on_light, light_normal}, light);
 }
 
-RGB escaped_radiance(const Light& light, Vec3 w) {
-  if (const auto* env = std::get_if<EnvironmentLight>(&light)) return env->radiance;
-  if (const auto* sun = std::get_if<DirectionalLight>(&light)) {
-    if (sun->cos_angular_radius >= 1.0f || dot(-sun->direction, w) < sun->cos_angular_radius)
-      return RGB(0.0f);
-    return sun_radiance(*sun);
-  }
-  return RGB(0.0f);
-}
+RGB escaped_radiance(const Light& light, Vec3 w) { return std::visit(Escaped{w}, light); }
 
 }  // namespace caligo

@@ -155,6 +155,17 @@ TEST(Light, Classification) {
   EXPECT_FALSE(is_delta(QuadLight{}));
   EXPECT_TRUE(is_infinite(EnvironmentLight{}));
   EXPECT_FALSE(is_infinite(SphereLight{}));
+  // A box light is parallel light that starts inside the scene: delta, but not at infinity.
+  EXPECT_TRUE(is_delta(BoxLight{}));
+  EXPECT_FALSE(is_infinite(BoxLight{}));
+  EXPECT_TRUE(is_delta(SpotLight{}));
+  EXPECT_TRUE(is_infinite(DirectionalLight{}));
+}
+
+TEST(Light, EscapedRadianceComesOnlyFromLightsAtInfinity) {
+  EXPECT_EQ(escaped_radiance(BoxLight{{}, {0, -1, 0}, {0, 0, 1}, 1, 1, 10, RGB(3.0f)}, {0, 1, 0}), RGB(0.0f));
+  EXPECT_EQ(escaped_radiance(EnvironmentLight{RGB(2.0f)}, {0, 1, 0}), RGB(2.0f));
+  EXPECT_EQ(light_pdf(BoxLight{}, {}, {0, 1, 0}, {}, {}), 0.0f);
 }
 
 }  // namespace

@@ -85,7 +85,10 @@ void for_each_step(const VolumeScene& volumes, const Ray& ray, float jitter, con
 float primitive_step_size(const VolumePrimitive& primitive, const MarchSettings& settings) {
   if (is_homogeneous(primitive.shader)) return kInfinity;
   if (primitive.shader.step_size > 0.0f) return primitive.shader.step_size;
-  return settings.auto_step_fraction * length(volume_bounds(primitive.shape).diagonal());
+  const float automatic = settings.auto_step_fraction * length(volume_bounds(primitive.shape).diagonal());
+  // Noise varies over one lattice cell (1 / scale metres) whatever the primitive's size.
+  if (primitive.shader.noise) return std::min(automatic, 0.25f / primitive.shader.noise->scale);
+  return automatic;
 }
 
 void march(const VolumeScene& volumes, const Ray& ray, float jitter, const MarchSettings& settings,

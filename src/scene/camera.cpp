@@ -7,6 +7,7 @@ namespace caligo {
 Camera::Camera(const CameraDesc& desc, Vec2i resolution)
     : camera_to_world_(Transform::look_at(desc.position, desc.look_at, desc.up)),
       forward_(normalize(desc.look_at - desc.position)),
+      up_(desc.up),
       resolution_(resolution),
       tan_half_fov_(std::tan(0.5f * radians(desc.fov_degrees))),
       aspect_(float(resolution.x) / float(resolution.y)) {}

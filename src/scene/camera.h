@@ -18,10 +18,14 @@ class Camera {
   // Distance along the viewing axis (EXR "Z") of the point at parameter t on a camera ray.
   float depth(const Ray& camera_ray, float t) const { return t * dot(camera_ray.direction, forward_); }
   Vec3 position() const { return camera_to_world_.point({}); }
+  Vec3 forward() const { return forward_; }
+  Vec3 up_hint() const { return up_; }
+  float tan_half_fov() const { return tan_half_fov_; }
 
  private:
   Transform camera_to_world_;
   Vec3 forward_;
+  Vec3 up_;
   Vec2i resolution_;
   float tan_half_fov_;
   float aspect_;

@@ -47,6 +47,43 @@ struct ShapeMesh {
   TriangleMesh operator()(const SphereShape&) const { throw std::logic_error("spheres are not meshed"); }
 };
 
+// The geometry that makes a light visible to camera and BSDF rays. Delta lights (point,
+// spot, box, delta sun) and lights at infinity have none; triangle lights come with their mesh.
+struct LightGeometry {
+  const char* kind;
+  RGB radiance;
+  bool two_sided;
+  std::variant<Sphere, TriangleMesh> shape;
+};
+
+struct VisibleLight {
+  std::optional<LightGeometry> operator()(const SphereLight& s) const {
+    return LightGeometry{"sphere", s.radiance, s.two_sided, Sphere::make(s.center, s.radius, {})};
+  }
+  std::optional<LightGeometry> operator()(const QuadLight& q) const {
+    return LightGeometry{"quad", q.radiance, q.two_sided, rectangle_mesh(q.corner, q.edge1, q.edge2)};
+  }
+  std::optional<LightGeometry> operator()(const PointLight&) const { return std::nullopt; }
+  std::optional<LightGeometry> operator()(const SpotLight&) const { return std::nullopt; }
+  std::optional<LightGeometry> operator()(const BoxLight&) const { return std::nullopt; }
+  std::optional<LightGeometry> operator()(const DirectionalLight&) const { return std::nullopt; }
+  std::optional<LightGeometry> operator()(const EnvironmentLight&) const { return std::nullopt; }
+  std::optional<LightGeometry> operator()(const TriangleLight&) const { return std::nullopt; }
+};
+
+// Lights at infinity need the scene's size for power(); the others ignore it.
+struct SetSceneRadius {
+  float radius;
+  void operator()(DirectionalLight& l) const { l.scene_radius = radius; }
+  void operator()(EnvironmentLight& l) const { l.scene_radius = radius; }
+  void operator()(PointLight&) const {}
+  void operator()(SpotLight&) const {}
+  void operator()(BoxLight&) const {}
+  void operator()(SphereLight&) const {}
+  void operator()(QuadLight&) const {}
+  void operator()(TriangleLight&) const {}
+};
+
 }  // namespace
 
 std::unique_ptr<Scene> Scene::build(const SceneDesc& desc) {
@@ -116,15 +153,15 @@ void Scene::add_emitting_mesh(TriangleMesh mesh, int material, const SourceLocat
 
 // Sphere and quad lights are visible: each gets geometry with a black, emitting material.
 void Scene::add_light_geometry(int index) {
-  const Light& light = lights_[size_t(index)];
-  if (const auto* s = std::get_if<SphereLight>(&light)) {
-    materials_.push_back({light_material_name("sphere", index), BlackBsdf{}, s->radiance, s->two_sided});
-    add_geometry(surfaces_.add_sphere(Sphere::make(s->center, s->radius, {})),
-                 {int(materials_.size()) - 1, index});
-  } else if (const auto* q = std::get_if<QuadLight>(&light)) {
-    materials_.push_back({light_material_name("quad", index), BlackBsdf{}, q->radiance, q->two_sided});
-    add_geometry(surfaces_.add_mesh(rectangle_mesh(q->corner, q->edge1, q->edge2)),
-                 {int(materials_.size()) - 1, index});
+  const auto visible = std::visit(VisibleLight{}, lights_[size_t(index)]);
+  if (!visible) return;
+  materials_.push_back(
+      {light_material_name(visible->kind, index), BlackBsdf{}, visible->radiance, visible->two_sided});
+  const int material = int(materials_.size()) - 1;
+  if (const auto* sphere = std::get_if<Sphere>(&visible->shape)) {
+    add_geometry(surfaces_.add_sphere(*sphere), {material, index});
+  } else {
+    add_geometry(surfaces_.add_mesh(std::get<TriangleMesh>(visible->shape)), {material, index});
   }
 }
 
@@ -134,8 +171,7 @@ void Scene::finish_lights() {
   std::vector<float> weights;
   for (size_t i = 0; i < lights_.size(); ++i) {
     Light& light = lights_[i];
-    if (auto* d = std::get_if<DirectionalLight>(&light)) d->scene_radius = radius;
-    if (auto* e = std::get_if<EnvironmentLight>(&light)) e->scene_radius = radius;
+    std::visit(SetSceneRadius{radius}, light);
     if (is_infinite(light)) infinite_lights_.push_back(int(i));
     weights.push_back(std::max(0.0f, power(light)));
   }

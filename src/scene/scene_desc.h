@@ -3,6 +3,7 @@
 // can still fail (mesh files) so its errors point into the scene file too.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -16,12 +17,57 @@
 
 namespace caligo {
 
+enum class Interpolation { linear, catmull_rom };
+
+// A camera keyframe: where the camera is and what it looks at, at a time in seconds.
+struct CameraKey {
+  float time = 0.0f;
+  Vec3 position, look_at;
+};
+
 struct CameraDesc {
   Vec3 position{0, 0, 5};
   Vec3 look_at{0, 0, 0};
   Vec3 up{0, 1, 0};
   float fov_degrees = 40.0f;  // vertical field of view
   Vec2i resolution{640, 480};
+  // Keyframes in increasing time (empty: a still camera at position/look_at). Before the
+  // first key and after the last the camera holds still.
+  std::vector<CameraKey> path;
+  Interpolation path_interpolation = Interpolation::linear;
+};
+
+// A light keyframe: position and/or direction (aim) of a point, spot, box or directional
+// light at a time in seconds. Each channel interpolates the keys that give it; a channel no
+// key gives keeps the light's own value (scene/animation.cpp).
+struct LightKey {
+  float time = 0.0f;
+  std::optional<Vec3> position;
+  std::optional<Vec3> direction;  // unit
+};
+
+// Per-light settings that only the real-time pipeline reads, and the light's animation.
+struct LightOptions {
+  bool volumetric = true;             // takes part in volumetric lighting
+  float volumetric_intensity = 1.0f;  // multiplier on its in-scattering (1 = physical)
+  bool shadow = true;                 // casts shadows (shadow map in real time)
+  int shadow_map_size = 1024;         // texels per side (per cube face for point lights)
+  std::vector<LightKey> animation;    // increasing time; empty: still
+  Interpolation interpolation = Interpolation::linear;
+};
+
+// Defaults of `caligo realtime` (each is also a command-line option).
+struct RealtimeDefaults {
+  int scale = 4;              // accumulation at 1/scale resolution: 1, 2 (half) or 4 (quarter)
+  int tile_size = 8;          // interleaved-sampling tile side (tile_size^2 offsets)
+  int samples = 16;           // march steps per pixel per light
+  int gather_radius = 7;      // bilateral gather taps each side (2r + 1 per pass)
+  float gather_depth_falloff = 1000.0f;  // weight exp(-falloff * |relative depth difference|)
+  bool temporal = true;       // temporal reprojection
+  float temporal_blend = 0.1f;  // weight of the current frame in the history blend
+  float multiple_scattering_floor = 0.0f;  // faked multiple scattering: min shadow term
+  float fps = 30.0f;          // frame i is at time i / fps
+  int frames = 60;
 };
 
 struct RenderDefaults {
@@ -59,10 +105,24 @@ struct SceneDesc {
   std::string file;  // the scene file's name as given (or "builtin:NAME")
   CameraDesc camera;
   RenderDefaults render;
+  RealtimeDefaults realtime;
   std::vector<Material> materials;
   std::vector<ShapeDesc> shapes;
   std::vector<Light> lights;  // sphere and quad lights also become visible geometry
+  // Per light, same order. May be shorter than `lights` (scenes built in code): read it
+  // through options(i), which gives the defaults for a light without an entry.
+  std::vector<LightOptions> light_options;
   std::vector<VolumePrimitive> volumes;
+
+  const LightOptions& options(size_t light) const {
+    static const LightOptions kDefaults;
+    return light < light_options.size() ? light_options[light] : kDefaults;
+  }
+  // The scene at `time` seconds: camera on its path, lights at their keyframes, gobos and
+  // noise advanced by their velocities. The result is still (no paths, no animation).
+  SceneDesc at_time(float time) const;
+  // Seconds covered by camera and light keyframes (0 for a still scene).
+  float duration() const;
 };
 
 }  // namespace caligo

@@ -13,6 +13,8 @@
 
 #include "core/math.h"
 #include "scene/json_reader.h"
+#include "scene/light_parser.h"
+#include "scene/shared_readers.h"
 #include "scene/transform_parser.h"
 #include "scene/volume_parser.h"
 
@@ -25,36 +27,7 @@ constexpr double kMaxResolution = 16384;
 constexpr double kMaxSpp = 1'000'000;
 constexpr double kMaxDepth = 10'000;
 constexpr double kMaxIor = 10;
-constexpr double kMaxAngle = 179;         // spot cone half-angles, degrees
-constexpr double kMaxAngularRadius = 45;  // directional light, degrees
-// Two unit vectors closer than this (|cross|, i.e. the sine of their angle) count as parallel.
-constexpr float kParallelSine = 1e-4f;
-
-// ---- shared checks ----
-
-// The direction from `from` to the point at `target`, which must differ from `from`.
-Vec3 read_target_direction(const JsonCursor& target, Vec3 from, std::string_view from_name) {
-  const Vec3 to = target.vec3();
-  if (!(length_squared(to - from) > 0.0f))
-    target.fail("expected a point different from " + std::string(from_name) + " " + format_vec3(from) +
-                ", got the same point");
-  return normalize(to - from);
-}
-
-bool parallel(Vec3 a, Vec3 b) { return length(cross(normalize(a), normalize(b))) < kParallelSine; }
-
-// corner + s*edge1 + t*edge2: both edges non-zero and not parallel.
-void read_parallelogram(ObjectReader& r, Vec3& corner, Vec3& edge1, Vec3& edge2) {
-  corner = r.vec3("corner");
-  const JsonCursor c1 = r.required("edge1"), c2 = r.required("edge2");
-  edge1 = c1.vec3();
-  edge2 = c2.vec3();
-  if (!(length_squared(edge1) > 0.0f)) c1.fail("expected a non-zero edge, got " + c1.describe());
-  if (!(length_squared(edge2) > 0.0f)) c2.fail("expected a non-zero edge, got " + c2.describe());
-  if (parallel(edge1, edge2))
-    c2.fail("expected edge2 not parallel to edge1 " + format_vec3(edge1) + ", got " + c2.describe() +
-            " (the area would be zero)");
-}
+constexpr double kMaxFrames = 100'000;
 
 // ---- camera and render settings ----
 
@@ -66,23 +39,67 @@ Vec2i read_resolution(const JsonCursor& c) {
   return {int(e[0].integer(side)), int(e[1].integer(side))};
 }
 
+Vec3 check_view(const JsonCursor& look_at, Vec3 position) {
+  return read_target_direction(look_at, position, "position");
+}
+
+// "path": {"interpolation", "keys": [{"time", "position", "look_at"}, ...]}.
+void read_camera_path(const JsonCursor& c, CameraDesc& camera) {
+  ObjectReader r(c, "a camera path");
+  r.allow({"interpolation", "keys"});
+  camera.path_interpolation = read_interpolation(r);
+  const JsonCursor keys = r.required("keys");
+  for (const JsonCursor& k : keys.elements("an array of keys")) {
+    ObjectReader kr(k, "a camera key");
+    kr.allow({"time", "position", "look_at"});
+    CameraKey key;
+    key.time = read_key_time(kr, camera.path.empty() ? nullptr : &camera.path.back().time);
+    key.position = kr.vec3("position");
+    const JsonCursor look_at = kr.required("look_at");
+    check_view(look_at, key.position);
+    key.look_at = look_at.vec3();
+    kr.finish();
+    camera.path.push_back(key);
+  }
+  if (camera.path.empty()) keys.fail("expected at least one key, got an empty array");
+  r.finish();
+}
+
+void check_up(const CameraDesc& camera, const JsonCursor& where, bool given) {
+  auto check = [&](Vec3 view) {
+    if (!parallel(camera.up, view)) return;
+    if (given)
+      where.fail("expected an up vector not parallel to the view direction " + format_vec3(view) + ", got " +
+                 where.describe());
+    where.fail("the view direction " + format_vec3(view) +
+               " is parallel to the default up [0, 1, 0]; give \"up\"");
+  };
+  check(normalize(camera.look_at - camera.position));
+  for (const CameraKey& k : camera.path) check(normalize(k.look_at - k.position));
+}
+
+// With a path, "position" and "look_at" may be left out: the first key gives them.
 CameraDesc parse_camera(const JsonCursor& c) {
   ObjectReader r(c, "the camera");
-  r.allow({"position", "look_at", "up", "fov", "resolution"});
+  r.allow({"position", "look_at", "up", "fov", "resolution", "path"});
   CameraDesc camera;
-  camera.position = r.vec3("position");
-  const JsonCursor look_at = r.required("look_at");
-  const Vec3 view = read_target_direction(look_at, camera.position, "position");
-  camera.look_at = look_at.vec3();
-  if (auto up = r.optional("up")) {
-    camera.up = read_direction(*up);
-    if (parallel(camera.up, view))
-      up->fail("expected an up vector not parallel to the view direction " + format_vec3(view) + ", got " +
-               up->describe());
-  } else if (parallel(camera.up, view)) {
-    r.fail("the view direction " + format_vec3(view) +
-           " is parallel to the default up [0, 1, 0]; give \"up\"");
+  if (auto p = r.optional("path")) read_camera_path(*p, camera);
+  const bool still = camera.path.empty();
+  if (still || r.has("position")) {
+    camera.position = r.vec3("position");
+  } else {
+    camera.position = camera.path.front().position;
   }
+  if (still || r.has("look_at")) {
+    const JsonCursor look_at = r.required("look_at");
+    check_view(look_at, camera.position);
+    camera.look_at = look_at.vec3();
+  } else {
+    camera.look_at = camera.path.front().look_at;
+  }
+  const auto up = r.optional("up");
+  if (up) camera.up = read_direction(*up);
+  check_up(camera, up ? *up : c, up.has_value());
   camera.fov_degrees = r.number_or("fov", camera.fov_degrees, Range::open(0, 180));
   if (auto res = r.optional("resolution")) camera.resolution = read_resolution(*res);
   r.finish();
@@ -100,6 +117,29 @@ RenderDefaults parse_render(const JsonCursor& c) {
   if (auto seed = r.optional("seed")) render.seed = seed->unsigned_integer();
   r.finish();
   return render;
+}
+
+RealtimeDefaults parse_realtime(const JsonCursor& c) {
+  ObjectReader r(c, "the realtime settings");
+  r.allow({"scale", "tile_size", "samples", "gather_radius", "gather_depth_falloff", "temporal",
+           "temporal_blend", "multiple_scattering_floor", "fps", "frames"});
+  RealtimeDefaults d;
+  if (r.has("scale")) {
+    const std::string scale = r.choice("scale", {"full", "half", "quarter"});
+    d.scale = scale == "full" ? 1 : (scale == "half" ? 2 : 4);
+  }
+  d.tile_size = int(r.integer_or("tile_size", d.tile_size, Range::closed(1, 32)));
+  d.samples = int(r.integer_or("samples", d.samples, Range::closed(1, 1024)));
+  d.gather_radius = int(r.integer_or("gather_radius", d.gather_radius, Range::closed(0, 16)));
+  d.gather_depth_falloff = r.number_or("gather_depth_falloff", d.gather_depth_falloff, Range::positive());
+  d.temporal = r.boolean_or("temporal", d.temporal);
+  d.temporal_blend = r.number_or("temporal_blend", d.temporal_blend, Range::above_up_to(0, 1));
+  d.multiple_scattering_floor =
+      r.number_or("multiple_scattering_floor", d.multiple_scattering_floor, Range::closed(0, 1));
+  d.fps = r.number_or("fps", d.fps, Range::positive());
+  d.frames = int(r.integer_or("frames", d.frames, Range::closed(1, kMaxFrames)));
+  r.finish();
+  return d;
 }
 
 // ---- materials ----
@@ -147,12 +187,6 @@ int find_material(const JsonCursor& c, const std::vector<Material>& materials) {
 
 // ---- shapes ----
 
-std::string resolve_path(const std::string& file, const std::string& base_dir) {
-  fs::path p(file);
-  if (p.is_relative() && !base_dir.empty()) p = fs::path(base_dir) / p;
-  return p.lexically_normal().string();
-}
-
 MeshFileShape read_mesh(ObjectReader& r, const std::string& base_dir) {
   const JsonCursor c = r.required("file");
   const std::string file = c.string();
@@ -199,127 +233,30 @@ ShapeDesc parse_shape(const JsonCursor& c, const std::vector<Material>& material
   return shape;
 }
 
-// ---- lights ----
-
-// color x (the direct quantity, or "power" converted with `per_watt`).
-RGB read_emission(ObjectReader& r, std::string_view direct_key, float per_watt) {
-  const RGB color = r.rgb_or("color", RGB(1.0f));
-  const auto [which, c] = r.exactly_one(direct_key, "power");
-  const RGB amount = c.rgb();
-  return color * (which == 0 ? amount : amount * per_watt);
-}
-
-PointLight read_point(ObjectReader& r) {
-  r.allow({"type", "position", "color", "intensity", "power"});
-  PointLight light;
-  light.position = r.vec3("position");
-  light.intensity = read_emission(r, "intensity", kInv4Pi);  // P = 4 pi I
-  return light;
-}
-
-SpotLight read_spot(ObjectReader& r) {
-  r.allow({"type", "position", "look_at", "direction", "inner_angle", "outer_angle", "color", "intensity",
-           "power"});
-  SpotLight light;
-  light.position = r.vec3("position");
-  const auto [which, aim] = r.exactly_one("look_at", "direction");
-  light.direction = which == 0 ? read_target_direction(aim, light.position, "position") : read_direction(aim);
-  const JsonCursor inner_c = r.required("inner_angle");
-  const float inner = inner_c.number(Range::closed(0, kMaxAngle));
-  const float outer = r.number("outer_angle", Range::above_up_to(0, kMaxAngle));
-  if (inner > outer)
-    inner_c.fail("expected inner_angle <= outer_angle (" + format_number(outer) + "), got " +
-                 inner_c.describe());
-  light.cos_inner = std::cos(radians(inner));
-  light.cos_outer = std::cos(radians(outer));
-  // Power of the smoothstep cone (as in pbrt-v4): P = 2 pi I (1 - (cos_inner + cos_outer) / 2).
-  const float solid_angle = 2.0f * kPi * (1.0f - 0.5f * (light.cos_inner + light.cos_outer));
-  light.intensity = read_emission(r, "intensity", 1.0f / solid_angle);
-  return light;
-}
-
-SphereLight read_sphere_light(ObjectReader& r) {
-  r.allow({"type", "center", "radius", "two_sided", "color", "radiance", "power"});
-  SphereLight light;
-  light.center = r.vec3("center");
-  light.radius = r.number("radius", size_range());
-  light.two_sided = r.boolean_or("two_sided", false);
-  const float area = 4.0f * kPi * sqr(light.radius);
-  const float sides = light.two_sided ? 2.0f : 1.0f;
-  light.radiance = read_emission(r, "radiance", 1.0f / (sides * kPi * area));  // P = pi L A per side
-  return light;
-}
-
-QuadLight read_quad(ObjectReader& r) {
-  r.allow({"type", "corner", "edge1", "edge2", "two_sided", "color", "radiance", "power"});
-  QuadLight light;
-  read_parallelogram(r, light.corner, light.edge1, light.edge2);
-  light.two_sided = r.boolean_or("two_sided", false);
-  const float area = length(cross(light.edge1, light.edge2));
-  const float sides = light.two_sided ? 2.0f : 1.0f;
-  light.radiance = read_emission(r, "radiance", 1.0f / (sides * kPi * area));  // P = pi L A per side
-  return light;
-}
-
-DirectionalLight read_directional(ObjectReader& r) {
-  r.allow({"type", "direction", "color", "irradiance", "angular_radius"});
-  DirectionalLight light;
-  light.direction = read_direction(r.required("direction"));
-  const RGB color = r.rgb_or("color", RGB(1.0f));
-  light.irradiance = color * r.rgb("irradiance");
-  const float angular_radius = r.number_or("angular_radius", 0.0f, Range::closed(0, kMaxAngularRadius));
-  light.cos_angular_radius = std::cos(radians(angular_radius));
-  return light;
-}
-
-EnvironmentLight read_environment(ObjectReader& r) {
-  r.allow({"type", "color", "radiance"});
-  EnvironmentLight light;
-  const RGB color = r.rgb_or("color", RGB(1.0f));
-  light.radiance = color * r.rgb("radiance");
-  return light;
-}
-
-Light parse_light(const JsonCursor& c) {
-  ObjectReader r(c, "a light");
-  const std::string type =
-      r.choice("type", {"point", "spot", "sphere", "quad", "directional", "environment"});
-  r.set_what("a " + type + " light");
-  Light light;
-  if (type == "point") {
-    light = read_point(r);
-  } else if (type == "spot") {
-    light = read_spot(r);
-  } else if (type == "sphere") {
-    light = read_sphere_light(r);
-  } else if (type == "quad") {
-    light = read_quad(r);
-  } else if (type == "directional") {
-    light = read_directional(r);
-  } else {
-    light = read_environment(r);
-  }
-  r.finish();
-  return light;
-}
-
 }  // namespace
 
 SceneDesc parse_scene_text(const std::string& json_text, const std::string& file_label,
                            const std::string& base_dir) {
   const Json root = parse_json_text(json_text, file_label);
   ObjectReader r(JsonCursor(root, file_label, ""), "a scene");
-  r.allow({"camera", "render", "materials", "shapes", "lights", "media", "volumes"});
+  r.allow({"camera", "render", "realtime", "materials", "shapes", "lights", "media", "volumes"});
   SceneDesc scene;
   scene.file = file_label;
   scene.camera = parse_camera(r.required("camera"));
   if (auto c = r.optional("render")) scene.render = parse_render(*c);
+  if (auto c = r.optional("realtime")) scene.realtime = parse_realtime(*c);
   if (auto c = r.optional("materials")) scene.materials = parse_materials(*c);
   if (auto c = r.optional("shapes"))
     for (const JsonCursor& s : c->elements("an array of shapes"))
       scene.shapes.push_back(parse_shape(s, scene.materials, base_dir));
-  if (auto c = r.optional("lights"))
-    for (const JsonCursor& l : c->elements("an array of lights")) scene.lights.push_back(parse_light(l));
+  if (auto c = r.optional("lights")) {
+    LightFileCache files{base_dir, {}, {}};
+    for (const JsonCursor& l : c->elements("an array of lights")) {
+      ParsedLight parsed = parse_light(l, files);
+      scene.lights.push_back(std::move(parsed.light));
+      scene.light_options.push_back(std::move(parsed.options));
+    }
+  }
   std::vector<NamedMedium> media;
   if (auto c = r.optional("media")) media = parse_media(*c);
   if (auto c = r.optional("volumes"))

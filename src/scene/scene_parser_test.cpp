@@ -341,7 +341,7 @@ const BadCase kBadCases[] = {
     {"UnknownShapeType", [](OJson& s) { s["shapes"][0]["type"] = "cone"; }, "/shapes/0/type",
      R"(unknown type "cone" for a shape; valid values: sphere, box, rectangle, mesh)"},
     {"UnknownLightType", [](OJson& s) { s["lights"][0]["type"] = "laser"; }, "/lights/0/type",
-     R"(unknown type "laser" for a light; valid values: point, spot, sphere, quad, directional, )"
+     R"(unknown type "laser" for a light; valid values: point, spot, box, sphere, quad, directional, )"
      "environment"},
     {"ReflectanceAboveOne",
      [](OJson& s) {

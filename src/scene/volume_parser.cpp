@@ -37,9 +37,24 @@ PhaseFunction parse_phase(const JsonCursor& c) {
   return phase;
 }
 
+// Lattice cells per metre: beyond these the pattern is finer than a float position resolves
+// over a scene, or coarser than any scene.
+const Range kNoiseScale = Range::closed(1e-6, 1e6);
+
+NoiseModulation parse_noise(const JsonCursor& c) {
+  ObjectReader r(c, "a density noise");
+  r.allow({"scale", "amplitude", "wind"});
+  NoiseModulation n;
+  n.scale = r.number_or("scale", n.scale, kNoiseScale);
+  n.amplitude = r.number_or("amplitude", n.amplitude, Range::closed(0, 1));
+  if (auto w = r.optional_vec3("wind")) n.wind = *w;
+  r.finish();
+  return n;
+}
+
 VolumeShader parse_medium(const JsonCursor& c) {
   ObjectReader r(c, "a medium");
-  r.allow({"sigma_a", "sigma_s", "emission", "density", "phase", "falloff", "step_size"});
+  r.allow({"sigma_a", "sigma_s", "emission", "density", "phase", "falloff", "noise", "step_size"});
   VolumeShader s;
   s.sigma_a = r.rgb_or("sigma_a", RGB(0.0f));
   s.sigma_s = r.rgb_or("sigma_s", RGB(0.0f));
@@ -52,6 +67,7 @@ VolumeShader parse_medium(const JsonCursor& c) {
     s.field = RadialFalloffDensity{fr.number_or("exponent", 1.0f, Range::positive())};
     fr.finish();
   }
+  if (auto n = r.optional("noise")) s.noise = parse_noise(*n);
   s.step_size = r.number_or("step_size", 0.0f, Range::positive());
   r.finish();
   return s;

@@ -39,22 +39,36 @@ struct Interval {
   }
 };
 
-float density_at(const DensityField& field, const VolumeShape& shape, Vec3 p) {
-  if (std::holds_alternative<ConstantDensity>(field)) return 1.0f;
-  const auto& falloff = std::get<RadialFalloffDensity>(field);
-  Vec3 local;
-  if (const auto* s = std::get_if<SphereVolumeShape>(&shape)) {
-    local = s->sphere.object_to_world.inverse_point(p);
-  } else {
-    const auto& b = std::get<BoxVolumeShape>(shape);
+// Maps a world point into the shape's unit-sphere coordinates (the box spans [-1, 1]^3).
+struct UnitCoordinates {
+  Vec3 p;
+  Vec3 operator()(const SphereVolumeShape& s) const { return s.sphere.object_to_world.inverse_point(p); }
+  Vec3 operator()(const BoxVolumeShape& b) const {
     const Vec3 q = b.object_to_world.inverse_point(p);
     const Vec3 half = (b.hi - b.lo) * 0.5f;
-    local =
-        Vec3((q.x - b.lo.x) / half.x - 1.0f, (q.y - b.lo.y) / half.y - 1.0f, (q.z - b.lo.z) / half.z - 1.0f);
+    return {(q.x - b.lo.x) / half.x - 1.0f, (q.y - b.lo.y) / half.y - 1.0f, (q.z - b.lo.z) / half.z - 1.0f};
   }
-  const float r2 = length_squared(local);
-  return r2 >= 1.0f ? 0.0f : std::pow(1.0f - r2, falloff.exponent);
-}
+};
+
+struct FieldDensity {
+  const VolumeShape& shape;
+  Vec3 p;
+  float operator()(const ConstantDensity&) const { return 1.0f; }
+  float operator()(const RadialFalloffDensity& falloff) const {
+    const float r2 = length_squared(std::visit(UnitCoordinates{p}, shape));
+    return r2 >= 1.0f ? 0.0f : std::pow(1.0f - r2, falloff.exponent);
+  }
+};
+
+struct ShapeBounds {
+  Bounds3 operator()(const SphereVolumeShape& s) const { return s.sphere.world_bounds(); }
+  Bounds3 operator()(const BoxVolumeShape& b) const { return b.object_to_world.bounds({b.lo, b.hi}); }
+};
+
+struct FieldIsConstant {
+  bool operator()(const ConstantDensity&) const { return true; }
+  bool operator()(const RadialFalloffDensity&) const { return false; }
+};
 
 }  // namespace
 
@@ -62,25 +76,24 @@ std::optional<std::pair<float, float>> volume_interval(const VolumeShape& shape,
   return std::visit(Interval{ray}, shape);
 }
 
-Bounds3 volume_bounds(const VolumeShape& shape) {
-  if (const auto* s = std::get_if<SphereVolumeShape>(&shape)) return s->sphere.world_bounds();
-  const auto& b = std::get<BoxVolumeShape>(shape);
-  return b.object_to_world.bounds({b.lo, b.hi});
-}
+Bounds3 volume_bounds(const VolumeShape& shape) { return std::visit(ShapeBounds{}, shape); }
 
 bool is_homogeneous(const VolumeShader& shader) {
-  return std::holds_alternative<ConstantDensity>(shader.field);
+  return !shader.noise && std::visit(FieldIsConstant{}, shader.field);
 }
 
 MediumSample shade_volume(const VolumePrimitive& primitive, Vec3 p) {
   const VolumeShader& s = primitive.shader;
-  const float d = s.density * density_at(s.field, primitive.shape, p);
+  float d = s.density * std::visit(FieldDensity{primitive.shape, p}, s.field);
+  if (s.noise) d *= noise_density(*s.noise, p);
   return {s.sigma_a * d, s.sigma_s * d, s.emission * d, s.phase};
 }
 
 RGB max_sigma_t(const VolumePrimitive& primitive) {
-  // Every density field here peaks at 1.
-  return (primitive.shader.sigma_a + primitive.shader.sigma_s) * primitive.shader.density;
+  // Every density field here peaks at 1; noise scales it by at most noise_density_max.
+  const VolumeShader& s = primitive.shader;
+  const float peak = s.density * (s.noise ? noise_density_max(*s.noise) : 1.0f);
+  return (s.sigma_a + s.sigma_s) * peak;
 }
 
 }  // namespace caligo

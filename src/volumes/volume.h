@@ -11,6 +11,7 @@
 #include "core/transform.h"
 #include "geometry/shapes.h"
 #include "media/medium.h"
+#include "volumes/noise.h"
 
 namespace caligo {
 
@@ -40,6 +41,7 @@ struct VolumeShader {
   float density = 1.0f;
   PhaseFunction phase;
   DensityField field;
+  std::optional<NoiseModulation> noise;  // multiplies the field's density
   float step_size = 0.0f;  // metres; 0 = automatic (one step if homogeneous)
 };
 

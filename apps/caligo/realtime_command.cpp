@@ -1,0 +1,253 @@
+// caligo realtime SCENE [--frames N] [--res WxH] [--scale full|half|quarter] [-o OUT] ...
+// Renders the scene's camera path with the real-time pipeline, prints the per-pass table
+// (median over the frames after warm-up) and optionally compares the last frame with the
+// path tracer's single-scattering reference.
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "commands.h"
+#include "image/exr_io.h"
+#include "image/png_io.h"
+#include "image/tonemap.h"
+#include "realtime/pipeline.h"
+#include "realtime/reference_compare.h"
+#include "render/render.h"
+#include "scene/scene.h"
+
+namespace caligo {
+
+void add_realtime_command(CLI::App& app, RealtimeOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "realtime", "Render the scene's camera path with the real-time volumetric lighting pipeline");
+  cmd->add_option("scene", o.scene, "Scene file (.json) or built-in name");
+  cmd->add_option("-o,--output", o.output,
+                  "A folder for the frames (frame_0000.png, ...), a .gif for an animation, or a .png/.exr "
+                  "for the last frame only");
+  cmd->add_option("--frames", o.frames, "Frames to render (overrides the scene's realtime.frames)");
+  cmd->add_option("--res", o.resolution, "Output resolution WxH (overrides the scene)");
+  cmd->add_option("--scale", o.scale, "Accumulation resolution: full, half or quarter");
+  cmd->add_option("--method", o.method, "Volumetric method: march (ray marching with shadow maps)");
+  cmd->add_option("--scene-buffers", o.scene_buffers, "Depth/normal buffers by: raster (default) or embree");
+  cmd->add_option("--samples", o.samples, "March steps per pixel per light");
+  cmd->add_option("--tile", o.tile_size, "Interleaved-sampling tile side (1: no interleaving)");
+  cmd->add_option("--gather-radius", o.gather_radius, "Bilateral gather taps each side (0: no gather)");
+  cmd->add_option("--ms-floor", o.ms_floor, "Faked multiple scattering: minimum shadow term in [0, 1]");
+  cmd->add_option("--temporal", o.temporal, "Temporal reprojection on or off (true/false)");
+  cmd->add_option("--warmup", o.warmup, "Frames left out of the timing medians");
+  cmd->add_flag("--exr", o.exr, "Write OpenEXR frames instead of PNG");
+  cmd->add_flag("--scalar", o.scalar, "Use the scalar passes instead of the SIMD ones");
+  cmd->add_flag("--compare-reference", o.compare_reference,
+                "Also path-trace the last frame (single scattering, direct light) and compare");
+  cmd->add_option("--reference-spp", o.reference_spp, "Samples per pixel of the reference");
+  cmd->add_option("--exposure", o.exposure, "Exposure of the PNG/GIF output, in stops");
+  cmd->add_flag("-q,--quiet", o.quiet, "Print only the summary line");
+}
+
+namespace {
+
+enum class OutputKind { none, folder, gif, single_png, single_exr };
+
+int check_int(std::optional<int> v, int lo, int hi, const char* option, int fallback) {
+  if (!v) return fallback;
+  if (*v < lo || *v > hi)
+    throw InputError(kCommandLine, std::string(option) + ": expected " + std::to_string(lo) + " to " +
+                                       std::to_string(hi) + ", got " + std::to_string(*v));
+  return *v;
+}
+
+RealtimeSettings settings_from(const RealtimeOptions& o, const SceneDesc& desc) {
+  RealtimeSettings s = realtime_settings(desc);
+  if (o.resolution) s.resolution = parse_resolution(*o.resolution);
+  if (uint64_t(s.resolution.x) * uint64_t(s.resolution.y) > (uint64_t(1) << 26))
+    throw InputError(kCommandLine, "resolution has more than 2^26 pixels");
+  if (o.scale) {
+    if (*o.scale == "full") s.scale = 1;
+    else if (*o.scale == "half") s.scale = 2;
+    else if (*o.scale == "quarter") s.scale = 4;
+    else throw InputError(kCommandLine, "--scale: expected full, half or quarter, got \"" + *o.scale + "\"");
+  }
+  if (o.method != "march")
+    throw InputError(kCommandLine, "--method: expected march, got \"" + o.method + "\"");
+  if (o.scene_buffers == "raster") s.scene_buffers = SceneBufferMethod::raster;
+  else if (o.scene_buffers == "embree") s.scene_buffers = SceneBufferMethod::embree;
+  else throw InputError(kCommandLine, "--scene-buffers: expected raster or embree, got \"" + o.scene_buffers + "\"");
+  s.accumulation.samples = check_int(o.samples, 1, 1024, "--samples", s.accumulation.samples);
+  s.accumulation.tile_size = check_int(o.tile_size, 1, 32, "--tile", s.accumulation.tile_size);
+  s.gather_radius = check_int(o.gather_radius, 0, 16, "--gather-radius", s.gather_radius);
+  if (o.ms_floor) {
+    if (!(*o.ms_floor >= 0.0f && *o.ms_floor <= 1.0f))
+      throw InputError(kCommandLine, "--ms-floor: expected a number in [0, 1]");
+    s.accumulation.multiple_scattering_floor = *o.ms_floor;
+  }
+  if (o.temporal) s.temporal = *o.temporal;
+  s.simd = !o.scalar;
+  return s;
+}
+
+OutputKind output_kind(const std::string& out) {
+  if (out.empty()) return OutputKind::none;
+  const std::string ext = std::filesystem::path(out).extension().string();
+  if (ext == ".gif") return OutputKind::gif;
+  if (ext == ".png") return OutputKind::single_png;
+  if (ext == ".exr") return OutputKind::single_exr;
+  return OutputKind::folder;
+}
+
+// Fails in milliseconds, before rendering, when the output cannot be written.
+void check_output(const std::string& out, OutputKind kind) {
+  namespace fs = std::filesystem;
+  if (kind == OutputKind::none) return;
+  std::error_code ec;
+  if (kind == OutputKind::folder) {
+    if (fs::exists(out, ec) && !fs::is_directory(out, ec))
+      throw InputError(SourceLocation{out, ""}, "output exists and is not a folder");
+    fs::create_directories(out, ec);
+    if (ec) throw InputError(SourceLocation{out, ""}, "cannot create the output folder: " + ec.message());
+    return;
+  }
+  const fs::path dir = fs::path(out).parent_path().empty() ? "." : fs::path(out).parent_path();
+  if (!fs::is_directory(dir, ec))
+    throw InputError(SourceLocation{out, ""}, "output folder \"" + dir.string() + "\" does not exist");
+  if (fs::is_directory(out, ec)) throw InputError(SourceLocation{out, ""}, "output is a folder");
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+const char* light_kind(const Light& light) {
+  struct Kind {
+    const char* operator()(const PointLight&) const { return "point"; }
+    const char* operator()(const SpotLight& l) const { return l.gobo.image ? "spot+gobo" : "spot"; }
+    const char* operator()(const SphereLight&) const { return "sphere"; }
+    const char* operator()(const QuadLight&) const { return "quad"; }
+    const char* operator()(const DirectionalLight&) const { return "directional"; }
+    const char* operator()(const EnvironmentLight&) const { return "environment"; }
+    const char* operator()(const TriangleLight&) const { return "triangle"; }
+    const char* operator()(const BoxLight&) const { return "box"; }
+  };
+  return std::visit(Kind{}, light);
+}
+
+void print_table(const SceneDesc& desc, const std::vector<PassTimes>& timed) {
+  const auto row = [&](const char* name, auto get) {
+    std::vector<double> v;
+    for (const PassTimes& t : timed) v.push_back(get(t));
+    std::printf("  %-28s %10.0f\n", name, median(v));
+  };
+  std::printf("pass (median over %zu frames)         us\n", timed.size());
+  row("depth + normals", [](const PassTimes& t) { return t.depth; });
+  row("shadow maps", [](const PassTimes& t) { return t.shadows; });
+  row("accumulation", [](const PassTimes& t) { return t.accumulation; });
+  for (size_t i = 0; i < desc.lights.size(); ++i) {
+    if (!desc.options(i).volumetric) continue;
+    char name[64];
+    std::snprintf(name, sizeof name, "  light %zu (%s)", i, light_kind(desc.lights[i]));
+    row(name, [i](const PassTimes& t) { return i < t.per_light.size() ? t.per_light[i] : 0.0; });
+  }
+  row("gather", [](const PassTimes& t) { return t.gather; });
+  row("upsample", [](const PassTimes& t) { return t.upsample; });
+  row("temporal", [](const PassTimes& t) { return t.temporal; });
+  row("surfaces", [](const PassTimes& t) { return t.surfaces; });
+  row("composite", [](const PassTimes& t) { return t.composite; });
+  row("total", [](const PassTimes& t) { return t.total; });
+  row("volumetric (acc+gat+up+tmp)", [](const PassTimes& t) { return t.volumetric(); });
+}
+
+std::string frame_name(const std::string& folder, int index, bool exr) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%04d.%s", index, exr ? "exr" : "png");
+  return (std::filesystem::path(folder) / name).string();
+}
+
+void compare_with_reference(const RealtimeOptions& o, const SceneDesc& desc, const RealtimeSettings& s, float time,
+                            const RealtimeFrame& frame, const std::string& output) {
+  const SceneDesc still = desc.at_time(time);
+  RenderSettings rs = default_settings(still);
+  rs.resolution = s.resolution;
+  rs.spp = o.reference_spp;
+  rs.max_depth = 1;
+  rs.max_volume_bounces = 1;
+  const auto scene = Scene::build(still);
+  const RenderResult reference = render(*scene, rs, o.quiet ? Progress::Style::kQuiet : Progress::Style::kAuto);
+  const Image realtime = to_image(frame.color);
+  const ReferenceError err = reference_error(realtime, reference.image);
+  std::printf("reference (%d spp, single scattering, direct light): mean error %+.2f %%, relative RMSE %.2f %%\n",
+              o.reference_spp, err.mean_error * 100.0, err.relative_rmse * 100.0);
+  std::filesystem::path png = output.empty() ? std::filesystem::path("realtime") : std::filesystem::path(output);
+  if (output_kind(output) == OutputKind::folder) png /= "comparison.png";
+  else png.replace_extension(".comparison.png");
+  const Rgb8Image strip = comparison_strip(realtime, reference.image, o.exposure, 0.5f);
+  write_png(png.string(), strip.width, strip.height, strip.rgb);
+  std::printf("comparison (real-time | reference | |error| / mean, 0..50 %%) -> %s\n", png.string().c_str());
+}
+
+}  // namespace
+
+int run_realtime(const RealtimeOptions& o) {
+  const SceneDesc desc = load_scene(o.scene);
+  const RealtimeSettings settings = settings_from(o, desc);
+  const int frames = check_int(o.frames, 1, 100000, "--frames", desc.realtime.frames);
+  if (o.warmup < 0) throw InputError(kCommandLine, "--warmup: expected 0 or more");
+  if (!(o.reference_spp >= 1 && o.reference_spp <= 1'000'000))
+    throw InputError(kCommandLine, "--reference-spp: expected 1 to 1000000");
+  if (!std::isfinite(o.exposure)) throw InputError(kCommandLine, "--exposure: expected a finite number");
+  const OutputKind kind = output_kind(o.output);
+  check_output(o.output, kind);
+
+  RealtimePipeline pipeline(desc, settings);
+  std::vector<PassTimes> timed;
+  std::vector<std::vector<uint8_t>> gif_frames;
+  const PreviewSettings preview{o.exposure, true};
+  float time = 0.0f;
+  const RealtimeFrame* last_frame = nullptr;
+  for (int i = 0; i < frames; ++i) {
+    time = float(i) / desc.realtime.fps;
+    const RealtimeFrame& frame = pipeline.render(time, uint32_t(i));
+    last_frame = &frame;
+    if (i >= std::min(o.warmup, frames - 1)) timed.push_back(frame.times);
+    const bool last = i == frames - 1;
+    if (kind == OutputKind::folder) {
+      const Image image = to_image(frame.color);
+      if (o.exr) write_exr(frame_name(o.output, i, true), image);
+      else write_png(frame_name(o.output, i, false), image.width(), image.height(), to_srgb8_preview(image, preview));
+    } else if (kind == OutputKind::gif) {
+      gif_frames.push_back(to_srgb8_preview(to_image(frame.color), preview));
+    } else if (last && kind == OutputKind::single_png) {
+      const Image image = to_image(frame.color);
+      write_png(o.output, image.width(), image.height(), to_srgb8_preview(image, preview));
+    } else if (last && kind == OutputKind::single_exr) {
+      write_exr(o.output, to_image(frame.color));
+    }
+  }
+  if (kind == OutputKind::gif)
+    write_gif(o.output, settings.resolution.x, settings.resolution.y, gif_frames, desc.realtime.fps);
+
+  if (!o.quiet) print_table(desc, timed);
+  std::vector<double> volumetric, total;
+  for (const PassTimes& t : timed) {
+    volumetric.push_back(t.volumetric());
+    total.push_back(t.total);
+  }
+  const Vec2i low{(settings.resolution.x + settings.scale - 1) / settings.scale,
+                  (settings.resolution.y + settings.scale - 1) / settings.scale};
+  std::printf("caligo realtime: %s %dx%d, accumulation %dx%d, %zu lights, %d frames: volumetric %.2f ms, "
+              "frame %.2f ms (medians)%s%s\n",
+              o.scene.c_str(), settings.resolution.x, settings.resolution.y, low.x, low.y, desc.lights.size(),
+              frames, median(volumetric) / 1000.0, median(total) / 1000.0, o.output.empty() ? "" : " -> ",
+              o.output.c_str());
+  if (o.compare_reference) compare_with_reference(o, desc, settings, time, *last_frame, o.output);
+  return 0;
+}
+
+}  // namespace caligo

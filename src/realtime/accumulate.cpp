@@ -1,0 +1,143 @@
+// Per-light accumulation (Glatzel 2014, "Accumulation pass"): march each low-resolution
+// pixel ray inside the light's volume, clamped to the scene depth and to the media, and
+// sum single scattering front to back:
+//   L += sigma_s(p) p(theta) L_arrival(p) v(p) e^(-tau(light, p)) e^(-tau(camera, p)) dt.
+// Unlike the seed we keep the phase function normalised over the sphere exactly as the
+// path tracer does (phase_eval(phase, camera ray direction, direction to the light), see
+// integrators/volume_direct.cpp), so the real-time frame converges to its reference.
+#include <algorithm>
+#include <cmath>
+
+#include "core/parallel.h"
+#include "lights/light_profile.h"
+#include "realtime/accumulate_internal.h"
+#include "realtime/interleave.h"
+#include "realtime/light_volume.h"
+#include "realtime/media.h"
+#include "realtime/shadow_map.h"
+
+namespace caligo {
+namespace {
+
+// Delta arrival of the light types the passes march; directional lights are parallel.
+struct Arrival {
+  Vec3 receiver;
+  std::optional<DeltaArrival> operator()(const PointLight& l) const { return delta_arrival(l, receiver); }
+  std::optional<DeltaArrival> operator()(const SpotLight& l) const { return delta_arrival(l, receiver); }
+  std::optional<DeltaArrival> operator()(const BoxLight& l) const { return delta_arrival(l, receiver); }
+  std::optional<DeltaArrival> operator()(const DirectionalLight& l) const {
+    return DeltaArrival{l.irradiance, -l.direction, kInfinity};
+  }
+  std::optional<DeltaArrival> operator()(const SphereLight&) const { return std::nullopt; }
+  std::optional<DeltaArrival> operator()(const QuadLight&) const { return std::nullopt; }
+  std::optional<DeltaArrival> operator()(const TriangleLight&) const { return std::nullopt; }
+  std::optional<DeltaArrival> operator()(const EnvironmentLight&) const { return std::nullopt; }
+};
+
+// Camera optical depth from the start of the ray to t: every primitive's overlap with [0, t].
+RGB camera_optical_depth(const VolumeScene& volumes, const PixelMarch& march, float t) {
+  const Ray ray{march.origin, march.dir, 0.0f, kInfinity};
+  RGB tau;
+  for (const VolumeInterval& iv : *march.intervals)
+    if (t > iv.t0)
+      tau += primitive_optical_depth(volumes.primitive(iv.primitive), ray, iv.t0, std::min(t, iv.t1));
+  return tau;
+}
+
+RGB exp_neg(RGB tau) { return {std::exp(-tau.r), std::exp(-tau.g), std::exp(-tau.b)}; }
+
+}  // namespace
+
+float media_extent(const VolumeScene& volumes) {
+  Bounds3 b;
+  for (const VolumePrimitive& p : volumes.primitives()) b.extend(volume_bounds(p.shape));
+  return b.empty() ? 0.0f : length(b.diagonal()) * 1.01f + 1e-3f;
+}
+
+bool setup_pixel_march(const Light& light, const VolumeScene& volumes, const View& view, float depth, int x,
+                       int y, const AccumulationSettings& settings, IntervalScratch& scratch,
+                       PixelMarch& march) {
+  const Ray ray = view.ray({float(x) + 0.5f, float(y) + 0.5f});
+  const float t_depth = depth / view.depth_per_t(ray.direction);
+  if (!(t_depth > 0.0f)) return false;
+  // The light volume first: it is the cheaper test and rejects most pixels of small lights.
+  const auto span = light_volume_interval(light, ray.origin, ray.direction, 0.0f, t_depth);
+  if (!span) return false;
+  // Every medium from the eye on: the camera's transmittance needs those before the span too.
+  volumes.intervals(Ray{ray.origin, ray.direction, 0.0f, t_depth}, scratch);
+  if (scratch.intervals.empty()) return false;
+  // Clamped to the extent of the media on the ray (the light volume is convex, so clipping
+  // its interval is the same as intersecting the volumes).
+  float t0 = kInfinity, t1 = -kInfinity;
+  for (const VolumeInterval& iv : scratch.intervals) {
+    t0 = std::min(t0, iv.t0);
+    t1 = std::max(t1, iv.t1);
+  }
+  t0 = std::max(t0, span->t0);
+  t1 = std::min(t1, span->t1);
+  if (!(t1 > t0)) return false;
+  march.origin = ray.origin;
+  march.dir = ray.direction;
+  march.t0 = t0;
+  march.samples = std::max(1, settings.samples);
+  march.step = (t1 - t0) / float(march.samples);
+  march.offset = interleaved_offset(x, y, settings.tile_size, settings.frame_seed);
+  march.intervals = &scratch.intervals;
+  return true;
+}
+
+RGB march_scalar(const FrameLight& light, const VolumeScene& volumes, const PixelMarch& march,
+                 float multiple_scattering_floor, float far) {
+  RGB sum;
+  for (int k = 0; k < march.samples; ++k) {
+    const float t = march.t0 + (float(k) + march.offset) * march.step;
+    const Vec3 p = march.origin + march.dir * t;
+    const auto arrival = std::visit(Arrival{p}, light.light);
+    if (!arrival) continue;
+    // sigma_s x phase summed over the primitives here: overlapping media add their
+    // coefficients and mix their phase functions in proportion to sigma_s.
+    RGB scatter;
+    for (const VolumeInterval& iv : *march.intervals) {
+      if (t < iv.t0 || t > iv.t1) continue;
+      const VolumePrimitive& prim = volumes.primitive(iv.primitive);
+      scatter += prim.shader.sigma_s *
+                 (medium_density(prim, p) * phase_eval(prim.shader.phase, march.dir, arrival->wi));
+    }
+    if (scatter.is_black()) continue;
+    const float v = light.shadow ? std::max(multiple_scattering_floor, light.shadow->visibility(p)) : 1.0f;
+    if (!(v > 0.0f)) continue;
+    const Vec3 light_point = p + arrival->wi * std::min(arrival->distance, far);
+    const RGB tau = camera_optical_depth(volumes, march, t) + segment_optical_depth(volumes, p, light_point);
+    sum += scatter * arrival->radiance * exp_neg(tau) * v;
+  }
+  return sum * march.step;
+}
+
+void accumulate_light(const FrameLight& light, const VolumeScene& volumes, const View& view,
+                      const Plane& depth, const AccumulationSettings& settings, ColorPlanes& accum) {
+  if (!light.options.volumetric || volumes.empty()) return;
+  const float far = media_extent(volumes);
+  SimdMarcher simd(light, volumes, settings.multiple_scattering_floor, far);
+  const bool use_simd = settings.simd && simd.supported();
+  const float intensity = light.options.volumetric_intensity;
+  const PixelRect rect = light_screen_bounds(light.light, view);
+  parallel_for(std::max(0, rect.y1 - rect.y0), [&](int row) {
+    const int y = rect.y0 + row;
+    thread_local IntervalScratch scratch;
+    PixelMarch march;
+    float* out_r = accum.r.row(y);
+    float* out_g = accum.g.row(y);
+    float* out_b = accum.b.row(y);
+    const float* d = depth.row(y);
+    for (int x = rect.x0; x < rect.x1; ++x) {
+      if (!setup_pixel_march(light.light, volumes, view, d[x], x, y, settings, scratch, march)) continue;
+      const RGB l = use_simd ? simd.march(march)
+                             : march_scalar(light, volumes, march, settings.multiple_scattering_floor, far);
+      out_r[x] += l.r * intensity;
+      out_g[x] += l.g * intensity;
+      out_b[x] += l.b * intensity;
+    }
+  });
+}
+
+}  // namespace caligo

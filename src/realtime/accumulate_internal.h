@@ -1,0 +1,58 @@
+// Pieces of accumulate_light shared by its scalar (accumulate.cpp) and SIMD
+// (accumulate_simd.cpp) marches: the per-pixel setup and the light's point of emission.
+// Internal to src/realtime; tests use it to compare the two marches pixel by pixel.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "core/rgb.h"
+#include "core/vec.h"
+#include "realtime/frame_light.h"
+#include "realtime/passes.h"
+#include "volumes/volume_scene.h"
+
+namespace caligo {
+
+// One pixel's march: sample k sits at t0 + (k + offset) * step along origin + t dir.
+struct PixelMarch {
+  Vec3 origin, dir;  // dir unit
+  float t0 = 0.0f, step = 0.0f, offset = 0.5f;
+  int samples = 0;
+  const std::vector<VolumeInterval>* intervals = nullptr;  // the volume primitives on the ray
+};
+
+// The march of pixel (x, y) of `view` for `light`, or false when the light volume, the
+// depth and the media leave nothing to march. Fills scratch.intervals.
+bool setup_pixel_march(const Light& light, const VolumeScene& volumes, const View& view, float depth, int x,
+                       int y, const AccumulationSettings& settings, IntervalScratch& scratch,
+                       PixelMarch& march);
+
+// Distance beyond which no medium lies from any point inside one (directional lights'
+// transmittance segments end there).
+float media_extent(const VolumeScene& volumes);
+
+// In-scattered radiance of one pixel, before volumetric_intensity (the reference path:
+// light_profile.h's delta_arrival, media.h's optical depths, ShadowMap::visibility).
+RGB march_scalar(const FrameLight& light, const VolumeScene& volumes, const PixelMarch& march,
+                 float multiple_scattering_floor, float far);
+
+// The same with xsimd, 8 samples at a time. Built once per light and frame.
+class SimdMarcher {
+ public:
+  SimdMarcher(const FrameLight& light, const VolumeScene& volumes, float multiple_scattering_floor,
+              float far);
+  ~SimdMarcher();
+  // False when the light or the media need the scalar path (radial-falloff density fields,
+  // area lights); march() then must not be called.
+  bool supported() const { return supported_; }
+  RGB march(const PixelMarch& march) const;
+
+  struct Data;
+
+ private:
+  std::unique_ptr<Data> data_;
+  bool supported_ = false;
+};
+
+}  // namespace caligo

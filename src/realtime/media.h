@@ -1,0 +1,36 @@
+// The scene's volume primitives as the real-time passes see them: homogeneous primitives
+// exactly (optical depth = sigma_t x overlap length, per interval), noise-modulated ones
+// with their mean density for transmittance and a noise lookup for in-scattering.
+//
+// Approximations (documented in docs/techniques.md): the noise modulation multiplies
+// density by 1 + a fbm with fbm zero-mean, so transmittance uses its mean factor 1; the
+// in-scattering coefficient at a march sample uses the true noise lookup. Radial-falloff
+// primitives integrate their density with 4-point Gauss-Legendre over each overlap (exact
+// for sphere shapes with integer exponents <= 3: (1 - r^2)^e is then a polynomial of
+// degree 2e <= 7 in t; otherwise an approximation, good to a few 1e-3 for smooth puffs).
+#pragma once
+
+#include "core/ray.h"
+#include "core/rgb.h"
+#include "core/vec.h"
+#include "volumes/volume_scene.h"
+
+namespace caligo {
+
+// True when the density field is constant (noise aside): its mean density is then the
+// shader's density everywhere, and transmittance through it is analytic.
+bool has_constant_field(const VolumeShader& shader);
+
+// Density multiplier at a world point inside the primitive: shader density x field x noise.
+float medium_density(const VolumePrimitive& primitive, Vec3 p);
+// The same with the noise replaced by its mean factor 1 (what transmittance uses).
+float mean_medium_density(const VolumePrimitive& primitive, Vec3 p);
+
+// Optical depth (per channel, mean density) of one primitive over [t0, t1] of `ray`
+// (t0, t1 inside the primitive's interval; unit direction).
+RGB primitive_optical_depth(const VolumePrimitive& primitive, const Ray& ray, float t0, float t1);
+
+// Optical depth (per channel) of the straight segment from a to b.
+RGB segment_optical_depth(const VolumeScene& volumes, Vec3 a, Vec3 b);
+
+}  // namespace caligo

@@ -1,0 +1,181 @@
+#include "realtime/pipeline.h"
+
+#include <chrono>
+
+#include "core/parallel.h"
+#include "realtime/scene_buffers.h"
+#include "realtime/shadow_map.h"
+#include "realtime/surface_shading.h"
+#include "scene/scene.h"
+#include "volumes/volume_scene.h"
+
+namespace caligo {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double micros_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::micro>(Clock::now() - start).count();
+}
+
+// What a shadow map depends on: the light's placement and shape. Lights whose placement
+// key is unchanged keep last frame's map.
+struct PlacementKey {
+  std::vector<float> operator()(const PointLight& l) const { return {0, l.position.x, l.position.y, l.position.z}; }
+  std::vector<float> operator()(const SpotLight& l) const {
+    return {1,           l.position.x,  l.position.y,  l.position.z, l.direction.x, l.direction.y,
+            l.direction.z, l.cos_outer, l.up.x,        l.up.y,       l.up.z};
+  }
+  std::vector<float> operator()(const BoxLight& l) const {
+    return {2,           l.position.x, l.position.y, l.position.z, l.direction.x, l.direction.y, l.direction.z,
+            l.up.x,      l.up.y,       l.up.z,       l.half_width, l.half_height, l.range};
+  }
+  std::vector<float> operator()(const DirectionalLight& l) const {
+    return {3, l.direction.x, l.direction.y, l.direction.z};
+  }
+  std::vector<float> operator()(const SphereLight&) const { return {4}; }
+  std::vector<float> operator()(const QuadLight&) const { return {5}; }
+  std::vector<float> operator()(const EnvironmentLight&) const { return {6}; }
+  std::vector<float> operator()(const TriangleLight&) const { return {7}; }
+};
+
+}  // namespace
+
+struct RealtimePipeline::CachedShadow {
+  std::vector<float> key;
+  int size = 0;
+  std::optional<ShadowMap> map;
+};
+
+RealtimeSettings realtime_settings(const SceneDesc& desc) {
+  const RealtimeDefaults& d = desc.realtime;
+  RealtimeSettings s;
+  s.resolution = desc.camera.resolution;
+  s.scale = d.scale;
+  s.accumulation.samples = d.samples;
+  s.accumulation.tile_size = d.tile_size;
+  s.accumulation.multiple_scattering_floor = d.multiple_scattering_floor;
+  s.gather_radius = d.gather_radius;
+  s.gather_depth_falloff = d.gather_depth_falloff;
+  s.temporal = d.temporal;
+  s.temporal_blend = d.temporal_blend;
+  return s;
+}
+
+RealtimePipeline::RealtimePipeline(const SceneDesc& desc, const RealtimeSettings& settings)
+    : desc_(desc), settings_(settings) {
+  // Geometry never moves: the scene (surfaces, materials) and its triangles are built once.
+  scene_ = Scene::build(desc_.at_time(0.0f));
+  raster_ = std::make_unique<RasterScene>(RasterScene::build(*scene_));
+  shadows_.resize(desc_.lights.size());
+}
+
+RealtimePipeline::~RealtimePipeline() = default;
+
+void RealtimePipeline::update_shadow_maps(const std::vector<Light>& lights, RealtimeFrame& frame) {
+  const Bounds3 bounds = scene_->surfaces().bounds();
+  frame.shadow_maps_rendered = 0;
+  for (size_t i = 0; i < lights.size(); ++i) {
+    const LightOptions& options = desc_.options(i);
+    CachedShadow& cache = shadows_[i];
+    if (!options.shadow) {
+      cache.map.reset();
+      continue;
+    }
+    std::vector<float> key = std::visit(PlacementKey{}, lights[i]);
+    if (cache.size == options.shadow_map_size && cache.key == key && !cache.key.empty()) continue;
+    cache.map = render_shadow_map(*raster_, lights[i], options.shadow_map_size, bounds);
+    cache.key = std::move(key);
+    cache.size = options.shadow_map_size;
+    ++frame.shadow_maps_rendered;
+  }
+}
+
+const RealtimeFrame& RealtimePipeline::render(float time, uint32_t frame_index) {
+  const auto frame_start = Clock::now();
+  const SceneDesc now = desc_.at_time(time);
+  RealtimeFrame next;
+  PassTimes& times = next.times;
+  const Camera camera(now.camera, settings_.resolution);
+  next.view = View::from_camera(camera, settings_.resolution);
+  const int scale = settings_.scale;
+  const Vec2i low_res{(settings_.resolution.x + scale - 1) / scale, (settings_.resolution.y + scale - 1) / scale};
+  const View low_view = View::from_camera(camera, low_res);
+
+  auto t = Clock::now();
+  GBuffer gbuffer = settings_.scene_buffers == SceneBufferMethod::raster ? rasterize_gbuffer(*raster_, next.view)
+                                                                          : trace_gbuffer(*scene_, next.view);
+  times.depth = micros_since(t);
+
+  t = Clock::now();
+  update_shadow_maps(now.lights, next);
+  times.shadows = micros_since(t);
+
+  std::vector<FrameLight> lights;
+  for (size_t i = 0; i < now.lights.size(); ++i)
+    lights.push_back({now.lights[i], desc_.options(i), shadows_[i].map ? &*shadows_[i].map : nullptr});
+
+  // Media move with the wind: their frame-time description drives the in-scattering.
+  const VolumeScene volumes(now.volumes);
+  t = Clock::now();
+  const Plane low_depth = downsample_depth(gbuffer.depth, scale);
+  ColorPlanes accum(low_res.x, low_res.y);
+  AccumulationSettings acc = settings_.accumulation;
+  acc.frame_seed = frame_index;
+  acc.simd = settings_.simd;
+  times.per_light.assign(lights.size(), 0.0);
+  for (size_t i = 0; i < lights.size(); ++i) {
+    if (!lights[i].options.volumetric) continue;
+    const auto light_start = Clock::now();
+    accumulate_light(lights[i], volumes, low_view, low_depth, acc, accum);
+    times.per_light[i] = micros_since(light_start);
+  }
+  times.accumulation = micros_since(t);
+
+  t = Clock::now();
+  const ColorPlanes gathered =
+      settings_.gather_radius > 0
+          ? bilateral_gather(accum, low_depth, settings_.gather_radius, settings_.gather_depth_falloff, settings_.simd)
+          : accum;
+  times.gather = micros_since(t);
+
+  t = Clock::now();
+  ColorPlanes volumetric = scale == 1 ? gathered
+                                      : upsample_nearest_depth(gathered, low_depth, gbuffer.depth, 0.05f,
+                                                               settings_.simd);
+  times.upsample = micros_since(t);
+
+  t = Clock::now();
+  if (settings_.temporal && has_history_)
+    volumetric = temporal_reproject(volumetric, gbuffer.depth, next.view, frame_.volumetric, frame_.depth,
+                                    frame_.view, settings_.temporal_blend, settings_.simd);
+  times.temporal = micros_since(t);
+
+  t = Clock::now();
+  next.surfaces = shade_surfaces(gbuffer, next.view, *scene_, lights);
+  times.surfaces = micros_since(t);
+
+  t = Clock::now();
+  next.color = ColorPlanes(settings_.resolution.x, settings_.resolution.y);
+  // Composite before tone mapping (the seed adds the upscaled buffer to the lit scene).
+  parallel_for(settings_.resolution.y, [&](int y) {
+    const auto add_row = [y](Plane& out, const Plane& a, const Plane& b) {
+      float* o = out.row(y);
+      const float *pa = a.row(y), *pb = b.row(y);
+      for (int x = 0; x < out.width; ++x) o[x] = pa[x] + pb[x];
+    };
+    add_row(next.color.r, next.surfaces.r, volumetric.r);
+    add_row(next.color.g, next.surfaces.g, volumetric.g);
+    add_row(next.color.b, next.surfaces.b, volumetric.b);
+  });
+  times.composite = micros_since(t);
+
+  next.depth = std::move(gbuffer.depth);
+  next.volumetric = std::move(volumetric);
+  times.total = micros_since(frame_start);
+  frame_ = std::move(next);
+  has_history_ = true;
+  return frame_;
+}
+
+}  // namespace caligo

@@ -1,0 +1,89 @@
+// One real-time frame, pass by pass (the seed's pipeline, DESIGN.md "A frame in the
+// real-time pipeline"): scene buffers -> shadow maps (cached while a light stands still) ->
+// per-light accumulation at low resolution -> bilateral gather -> nearest-depth upsampling
+// -> temporal reprojection -> composite over the simply lit surfaces. Each pass is a pure
+// function (passes.h, scene_buffers.h, shadow_map.h, surface_shading.h); this class only
+// owns what lives across frames (the built scene, cached shadow maps, the history) and
+// times every pass.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "realtime/passes.h"
+#include "realtime/plane.h"
+#include "realtime/view.h"
+#include "scene/scene_desc.h"
+
+namespace caligo {
+
+class Scene;
+class RasterScene;
+struct ShadowMap;
+
+enum class SceneBufferMethod { raster, embree };
+
+struct RealtimeSettings {
+  Vec2i resolution{640, 480};
+  int scale = 4;  // accumulation at resolution / scale
+  AccumulationSettings accumulation;
+  int gather_radius = 7;
+  float gather_depth_falloff = 1000.0f;
+  bool temporal = true;
+  float temporal_blend = 0.1f;
+  bool simd = true;
+  SceneBufferMethod scene_buffers = SceneBufferMethod::raster;
+};
+
+// The scene's `realtime` defaults at the camera's resolution.
+RealtimeSettings realtime_settings(const SceneDesc& desc);
+
+// Microseconds spent in each pass of one frame.
+struct PassTimes {
+  double depth = 0, shadows = 0, accumulation = 0, gather = 0, upsample = 0, temporal = 0, surfaces = 0,
+         composite = 0, total = 0;
+  std::vector<double> per_light;  // accumulation of each light (0 for non-volumetric ones)
+  // The issue's budget: accumulation + gather + upsample + temporal.
+  double volumetric() const { return accumulation + gather + upsample + temporal; }
+};
+
+struct RealtimeFrame {
+  View view;
+  Plane depth;             // full resolution, linear
+  ColorPlanes surfaces;    // directly lit surfaces, attenuated by the media in front of them
+  ColorPlanes volumetric;  // in-scattered light at full resolution (after temporal)
+  ColorPlanes color;       // surfaces + volumetric, linear, before tone mapping
+  PassTimes times;
+  int shadow_maps_rendered = 0;
+};
+
+class RealtimePipeline {
+ public:
+  RealtimePipeline(const SceneDesc& desc, const RealtimeSettings& settings);
+  ~RealtimePipeline();
+  RealtimePipeline(const RealtimePipeline&) = delete;
+  RealtimePipeline& operator=(const RealtimePipeline&) = delete;
+
+  // Renders the scene at `time` seconds; frame_index seeds the interleaving pattern. The
+  // previous call's frame is the temporal history.
+  const RealtimeFrame& render(float time, uint32_t frame_index);
+  void reset_history() { has_history_ = false; }
+  const Scene& scene() const { return *scene_; }
+  const RealtimeSettings& settings() const { return settings_; }
+
+ private:
+  struct CachedShadow;
+
+  void update_shadow_maps(const std::vector<Light>& lights, RealtimeFrame& frame);
+
+  SceneDesc desc_;
+  RealtimeSettings settings_;
+  std::unique_ptr<Scene> scene_;
+  std::unique_ptr<RasterScene> raster_;
+  std::vector<CachedShadow> shadows_;
+  RealtimeFrame frame_;
+  bool has_history_ = false;
+};
+
+}  // namespace caligo

@@ -1,0 +1,145 @@
+#include "realtime/shadow_map.h"
+
+#include <cmath>
+
+#include "realtime/scene_buffers.h"
+
+namespace caligo {
+namespace {
+
+// Spot cones wider than this get a cube: one perspective face would need a field of view
+// near 180 degrees and spend its texels at the rim.
+constexpr float kMaxSpotHalfAngle = 75.0f * kPi / 180.0f;
+
+ShadowMap cube_map(const RasterScene& scene, Vec3 position, int size) {
+  const Vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  ShadowMap map;
+  for (int f = 0; f < 6; ++f) {
+    const Vec3 up_hint = (f == 2 || f == 3) ? Vec3{0, 0, 1} : Vec3{0, 1, 0};
+    map.faces.push_back(View::perspective_view(position, axes[f], up_hint, 0.5f * kPi, {size, size}));
+    map.depth.push_back(rasterize_depth(scene, map.faces.back()));
+  }
+  return map;
+}
+
+ShadowMap single_face(const RasterScene& scene, const View& face) {
+  ShadowMap map;
+  map.faces.push_back(face);
+  map.depth.push_back(rasterize_depth(scene, face));
+  return map;
+}
+
+Vec3 any_perpendicular(Vec3 d) {
+  const Vec3 a = std::abs(d.x) < 0.9f ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
+  return normalize(cross(d, a));
+}
+
+// An orthographic face looking along `direction` whose window covers the bounds' corners,
+// with its eye plane just in front of all of them.
+View fit_directional_face(const Bounds3& b, Vec3 direction, int size) {
+  const View basis = View::orthographic_view({}, direction, any_perpendicular(direction), 1, 1, {size, size});
+  const Vec3 centre = b.center();
+  float lo[3] = {kInfinity, kInfinity, kInfinity}, hi[3] = {-kInfinity, -kInfinity, -kInfinity};
+  for (int i = 0; i < 8; ++i) {
+    const Vec3 c{(i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, (i & 4) ? b.hi.z : b.lo.z};
+    const float v[3] = {dot(c - centre, basis.right), dot(c - centre, basis.up), dot(c - centre, basis.forward)};
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], v[k]), hi[k] = std::max(hi[k], v[k]);
+  }
+  const float extent = std::max(1e-3f, length(b.diagonal()));
+  const float margin = 1e-3f * extent;
+  const Vec3 eye = centre + basis.right * (0.5f * (lo[0] + hi[0])) + basis.up * (0.5f * (lo[1] + hi[1])) +
+                   basis.forward * (lo[2] - margin);
+  return View::orthographic_view(eye, direction, basis.up, 0.5f * (hi[0] - lo[0]) + margin,
+                                 0.5f * (hi[1] - lo[1]) + margin, {size, size});
+}
+
+struct Render {
+  const RasterScene& scene;
+  int size;
+  const Bounds3& bounds;
+
+  std::optional<ShadowMap> operator()(const PointLight& l) const { return cube_map(scene, l.position, size); }
+  std::optional<ShadowMap> operator()(const SpotLight& l) const {
+    const float half_angle = std::acos(std::clamp(l.cos_outer, -1.0f, 1.0f));
+    if (half_angle > kMaxSpotHalfAngle) return cube_map(scene, l.position, size);
+    return single_face(scene,
+                       View::perspective_view(l.position, l.direction, l.up, 2.0f * half_angle, {size, size}));
+  }
+  std::optional<ShadowMap> operator()(const BoxLight& l) const {
+    return single_face(scene, View::orthographic_view(l.position, l.direction, l.up, l.half_width,
+                                                      l.half_height, {size, size}));
+  }
+  std::optional<ShadowMap> operator()(const DirectionalLight& l) const {
+    if (bounds.empty()) return std::nullopt;
+    return single_face(scene, fit_directional_face(bounds, l.direction, size));
+  }
+  std::optional<ShadowMap> operator()(const SphereLight&) const { return std::nullopt; }
+  std::optional<ShadowMap> operator()(const QuadLight&) const { return std::nullopt; }
+  std::optional<ShadowMap> operator()(const TriangleLight&) const { return std::nullopt; }
+  std::optional<ShadowMap> operator()(const EnvironmentLight&) const { return std::nullopt; }
+};
+
+// The same arithmetic, in the same order, as shadow_visibility in shadow_map_simd.h.
+struct FaceLookup {
+  float x, y, z, texel;
+};
+FaceLookup project_face(const View& v, Vec3 p) {
+  const float dx = p.x - v.eye.x, dy = p.y - v.eye.y, dz = p.z - v.eye.z;
+  const float z = dx * v.forward.x + dy * v.forward.y + dz * v.forward.z;
+  const float xr = dx * v.right.x + dy * v.right.y + dz * v.right.z;
+  const float yu = dx * v.up.x + dy * v.up.y + dz * v.up.z;
+  const float w = float(v.resolution.x), h = float(v.resolution.y);
+  float ndc_x, ndc_y, texel;
+  if (v.projection == Projection::perspective) {
+    const float inv = 1.0f / (z * v.tan_half_fov_y);
+    ndc_x = xr * inv / v.aspect;
+    ndc_y = yu * inv;
+    texel = z * (2.0f * v.tan_half_fov_y / h);
+  } else {
+    ndc_x = xr / v.half_width;
+    ndc_y = yu / v.half_height;
+    texel = 2.0f * v.half_height / h;
+  }
+  return {(ndc_x + 1.0f) * 0.5f * w, (1.0f - ndc_y) * 0.5f * h, z, texel};
+}
+
+}  // namespace
+
+int ShadowMap::face_index(Vec3 p) const {
+  if (!is_cube()) return 0;
+  const Vec3 d = p - faces[0].eye;
+  const float ax = std::abs(d.x), ay = std::abs(d.y), az = std::abs(d.z);
+  if (ax >= ay && ax >= az) return d.x >= 0.0f ? 0 : 1;
+  if (ay >= az) return d.y >= 0.0f ? 2 : 3;
+  return d.z >= 0.0f ? 4 : 5;
+}
+
+float ShadowMap::texel_size(Vec3 p) const {
+  const View& v = faces[size_t(face_index(p))];
+  return std::abs(project_face(v, p).texel);
+}
+
+float ShadowMap::visibility(Vec3 p) const {
+  const int f = face_index(p);
+  const View& v = faces[size_t(f)];
+  const Plane& d = depth[size_t(f)];
+  const FaceLookup q = project_face(v, p);
+  if (v.projection == Projection::perspective && !(q.z > 0.0f)) return 1.0f;
+  int ix = int(std::floor(q.x)), iy = int(std::floor(q.y));
+  if (is_cube()) {
+    // The dominant-axis face always holds p; clamp rounding at its rim.
+    ix = std::clamp(ix, 0, d.width - 1);
+    iy = std::clamp(iy, 0, d.height - 1);
+  } else if (!(q.x >= 0.0f && q.x < float(d.width) && q.y >= 0.0f && q.y < float(d.height))) {
+    return 1.0f;
+  }
+  const float stored = d.data[size_t(iy) * size_t(d.width) + size_t(ix)];
+  return q.z <= stored + (bias + texel_bias * q.texel) ? 1.0f : 0.0f;
+}
+
+std::optional<ShadowMap> render_shadow_map(const RasterScene& scene, const Light& light, int size,
+                                           const Bounds3& scene_bounds) {
+  return std::visit(Render{scene, size, scene_bounds}, light);
+}
+
+}  // namespace caligo

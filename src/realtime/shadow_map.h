@@ -1,0 +1,51 @@
+// Shadow maps of the real-time pipeline: one perspective face for spot lights, a cube
+// (6 faces of 90 degrees) for point lights, one orthographic face for box and directional
+// lights (the directional face covers the scene's bounds). Depth is linear along each
+// face's forward axis; re-rendered only when the light (or the geometry) moves.
+//
+// Faces: spot lights get one perspective face of 2 x outer angle (a cube when the outer
+// angle exceeds 75 degrees); point lights six 90-degree faces (+x, -x, +y, -y, +z, -z),
+// looked up by the dominant axis of p - light position; box lights an orthographic face over
+// the emitting rectangle with depth measured from it; directional lights an orthographic
+// face fitted to the scene bounds and placed just outside them, against the light.
+//
+// Bias (why): a lookup returns the depth at the texel centre, while p may lie anywhere in the
+// texel, so a surface tilted by theta from the light differs by up to ~0.7 texel * tan(theta).
+// The comparison allows `bias` metres plus `texel_bias` texel footprints at p's depth (a
+// texel-size-scaled bias: 1.5 covers slopes up to ~65 degrees); shading offsets p along the
+// normal by texel_size(p) for steeper ones (normal-offset shadows).
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "core/bounds.h"
+#include "lights/light.h"
+#include "realtime/plane.h"
+#include "realtime/view.h"
+
+namespace caligo {
+
+class RasterScene;
+
+struct ShadowMap {
+  std::vector<View> faces;
+  std::vector<Plane> depth;  // one per face
+  float bias = 1.0e-4f;      // metres of slack in the depth comparison
+  float texel_bias = 1.5f;   // extra slack in texel footprints at the lookup depth
+
+  // 1 where p is lit (not farther than the stored depth + bias), 0 in shadow; points
+  // outside every face are lit.
+  float visibility(Vec3 p) const;
+  // The face p is looked up in: 0, or the cube face of p's dominant axis from the light.
+  int face_index(Vec3 p) const;
+  // World size of one texel at p (for normal offsets).
+  float texel_size(Vec3 p) const;
+  bool is_cube() const { return faces.size() == 6; }
+};
+
+// std::nullopt for lights that have no shadow map (sphere, quad, triangle, environment).
+std::optional<ShadowMap> render_shadow_map(const RasterScene& scene, const Light& light, int size,
+                                           const Bounds3& scene_bounds);
+
+}  // namespace caligo

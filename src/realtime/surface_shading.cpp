@@ -1,0 +1,184 @@
+#include "realtime/surface_shading.h"
+
+#include <cmath>
+#include <optional>
+#include <vector>
+
+#include "core/parallel.h"
+#include "realtime/surface_shading_internal.h"
+#include "lights/light_profile.h"
+#include "realtime/media.h"
+#include "realtime/shadow_map.h"
+#include "scene/scene.h"
+
+namespace caligo {
+namespace {
+
+constexpr int kShadeTile = 16;
+
+// Light arriving at a surface point from one light, before shadowing and media.
+struct Incident {
+  RGB radiance;     // irradiance on a surface facing the light (delta lights)
+  Vec3 wi;          // unit, towards the light
+  Vec3 light_point; // where the light's path starts (for the media between)
+};
+
+std::optional<Incident> from_arrival(const std::optional<DeltaArrival>& a, Vec3 p) {
+  if (!a) return std::nullopt;
+  return Incident{a->radiance, a->wi, p + a->wi * a->distance};
+}
+
+struct IncidentAt {
+  Vec3 p;
+  float far;  // a distance that leaves every surface and volume (directional lights)
+
+  std::optional<Incident> operator()(const PointLight& l) const { return from_arrival(delta_arrival(l, p), p); }
+  std::optional<Incident> operator()(const SpotLight& l) const { return from_arrival(delta_arrival(l, p), p); }
+  std::optional<Incident> operator()(const BoxLight& l) const { return from_arrival(delta_arrival(l, p), p); }
+  std::optional<Incident> operator()(const DirectionalLight& l) const {
+    return Incident{l.irradiance, -l.direction, p - l.direction * far};
+  }
+  // Area and environment lights are left to the path tracer.
+  std::optional<Incident> operator()(const SphereLight&) const { return std::nullopt; }
+  std::optional<Incident> operator()(const QuadLight&) const { return std::nullopt; }
+  std::optional<Incident> operator()(const TriangleLight&) const { return std::nullopt; }
+  std::optional<Incident> operator()(const EnvironmentLight&) const { return std::nullopt; }
+};
+
+bool sphere_overlaps(Vec3 c, float r, const Bounds3& b) {
+  if (!std::isfinite(r)) return true;
+  const Vec3 q = min(max(c, b.lo), b.hi);
+  return length_squared(q - c) <= r * r;
+}
+
+bool overlaps(const Bounds3& a, const Bounds3& b) {
+  return a.lo.x <= b.hi.x && a.hi.x >= b.lo.x && a.lo.y <= b.hi.y && a.hi.y >= b.lo.y && a.lo.z <= b.hi.z &&
+         a.hi.z >= b.lo.z;
+}
+
+Bounds3 box_light_bounds(const BoxLight& l) {
+  const Vec3 right = cross(l.direction, l.up);
+  Bounds3 b;
+  for (int i = 0; i < 8; ++i)
+    b.extend(l.position + right * ((i & 1) ? l.half_width : -l.half_width) +
+             l.up * ((i & 2) ? l.half_height : -l.half_height) + l.direction * ((i & 4) ? l.range : 0.0f));
+  return b;
+}
+
+// Conservative: may the light reach any point of `tile`?
+struct Reaches {
+  const Bounds3& tile;
+  bool operator()(const PointLight& l) const { return sphere_overlaps(l.position, l.range, tile); }
+  bool operator()(const SpotLight& l) const { return sphere_overlaps(l.position, l.range, tile); }
+  bool operator()(const BoxLight& l) const { return overlaps(box_light_bounds(l), tile); }
+  bool operator()(const DirectionalLight&) const { return true; }
+  bool operator()(const SphereLight&) const { return false; }
+  bool operator()(const QuadLight&) const { return false; }
+  bool operator()(const TriangleLight&) const { return false; }
+  bool operator()(const EnvironmentLight&) const { return false; }
+};
+
+}  // namespace
+
+namespace shading {
+
+RGB transmittance(const VolumeScene& volumes, Vec3 a, Vec3 b) {
+  if (volumes.empty()) return RGB(1.0f);
+  const RGB tau = segment_optical_depth(volumes, a, b);
+  return {std::exp(-tau.r), std::exp(-tau.g), std::exp(-tau.b)};
+}
+
+RGB light_term(const ShadeContext& c, const FrameLight& fl, Vec3 p, Vec3 n, RGB f) {
+  const auto in = std::visit(IncidentAt{p, c.far}, fl.light);
+  if (!in) return RGB(0.0f);
+  const float cos_theta = dot(n, in->wi);
+  if (!(cos_theta > 0.0f)) return RGB(0.0f);
+  // Normal offset: one texel towards the lit side keeps self-shadowing acne away.
+  if (fl.shadow && fl.shadow->visibility(p + n * fl.shadow->texel_size(p)) == 0.0f) return RGB(0.0f);
+  return f * in->radiance * cos_theta * transmittance(c.scene.volumes(), p, in->light_point);
+}
+
+RGB shade_pixel(const ShadeContext& c, size_t pixel, Vec3 p, Vec3 eye, std::span<const int> active) {
+  const Material& m = c.scene.materials()[size_t(c.g.material[pixel])];
+  RGB radiance;
+  if (!m.emission.is_black() && (c.g.front[pixel] || m.two_sided_emission)) radiance += m.emission;
+  if (const auto* diffuse = std::get_if<DiffuseBsdf>(&m.bsdf)) {
+    const Vec3 n{c.g.nx.data[pixel], c.g.ny.data[pixel], c.g.nz.data[pixel]};
+    const RGB f = diffuse->reflectance * kInvPi;
+    for (int i : active) radiance += light_term(c, c.lights[size_t(i)], p, n, f);
+  }
+  return radiance * transmittance(c.scene.volumes(), eye, p);
+}
+
+}  // namespace shading
+
+namespace {
+
+using shading::ShadeContext;
+
+// The surface point of pixel (x, y) at linear depth `depth`, and the camera ray's origin.
+// The unnormalised perspective direction has unit forward component, so p = eye + d * depth
+// (the same arithmetic as the SIMD path's load_group).
+Vec3 pixel_point(const View& v, int x, int y, float depth, Vec3& eye) {
+  const float ndc_x = 2.0f * (float(x) + 0.5f) / float(v.resolution.x) - 1.0f;
+  const float ndc_y = 1.0f - 2.0f * (float(y) + 0.5f) / float(v.resolution.y);
+  if (v.projection == Projection::perspective) {
+    eye = v.eye;
+    const Vec3 d = v.forward + v.right * (ndc_x * v.tan_half_fov_y * v.aspect) + v.up * (ndc_y * v.tan_half_fov_y);
+    return eye + d * depth;
+  }
+  eye = v.eye + v.right * (ndc_x * v.half_width) + v.up * (ndc_y * v.half_height);
+  return eye + v.forward * depth;
+}
+
+void shade_tile(const ShadeContext& c, const Tile& tile, ColorPlanes& out) {
+  const int w = c.g.depth.width;
+  std::vector<Vec3> points(size_t(tile.x1 - tile.x0) * size_t(tile.y1 - tile.y0));
+  std::vector<Vec3> eyes(points.size());
+  Vec3 lo(kInfinity), hi(-kInfinity);
+  for (int y = tile.y0; y < tile.y1; ++y)
+    for (int x = tile.x0; x < tile.x1; ++x) {
+      const float depth = c.g.depth.at(x, y);
+      if (depth >= kSkyDepth) continue;
+      const size_t k = size_t(y - tile.y0) * size_t(tile.x1 - tile.x0) + size_t(x - tile.x0);
+      const Vec3 p = pixel_point(c.camera, x, y, depth, eyes[k]);
+      points[k] = p;
+      for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
+    }
+  Bounds3 bounds;
+  bounds.lo = lo;
+  bounds.hi = hi;
+  if (bounds.empty()) return;
+  std::vector<int> active;
+  for (size_t i = 0; i < c.lights.size(); ++i)
+    if (std::visit(Reaches{bounds}, c.lights[i].light)) active.push_back(int(i));
+  for (int y = tile.y0; y < tile.y1; ++y) {
+    const int x_done = c.simd ? shading::shade_row_simd(c, y, tile.x0, tile.x1, active, out) : tile.x0;
+    for (int x = x_done; x < tile.x1; ++x) {
+      if (c.g.depth.at(x, y) >= kSkyDepth) continue;
+      const size_t k = size_t(y - tile.y0) * size_t(tile.x1 - tile.x0) + size_t(x - tile.x0);
+      out.set(x, y, shading::shade_pixel(c, size_t(y) * size_t(w) + size_t(x), points[k], eyes[k], active));
+    }
+  }
+}
+
+// Far enough along any direction to leave every surface and volume from inside them.
+float escape_distance(const Scene& scene) {
+  Bounds3 b = scene.surfaces().bounds();
+  for (const VolumePrimitive& v : scene.volumes().primitives()) b.extend(volume_bounds(v.shape));
+  return b.empty() ? 1.0f : 2.0f * length(b.diagonal()) + 1.0f;
+}
+
+}  // namespace
+
+ColorPlanes shade_surfaces(const GBuffer& gbuffer, const View& camera, const Scene& scene,
+                           std::span<const FrameLight> lights, bool simd) {
+  const int w = gbuffer.depth.width, h = gbuffer.depth.height;
+  ColorPlanes out(w, h);
+  const ShadeContext context{gbuffer, camera, scene, lights, escape_distance(scene), simd};
+  parallel_for_tiles(make_tiles({w, h}, kShadeTile),
+                     [&](const Tile& tile) { shade_tile(context, tile, out); });
+  return out;
+}
+
+}  // namespace caligo

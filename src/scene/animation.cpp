@@ -1,0 +1,154 @@
+#include "scene/animation.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "lights/light.h"
+
+namespace caligo {
+namespace {
+
+// Rate of change at key i (per second): central difference, one-sided at the ends.
+Vec3 key_velocity(const std::vector<float>& t, const std::vector<Vec3>& p, size_t i) {
+  const size_t lo = i == 0 ? 0 : i - 1;
+  const size_t hi = std::min(i + 1, p.size() - 1);
+  return (p[hi] - p[lo]) / (t[hi] - t[lo]);
+}
+
+// One channel of a light's keys: the keys that give it, in time order.
+struct Channel {
+  std::vector<float> times;
+  std::vector<Vec3> values;
+};
+
+Channel channel(const std::vector<LightKey>& keys, std::optional<Vec3> LightKey::*member) {
+  Channel c;
+  for (const LightKey& k : keys) {
+    if (!(k.*member)) continue;
+    c.times.push_back(k.time);
+    c.values.push_back(*(k.*member));
+  }
+  return c;
+}
+
+std::optional<Vec3> sample(const Channel& c, Interpolation mode, float time) {
+  if (c.times.empty()) return std::nullopt;
+  return interpolate_keys(c.times, c.values, mode, time);
+}
+
+// Interpolated directions are renormalised; where keys point opposite ways the blend can
+// vanish, and the nearer key's direction is used instead.
+std::optional<Vec3> sample_direction(const Channel& c, Interpolation mode, float time) {
+  const auto d = sample(c, mode, time);
+  if (!d) return std::nullopt;
+  if (length_squared(*d) > 1e-12f) return normalize(*d);
+  const size_t i = size_t(std::lower_bound(c.times.begin(), c.times.end(), time) - c.times.begin());
+  return normalize(c.values[std::min(i, c.values.size() - 1)]);
+}
+
+// Keeps `up` a unit vector perpendicular to `direction` (Gram-Schmidt), falling back to any
+// perpendicular when the new direction is parallel to the old up.
+Vec3 orthogonal_up(Vec3 up, Vec3 direction) {
+  const Vec3 u = up - direction * dot(up, direction);
+  if (length_squared(u) > 1e-8f) return normalize(u);
+  return Frame::from_z(direction).t;
+}
+
+void advance(Gobo& gobo, float time) {
+  gobo.offset = {gobo.offset.x + gobo.scroll.x * time, gobo.offset.y + gobo.scroll.y * time};
+  gobo.rotation += gobo.spin * time;
+  gobo.scroll = {};
+  gobo.spin = 0.0f;
+}
+
+// Applies the animated position and direction (either may be absent) to one light, and
+// folds the gobo's velocities in. Area lights and the environment do not animate (the
+// parser rejects "animation" on them).
+struct PoseLight {
+  std::optional<Vec3> position, direction;
+  float time;
+
+  void operator()(PointLight& l) const {
+    if (position) l.position = *position;
+  }
+  void operator()(SpotLight& l) const {
+    if (position) l.position = *position;
+    if (direction) {
+      l.direction = *direction;
+      l.up = orthogonal_up(l.up, l.direction);
+    }
+    advance(l.gobo, time);
+  }
+  void operator()(BoxLight& l) const {
+    if (position) l.position = *position;
+    if (direction) {
+      l.direction = *direction;
+      l.up = orthogonal_up(l.up, l.direction);
+    }
+    advance(l.gobo, time);
+  }
+  void operator()(DirectionalLight& l) const {
+    if (direction) l.direction = *direction;
+  }
+  void operator()(SphereLight&) const {}
+  void operator()(QuadLight&) const {}
+  void operator()(TriangleLight&) const {}
+  void operator()(EnvironmentLight&) const {}
+};
+
+}  // namespace
+
+Vec3 interpolate_keys(const std::vector<float>& t, const std::vector<Vec3>& p, Interpolation mode,
+                      float time) {
+  if (time <= t.front()) return p.front();
+  if (time >= t.back()) return p.back();
+  const size_t i = size_t(std::upper_bound(t.begin(), t.end(), time) - t.begin()) - 1;
+  const float h = t[i + 1] - t[i];
+  const float s = (time - t[i]) / h;
+  if (mode == Interpolation::linear) return p[i] * (1.0f - s) + p[i + 1] * s;
+  // Cubic Hermite basis with tangents scaled from per-second to per-segment.
+  const float s2 = s * s, s3 = s2 * s;
+  const float h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
+  return p[i] * h00 + key_velocity(t, p, i) * (h * h10) + p[i + 1] * h01 +
+         key_velocity(t, p, i + 1) * (h * h11);
+}
+
+SceneDesc SceneDesc::at_time(float time) const {
+  SceneDesc out = *this;
+  if (!camera.path.empty()) {
+    std::vector<float> times;
+    std::vector<Vec3> positions, targets;
+    for (const CameraKey& k : camera.path) {
+      times.push_back(k.time);
+      positions.push_back(k.position);
+      targets.push_back(k.look_at);
+    }
+    out.camera.position = interpolate_keys(times, positions, camera.path_interpolation, time);
+    out.camera.look_at = interpolate_keys(times, targets, camera.path_interpolation, time);
+    out.camera.path.clear();
+  }
+  for (size_t i = 0; i < out.lights.size(); ++i) {
+    const LightOptions& o = options(i);
+    const auto position = sample(channel(o.animation, &LightKey::position), o.interpolation, time);
+    const auto direction =
+        sample_direction(channel(o.animation, &LightKey::direction), o.interpolation, time);
+    std::visit(PoseLight{position, direction, time}, out.lights[i]);
+  }
+  for (LightOptions& o : out.light_options) o.animation.clear();
+  for (VolumePrimitive& v : out.volumes) {
+    if (!v.shader.noise) continue;
+    v.shader.noise->offset += v.shader.noise->wind * time;
+    v.shader.noise->wind = Vec3();
+  }
+  return out;
+}
+
+float SceneDesc::duration() const {
+  float end = 0.0f;
+  if (!camera.path.empty()) end = std::max(end, camera.path.back().time);
+  for (const LightOptions& o : light_options)
+    if (!o.animation.empty()) end = std::max(end, o.animation.back().time);
+  return end;
+}
+
+}  // namespace caligo

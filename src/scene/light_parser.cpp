@@ -1,0 +1,330 @@
+#include "scene/light_parser.h"
+
+#include <cmath>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/math.h"
+#include "image/image_read.h"
+#include "lights/gobo.h"
+#include "lights/ies.h"
+#include "lights/light_profile.h"
+#include "scene/shared_readers.h"
+#include "scene/transform_parser.h"
+
+namespace caligo {
+namespace {
+
+constexpr double kMaxAngle = 179;         // spot cone half-angles, degrees
+constexpr double kMaxAngularRadius = 45;  // directional light, degrees
+constexpr double kMinShadowMap = 16, kMaxShadowMap = 8192;
+
+// ---- emission ----
+
+// color x (the direct quantity, or "power" converted with `per_watt`).
+RGB read_emission(ObjectReader& r, std::string_view direct_key, float per_watt) {
+  const RGB color = r.rgb_or("color", RGB(1.0f));
+  const auto [which, c] = r.exactly_one(direct_key, "power");
+  const RGB amount = c.rgb();
+  return color * (which == 0 ? amount : amount * per_watt);
+}
+
+// The solid angle a spot's cone times its IES profile covers: P = I * this. Integrated
+// numerically (midpoint rule in cos theta and phi around the axis), since a profile need
+// not be symmetric about the spot's axis in a way a formula could use.
+float spot_profile_solid_angle(const SpotLight& l) {
+  constexpr int kCos = 512, kPhi = 64;
+  const Frame frame = Frame::from_z(l.direction);
+  const float lo = std::max(-1.0f, l.cos_outer);
+  double sum = 0.0;
+  for (int i = 0; i < kCos; ++i) {
+    const float cos_t = lo + (1.0f - lo) * (i + 0.5f) / kCos;
+    const float sin_t = safe_sqrt(1.0f - cos_t * cos_t);
+    for (int j = 0; j < kPhi; ++j) {
+      const Vec3 w = frame.to_world(spherical_direction(sin_t, cos_t, 2.0f * kPi * (j + 0.5f) / kPhi));
+      sum += spot_cone(l, w) * ies_factor(l.ies, w);
+    }
+  }
+  return float(sum * (1.0f - lo) * 2.0 * kPi / (double(kCos) * kPhi));
+}
+
+// ---- attached files ----
+
+std::shared_ptr<const GoboImage> load_gobo_image(const JsonCursor& c, LightFileCache& files) {
+  const std::string path = resolve_path(c.string(), files.base_dir);
+  if (auto it = files.gobos.find(path); it != files.gobos.end()) return it->second;
+  try {
+    const Image image = read_image_rgb(path);
+    std::vector<RGB> pixels(image.pixel_count());
+    for (size_t p = 0; p < pixels.size(); ++p)
+      pixels[p] = {image.pixels()[3 * p], image.pixels()[3 * p + 1], image.pixels()[3 * p + 2]};
+    auto gobo = std::make_shared<const GoboImage>(image.width(), image.height(), std::move(pixels));
+    files.gobos.emplace(path, gobo);
+    return gobo;
+  } catch (const InputError& e) {
+    c.fail(std::string("cannot use the gobo image: ") + e.what());
+  }
+}
+
+std::shared_ptr<const IesProfile> load_profile(const JsonCursor& c, LightFileCache& files) {
+  const std::string path = resolve_path(c.string(), files.base_dir);
+  if (auto it = files.profiles.find(path); it != files.profiles.end()) return it->second;
+  try {
+    auto profile = std::make_shared<const IesProfile>(IesProfile::load(path));
+    files.profiles.emplace(path, profile);
+    return profile;
+  } catch (const InputError& e) {
+    c.fail(std::string("cannot use the IES profile: ") + e.what());
+  }
+}
+
+Gobo read_gobo(const JsonCursor& c, LightFileCache& files) {
+  ObjectReader r(c, "a gobo");
+  r.allow({"file", "offset", "rotation", "scroll", "spin"});
+  Gobo gobo;
+  gobo.image = load_gobo_image(r.required("file"), files);
+  if (auto o = r.optional("offset")) gobo.offset = read_vec2(*o);
+  gobo.rotation = radians(r.number_or("rotation", 0.0f));
+  if (auto s = r.optional("scroll")) gobo.scroll = read_vec2(*s);
+  gobo.spin = radians(r.number_or("spin", 0.0f));
+  r.finish();
+  return gobo;
+}
+
+// `fixed_axis`: the spot's direction (a spot's profile is aimed by the spot itself).
+IesAttachment read_ies(const JsonCursor& c, LightFileCache& files, const Vec3* fixed_axis) {
+  ObjectReader r(c, "an IES profile");
+  if (fixed_axis)
+    r.allow({"file"});
+  else
+    r.allow({"file", "axis"});
+  IesAttachment ies;
+  ies.profile = load_profile(r.required("file"), files);
+  if (fixed_axis)
+    ies.axis = *fixed_axis;
+  else if (auto a = r.optional("axis"))
+    ies.axis = read_direction(*a);
+  r.finish();
+  return ies;
+}
+
+// ---- orientation ----
+
+Vec3 read_aim(ObjectReader& r, Vec3 position) {
+  const auto [which, aim] = r.exactly_one("look_at", "direction");
+  return which == 0 ? read_target_direction(aim, position, "position") : read_direction(aim);
+}
+
+// "up", made perpendicular to `direction`. Without one: world +y, or -z when the light
+// points straight up or down.
+Vec3 read_up(ObjectReader& r, Vec3 direction) {
+  Vec3 up{0.0f, 1.0f, 0.0f};
+  if (auto c = r.optional("up")) {
+    up = read_direction(*c);
+    if (parallel(up, direction))
+      c->fail("expected an up vector not parallel to the direction " + format_vec3(direction) + ", got " +
+              c->describe());
+  } else if (parallel(up, direction)) {
+    up = {0.0f, 0.0f, -1.0f};
+  }
+  return normalize(up - direction * dot(up, direction));
+}
+
+float read_range(ObjectReader& r, float fallback) { return r.number_or("range", fallback, size_range()); }
+
+// ---- options and animation ----
+
+struct Movable {
+  bool position = false, direction = false;
+};
+
+std::vector<LightKey> read_keys(const JsonCursor& c, Movable can, Vec3 light_position) {
+  std::vector<LightKey> keys;
+  const auto elements = c.elements("an array of keys");
+  if (elements.empty()) c.fail("expected at least one key, got an empty array");
+  for (const JsonCursor& e : elements) {
+    ObjectReader r(e, "a light key");
+    if (can.position && can.direction)
+      r.allow({"time", "position", "direction", "look_at"});
+    else if (can.position)
+      r.allow({"time", "position"});
+    else
+      r.allow({"time", "direction"});
+    LightKey k;
+    k.time = read_key_time(r, keys.empty() ? nullptr : &keys.back().time);
+    if (can.position) k.position = r.optional_vec3("position");
+    if (can.direction && can.position && (r.has("direction") || r.has("look_at")))
+      k.direction = read_aim(r, k.position.value_or(light_position));
+    else if (can.direction && r.has("direction"))
+      k.direction = read_direction(r.required("direction"));
+    if (!k.position && !k.direction)
+      r.fail(std::string("expected a key to give ") + (can.position ? "a position" : "") +
+             (can.position && can.direction ? " or " : "") + (can.direction ? "a direction" : ""));
+    r.finish();
+    keys.push_back(k);
+  }
+  return keys;
+}
+
+LightOptions read_options(ObjectReader& r, std::optional<Movable> movable, Vec3 light_position) {
+  LightOptions o;
+  if (auto v = r.optional("volumetric")) {
+    if (v->is_object()) {
+      ObjectReader vr(*v, "the volumetric settings");
+      vr.allow({"enabled", "intensity"});
+      o.volumetric = vr.boolean_or("enabled", true);
+      o.volumetric_intensity = vr.number_or("intensity", 1.0f, Range::non_negative());
+      vr.finish();
+    } else {
+      o.volumetric = v->boolean();
+    }
+  }
+  o.shadow = r.boolean_or("shadow", o.shadow);
+  o.shadow_map_size =
+      int(r.integer_or("shadow_map_size", o.shadow_map_size, Range::closed(kMinShadowMap, kMaxShadowMap)));
+  if (movable) {
+    if (auto a = r.optional("animation")) {
+      ObjectReader ar(*a, "a light animation");
+      ar.allow({"interpolation", "keys"});
+      o.interpolation = read_interpolation(ar);
+      o.animation = read_keys(ar.required("keys"), *movable, light_position);
+      ar.finish();
+    }
+  }
+  return o;
+}
+
+// ---- the light types ----
+
+ParsedLight read_point(ObjectReader& r, LightFileCache& files) {
+  r.allow({"type", "position", "color", "intensity", "power", "range", "ies", "volumetric", "shadow",
+           "shadow_map_size", "animation"});
+  PointLight light;
+  light.position = r.vec3("position");
+  light.range = read_range(r, kInfinity);
+  if (auto c = r.optional("ies")) light.ies = read_ies(*c, files, nullptr);
+  // P = 4 pi I mean(profile): the profile's peak is I.
+  const float mean = light.ies.profile ? light.ies.profile->mean() : 1.0f;
+  light.intensity = read_emission(r, "intensity", kInv4Pi / mean);
+  return {light, read_options(r, Movable{true, false}, light.position)};
+}
+
+ParsedLight read_spot(ObjectReader& r, LightFileCache& files) {
+  r.allow({"type", "position", "look_at", "direction", "inner_angle", "outer_angle", "color", "intensity",
+           "power", "range", "up", "gobo", "ies", "volumetric", "shadow", "shadow_map_size", "animation"});
+  SpotLight light;
+  light.position = r.vec3("position");
+  light.direction = read_aim(r, light.position);
+  const JsonCursor inner_c = r.required("inner_angle");
+  const float inner = inner_c.number(Range::closed(0, kMaxAngle));
+  const float outer = r.number("outer_angle", Range::above_up_to(0, kMaxAngle));
+  if (inner > outer)
+    inner_c.fail("expected inner_angle <= outer_angle (" + format_number(outer) + "), got " +
+                 inner_c.describe());
+  light.cos_inner = std::cos(radians(inner));
+  light.cos_outer = std::cos(radians(outer));
+  light.range = read_range(r, kInfinity);
+  light.up = read_up(r, light.direction);
+  if (auto c = r.optional("gobo")) light.gobo = read_gobo(*c, files);
+  if (auto c = r.optional("ies")) light.ies = read_ies(*c, files, &light.direction);
+  // Power of the smoothstep cone (as in pbrt-v4): P = 2 pi I (1 - (cos_inner + cos_outer) / 2),
+  // or the cone times the profile, integrated. The gobo filters the light after this.
+  const float solid_angle = light.ies.profile
+                                ? spot_profile_solid_angle(light)
+                                : 2.0f * kPi * (1.0f - 0.5f * (light.cos_inner + light.cos_outer));
+  if (!(solid_angle > 0.0f) && r.has("power"))
+    r.required("ies").fail("the IES profile emits nothing inside the cone, so \"power\" cannot be met");
+  light.intensity = read_emission(r, "intensity", 1.0f / solid_angle);
+  return {light, read_options(r, Movable{true, true}, light.position)};
+}
+
+ParsedLight read_box(ObjectReader& r, LightFileCache& files) {
+  r.allow({"type", "position", "look_at", "direction", "up", "width", "height", "range", "color",
+           "irradiance", "power", "gobo", "volumetric", "shadow", "shadow_map_size", "animation"});
+  BoxLight light;
+  light.position = r.vec3("position");
+  light.direction = read_aim(r, light.position);
+  light.up = read_up(r, light.direction);
+  const float width = r.number("width", size_range()), height = r.number("height", size_range());
+  light.half_width = 0.5f * width;
+  light.half_height = 0.5f * height;
+  light.range = read_range(r, light.range);
+  if (auto c = r.optional("gobo")) light.gobo = read_gobo(*c, files);
+  light.irradiance = read_emission(r, "irradiance", 1.0f / (width * height));  // P = E w h
+  return {light, read_options(r, Movable{true, true}, light.position)};
+}
+
+ParsedLight read_sphere_light(ObjectReader& r) {
+  r.allow({"type", "center", "radius", "two_sided", "color", "radiance", "power", "volumetric", "shadow",
+           "shadow_map_size"});
+  SphereLight light;
+  light.center = r.vec3("center");
+  light.radius = r.number("radius", size_range());
+  light.two_sided = r.boolean_or("two_sided", false);
+  const float area = 4.0f * kPi * sqr(light.radius);
+  const float sides = light.two_sided ? 2.0f : 1.0f;
+  light.radiance = read_emission(r, "radiance", 1.0f / (sides * kPi * area));  // P = pi L A per side
+  return {light, read_options(r, std::nullopt, {})};
+}
+
+ParsedLight read_quad(ObjectReader& r) {
+  r.allow({"type", "corner", "edge1", "edge2", "two_sided", "color", "radiance", "power", "volumetric",
+           "shadow", "shadow_map_size"});
+  QuadLight light;
+  read_parallelogram(r, light.corner, light.edge1, light.edge2);
+  light.two_sided = r.boolean_or("two_sided", false);
+  const float area = length(cross(light.edge1, light.edge2));
+  const float sides = light.two_sided ? 2.0f : 1.0f;
+  light.radiance = read_emission(r, "radiance", 1.0f / (sides * kPi * area));  // P = pi L A per side
+  return {light, read_options(r, std::nullopt, {})};
+}
+
+ParsedLight read_directional(ObjectReader& r) {
+  r.allow({"type", "direction", "color", "irradiance", "angular_radius", "volumetric", "shadow",
+           "shadow_map_size", "animation"});
+  DirectionalLight light;
+  light.direction = read_direction(r.required("direction"));
+  const RGB color = r.rgb_or("color", RGB(1.0f));
+  light.irradiance = color * r.rgb("irradiance");
+  const float angular_radius = r.number_or("angular_radius", 0.0f, Range::closed(0, kMaxAngularRadius));
+  light.cos_angular_radius = std::cos(radians(angular_radius));
+  return {light, read_options(r, Movable{false, true}, {})};
+}
+
+ParsedLight read_environment(ObjectReader& r) {
+  r.allow({"type", "color", "radiance", "volumetric", "shadow", "shadow_map_size"});
+  EnvironmentLight light;
+  const RGB color = r.rgb_or("color", RGB(1.0f));
+  light.radiance = color * r.rgb("radiance");
+  return {light, read_options(r, std::nullopt, {})};
+}
+
+}  // namespace
+
+ParsedLight parse_light(const JsonCursor& c, LightFileCache& files) {
+  ObjectReader r(c, "a light");
+  const std::string type =
+      r.choice("type", {"point", "spot", "box", "sphere", "quad", "directional", "environment"});
+  r.set_what("a " + type + " light");
+  ParsedLight parsed;
+  if (type == "point") {
+    parsed = read_point(r, files);
+  } else if (type == "spot") {
+    parsed = read_spot(r, files);
+  } else if (type == "box") {
+    parsed = read_box(r, files);
+  } else if (type == "sphere") {
+    parsed = read_sphere_light(r);
+  } else if (type == "quad") {
+    parsed = read_quad(r);
+  } else if (type == "directional") {
+    parsed = read_directional(r);
+  } else {
+    parsed = read_environment(r);
+  }
+  r.finish();
+  return parsed;
+}
+
+}  // namespace caligo

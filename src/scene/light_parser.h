@@ -1,0 +1,31 @@
+// Reading lights from scene JSON (docs/scene-format.md, "lights"): the light itself, with
+// powers converted to intensities/irradiances, gobo images and IES profiles loaded (paths
+// relative to the scene file), and the per-light real-time options and animation.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+
+#include "lights/light.h"
+#include "scene/json_reader.h"
+#include "scene/scene_desc.h"
+
+namespace caligo {
+
+// Files read while parsing one scene, so lights sharing a gobo or profile share one copy.
+struct LightFileCache {
+  std::string base_dir;
+  std::map<std::string, std::shared_ptr<const GoboImage>> gobos;
+  std::map<std::string, std::shared_ptr<const IesProfile>> profiles;
+};
+
+struct ParsedLight {
+  Light light;
+  LightOptions options;
+};
+
+// One element of "lights".
+ParsedLight parse_light(const JsonCursor& c, LightFileCache& files);
+
+}  // namespace caligo
