@@ -112,7 +112,8 @@ void BM_RealtimeShadeSurfaces(benchmark::State& state) {
   std::vector<FrameLight> lights;
   for (const Light& l : b.scene->lights())
     maps.push_back(render_shadow_map(b.raster, l, 1024, b.scene->surfaces().bounds()));
-  for (size_t i = 0; i < maps.size(); ++i) lights.push_back({b.scene->lights()[i], {}, maps[i] ? &*maps[i] : nullptr});
+  for (size_t i = 0; i < maps.size(); ++i)
+    lights.push_back({b.scene->lights()[i], {}, maps[i] ? &*maps[i] : nullptr});
   for (auto _ : state) benchmark::DoNotOptimize(shade_surfaces(g, b.view, *b.scene, lights));
 }
 BENCHMARK(BM_RealtimeShadeSurfaces)->Unit(benchmark::kMillisecond)->UseRealTime();

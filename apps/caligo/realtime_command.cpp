@@ -182,8 +182,9 @@ void compare_with_reference(const RealtimeOptions& o, const SceneDesc& desc, con
   const RenderResult reference = render(*scene, rs, o.quiet ? Progress::Style::kQuiet : Progress::Style::kAuto);
   const Image realtime = to_image(frame.color);
   const ReferenceError err = reference_error(realtime, reference.image);
-  std::printf("reference (%d spp, single scattering, direct light): mean error %+.2f %%, relative RMSE %.2f %%\n",
-              o.reference_spp, err.mean_error * 100.0, err.relative_rmse * 100.0);
+  std::printf("reference (%d spp, single scattering, direct light): mean error %+.2f %%, relative RMSE %.2f %%, "
+              "RMSE/mean %.2f %%\n",
+              o.reference_spp, err.mean_error * 100.0, err.relative_rmse * 100.0, err.rmse_over_mean * 100.0);
   std::filesystem::path png = output.empty() ? std::filesystem::path("realtime") : std::filesystem::path(output);
   if (output_kind(output) == OutputKind::folder) png /= "comparison.png";
   else png.replace_extension(".comparison.png");

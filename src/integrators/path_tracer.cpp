@@ -22,6 +22,15 @@ struct PathState {
   int depth = 0;                // scattering events so far (surface and volume)
   int surface_bounces = 0;
   int volume_bounces = 0;
+  // A run of consecutive scattering events in media counts as ONE event against max_depth
+  // (max_volume_bounces bounds the events inside runs): so max_depth 1 is direct light only,
+  // surfaces or media, and a long chain of scattering in fog costs a path one surface bounce.
+  int volume_runs = 0;
+  bool in_volume_run = false;
+
+  // Whether the path may have another event of max_depth's count (a surface bounce or the
+  // start of a volume run).
+  bool may_start_event(int max_depth) const { return surface_bounces + volume_runs < max_depth; }
 };
 
 float mis_weight_for_hit(const Scene& scene, const PathState& state, int light, Vec3 wi, Vec3 p, Vec3 n) {
@@ -118,8 +127,8 @@ SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, c
   // A path that has used up its surface bounces may not scatter in media either: max_depth
   // bounds the whole path's surface events, and a scattering event after the last one
   // would lengthen it.
-  const bool may_scatter =
-      state.volume_bounces < settings.max_volume_bounces && state.surface_bounces < settings.max_depth;
+  const bool may_scatter = state.volume_bounces < settings.max_volume_bounces &&
+                           (state.in_volume_run || state.may_start_event(settings.max_depth));
   if (may_scatter) {
     // Segments that barely scatter (thin fog between two walls) contribute little in-scattered
     // light but cost two shadow rays: next-event estimation runs with a probability that
@@ -156,6 +165,8 @@ SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, c
   state.scatter_origin = x;
   ray = {x, ps.wi, 0.0f, kInfinity};
   ++state.volume_bounces;
+  if (!state.in_volume_run) ++state.volume_runs;
+  state.in_volume_run = true;
   return SegmentOutcome::kScattered;
 }
 
@@ -194,7 +205,7 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
     const Vec3 wo = -ray.direction;
     if (state.depth == 0) record_first_hit(out, si, hit->t);
     out.radiance += state.throughput * emitted(scene, state, si, wo);
-    if (state.surface_bounces >= settings.max_depth) break;
+    if (!state.may_start_event(settings.max_depth)) break;
 
     if (!is_specular(si.material->bsdf))
       out.radiance +=
@@ -213,6 +224,7 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
     state.scatter_origin = si.p;
     ray = {offset_ray_origin(si.p, si.ng, bs->wi), bs->wi, 0.0f, kInfinity};
     ++state.surface_bounces;
+    state.in_volume_run = false;
     ++state.depth;
     if (!russian_roulette(state, sampler, settings)) break;
   }

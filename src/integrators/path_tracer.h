@@ -31,8 +31,11 @@ enum class DistanceSampling {
 };
 
 struct PathSettings {
-  int max_depth = 8;               // surface scattering events; 1 = direct lighting only
-  int max_volume_bounces = 128;    // scattering events in media
+  // Events of a path: each surface bounce, and each run of consecutive scattering events in
+  // media, counts one against max_depth (1 = direct lighting only, of surfaces and media);
+  // max_volume_bounces bounds the scattering events in media.
+  int max_depth = 8;
+  int max_volume_bounces = 128;
   int russian_roulette_depth = 3;  // roulette starts after this many events
   int max_null_crossings = 256;    // guards against endless chains of null surfaces
   DistanceSampling distance_sampling = DistanceSampling::kMis;

@@ -261,6 +261,8 @@ RGB reference_delta_tracking(const Scene& scene, const Ray& camera_ray, Referenc
   bool direct = true;  // no scattering yet: the camera sees what this ray reaches
   Ray ray = camera_ray;
   int surface_bounces = 0, volume_bounces = 0;
+  int volume_runs = 0;  // runs of consecutive volume events count once against max_surface_bounces
+  bool in_volume_run = false;
   while (throughput > 0.0f) {
     const auto hit = nearest_opaque_hit(scene, ray);
     const Segment seg = make_segment(scene, ray, hit ? hit->t : kInfinity, channel);
@@ -268,11 +270,13 @@ RGB reference_delta_tracking(const Scene& scene, const Ray& camera_ray, Referenc
       const ChannelCoefficients c = coefficients(seg, *t, channel);
       // Absorbed (probability sigma_a / sigma_t), or out of scattering events.
       if (rng.next_float() * c.sigma_t >= c.sigma_s || volume_bounces >= limits.max_volume_bounces ||
-          surface_bounces >= limits.max_surface_bounces)
+          (!in_volume_run && surface_bounces + volume_runs >= limits.max_surface_bounces))
         break;
       radiance += throughput * medium_direct_light(scene, seg, *t, c.sigma_s, channel, rng);
       ray = Ray{ray.at(*t), sample_phase_mixture(seg, *t, c.sigma_s, channel, rng), 0.0f, kInfinity};
       ++volume_bounces;
+      if (!in_volume_run) ++volume_runs;
+      in_volume_run = true;
       direct = false;
       continue;
     }
@@ -286,7 +290,7 @@ RGB reference_delta_tracking(const Scene& scene, const Ray& camera_ray, Referenc
     if (std::holds_alternative<DielectricBsdf>(si.material->bsdf))
       throw std::invalid_argument("reference_delta_tracking: dielectrics are not supported");
     const bool diffuse = std::holds_alternative<DiffuseBsdf>(si.material->bsdf);
-    if (!diffuse || surface_bounces >= limits.max_surface_bounces) break;
+    if (!diffuse || surface_bounces + volume_runs >= limits.max_surface_bounces) break;
     radiance += throughput * surface_direct_light(scene, si, wo, channel, rng);
     const float u_lobe = rng.next_float();
     const auto bs = bsdf_sample(si.material->bsdf, si.ns, wo, u_lobe, next_2d(rng));
@@ -294,6 +298,7 @@ RGB reference_delta_tracking(const Scene& scene, const Ray& camera_ray, Referenc
     throughput *= bs->weight[channel];
     ray = Ray{offset_ray_origin(si.p, si.ng, bs->wi), bs->wi, 0.0f, kInfinity};
     ++surface_bounces;
+    in_volume_run = false;
     direct = false;
   }
   return in_channel(channel, 3.0f * radiance);

@@ -45,8 +45,8 @@ RGB reference_transmittance(const Scene& scene, const Ray& ray, float t_max, int
 RGB reference_single_scattering(const Scene& scene, const Ray& ray, int samples, Pcg32& rng);
 
 // How many scattering events a reference path may have, counted as the production integrator
-// counts them (PathSettings): surface bounces up to max_surface_bounces, volume scattering up
-// to max_volume_bounces, and no volume scattering once the surface bounces are used up.
+// counts them (PathSettings): surface bounces plus runs of consecutive volume events up to
+// max_surface_bounces, and volume events up to max_volume_bounces.
 struct ReferenceLimits {
   int max_volume_bounces = 64;
   int max_surface_bounces = 64;

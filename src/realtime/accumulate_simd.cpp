@@ -2,9 +2,9 @@
 // (AVX2 with -march=x86-64-v3). It re-implements the common cases of light_profile.h
 // (inverse square, range window, cone smoothstep, box extent), of media.h (homogeneous
 // and noise-modulated primitives, mean density for transmittance) and of the noise lookup
-// lane-parallel; gobos and
-// IES profiles fall back to the scalar delta_arrival per lane; shadow maps use
-// shadow_map_simd.h's batch lookup. accumulate_test.cpp checks it against march_scalar.
+// lane-parallel; gobos and IES profiles fall back to the scalar delta_arrival per lane;
+// shadow maps use shadow_map_simd.h's batch lookup. accumulate_test.cpp checks it against
+// march_scalar.
 #include <xsimd/xsimd.hpp>
 
 #include <cmath>

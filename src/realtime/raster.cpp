@@ -147,7 +147,8 @@ void resolve_pixel(const ResolveContext& c, const ScreenTri& tri, int x, int y, 
   }
   Vec3 dir = c.view.forward;
   if (c.s.perspective) {
-    const float a = (2.0f * px / float(c.s.width) - 1.0f) * c.kx, b = (1.0f - 2.0f * py / float(c.s.height)) * c.ky;
+    const float a = (2.0f * px / float(c.s.width) - 1.0f) * c.kx,
+                b = (1.0f - 2.0f * py / float(c.s.height)) * c.ky;
     for (int k = 0; k < 3; ++k) dir[k] = c.view.forward[k] + c.view.right[k] * a + c.view.up[k] * b;
   }
   const bool front = ng.x * dir.x + ng.y * dir.y + ng.z * dir.z < 0.0f;
@@ -209,7 +210,8 @@ void resolve_tile(const ResolveContext& c, const Tile& tile, const Target& t, bo
     if (simd) {
       for (; x + 8 <= tile.x1; x += 8) {
         const int32_t* run = ids + (x - tile.x0);
-        const bool same = run[0] >= 0 && std::all_of(run + 1, run + 8, [&](int32_t v) { return v == run[0]; });
+        const bool same =
+            run[0] >= 0 && std::all_of(run + 1, run + 8, [&](int32_t v) { return v == run[0]; });
         if (!same) {
           for (int i = 0; i < 8; ++i) {
             if (run[i] < 0)

@@ -56,11 +56,16 @@ struct Projector {
   float plane(int k, const ViewVertex& v) const {
     const float w = perspective ? v.z : 1.0f;
     switch (k) {
-      case 0: return perspective ? v.z - kNear : v.z;
-      case 1: return guard_x * w - v.x;
-      case 2: return guard_x * w + v.x;
-      case 3: return guard_y * w - v.y;
-      default: return guard_y * w + v.y;
+      case 0:
+        return perspective ? v.z - kNear : v.z;
+      case 1:
+        return guard_x * w - v.x;
+      case 2:
+        return guard_x * w + v.x;
+      case 3:
+        return guard_y * w - v.y;
+      default:
+        return guard_y * w + v.y;
     }
   }
   bool inside(const ViewVertex& v) const {
@@ -167,7 +172,8 @@ void setup_one(const RasterScene& scene, size_t i, const Projector& proj, bool a
                std::vector<ScreenTri>& out) {
   const Vec3* p = scene.vertices(i);
   const Vec3* n = scene.vertex_normals(i);
-  ViewVertex poly[kMaxPolygon] = {proj.to_view(p[0], n[0]), proj.to_view(p[1], n[1]), proj.to_view(p[2], n[2])};
+  ViewVertex poly[kMaxPolygon] = {proj.to_view(p[0], n[0]), proj.to_view(p[1], n[1]),
+                                  proj.to_view(p[2], n[2])};
   int count = 3;
   if (!(proj.inside(poly[0]) && proj.inside(poly[1]) && proj.inside(poly[2]))) {
     // Trivially outside one plane: nothing to draw.

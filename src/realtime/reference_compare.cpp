@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "image/compare.h"
 #include "image/tonemap.h"
 
 namespace caligo {
@@ -79,7 +80,8 @@ ReferenceError reference_error(const Image& a, const Image& ref) {
       sq += double(d.r) * d.r + double(d.g) * d.g + double(d.b) * d.b;
     }
   const double rmse = std::sqrt(sq / (3.0 * double(a.pixel_count())));
-  return {(mean_rgb(a, ca) - mean_ref) / mean_ref, rmse / mean_ref};
+  const ImageMetrics m = compare_images(a, ref);
+  return {(mean_rgb(a, ca) - mean_ref) / mean_ref, std::sqrt(m.relative_mse), rmse / mean_ref};
 }
 
 Rgb8Image comparison_strip(const Image& a, const Image& ref, float exposure, float heat_scale) {

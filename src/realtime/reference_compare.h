@@ -14,12 +14,16 @@ namespace caligo {
 // An "R", "G", "B" image of the planes.
 Image to_image(const ColorPlanes& planes);
 
-// Both relative to the reference's mean over all pixels and channels:
-//   mean_error    = (mean(a) - mean(ref)) / mean(ref)      (signed: bias)
-//   relative_rmse = sqrt(mean (a - ref)^2) / mean(ref)
+//   mean_error     = (mean(a) - mean(ref)) / mean(ref)          signed: bias of the whole frame
+//   relative_rmse  = sqrt(mean (a - ref)^2 / (ref^2 + 1e-2))    per pixel and channel: the root of
+//                    image/compare.h's relative MSE (Rousselle et al. 2011), so dark regions and
+//                    the bright core around a visible light weigh by their own brightness
+//   rmse_over_mean = sqrt(mean (a - ref)^2) / mean(ref)         the absolute error against the
+//                    frame's mean: dominated by the brightest pixels and by dark frames' noise
 struct ReferenceError {
   double mean_error = 0;
   double relative_rmse = 0;
+  double rmse_over_mean = 0;
 };
 ReferenceError reference_error(const Image& realtime, const Image& reference);
 

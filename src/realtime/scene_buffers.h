@@ -19,8 +19,8 @@ class Scene;
 inline constexpr float kSkyDepth = 1.0e9f;
 
 struct GBuffer {
-  Plane depth;                 // linear depth along the view's forward axis; kSkyDepth for none
-  Plane nx, ny, nz;            // unit shading normal facing the viewer; 0 where nothing
+  Plane depth;                    // linear depth along the view's forward axis; kSkyDepth for none
+  Plane nx, ny, nz;               // unit shading normal facing the viewer; 0 where nothing
   std::vector<int32_t> material;  // index into Scene::materials(); -1 where nothing
   // 1 where the viewer sees the side of the geometric normal (one-sided emitters glow
   // only there), 0 for back faces and where nothing.

@@ -42,7 +42,8 @@ View fit_directional_face(const Bounds3& b, Vec3 direction, int size) {
   float lo[3] = {kInfinity, kInfinity, kInfinity}, hi[3] = {-kInfinity, -kInfinity, -kInfinity};
   for (int i = 0; i < 8; ++i) {
     const Vec3 c{(i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, (i & 4) ? b.hi.z : b.lo.z};
-    const float v[3] = {dot(c - centre, basis.right), dot(c - centre, basis.up), dot(c - centre, basis.forward)};
+    const float v[3] = {dot(c - centre, basis.right), dot(c - centre, basis.up),
+                        dot(c - centre, basis.forward)};
     for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], v[k]), hi[k] = std::max(hi[k], v[k]);
   }
   const float extent = std::max(1e-3f, length(b.diagonal()));
@@ -62,8 +63,8 @@ struct Render {
   std::optional<ShadowMap> operator()(const SpotLight& l) const {
     const float half_angle = std::acos(std::clamp(l.cos_outer, -1.0f, 1.0f));
     if (half_angle > kMaxSpotHalfAngle) return cube_map(scene, l.position, size);
-    return single_face(scene,
-                       View::perspective_view(l.position, l.direction, l.up, 2.0f * half_angle, {size, size}));
+    return single_face(
+        scene, View::perspective_view(l.position, l.direction, l.up, 2.0f * half_angle, {size, size}));
   }
   std::optional<ShadowMap> operator()(const BoxLight& l) const {
     return single_face(scene, View::orthographic_view(l.position, l.direction, l.up, l.half_width,

@@ -58,8 +58,8 @@ inline xsimd::batch<float> face_visibility(const ShadowMap& map, int face, const
 }
 
 // The cube face every lane would pick (ShadowMap::face_index), or -1 when they differ.
-inline int common_cube_face(const ShadowMap& map, const xsimd::batch<float>& px, const xsimd::batch<float>& py,
-                            const xsimd::batch<float>& pz) {
+inline int common_cube_face(const ShadowMap& map, const xsimd::batch<float>& px,
+                            const xsimd::batch<float>& py, const xsimd::batch<float>& pz) {
   using B = xsimd::batch<float>;
   const Vec3 e = map.faces[0].eye;
   const B dx = px - B(e.x), dy = py - B(e.y), dz = pz - B(e.z);

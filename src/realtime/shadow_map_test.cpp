@@ -63,7 +63,8 @@ Counts compare_with_embree(const Fixture& f, const Light& light, int size) {
   using B = xsimd::batch<float>;
   for (size_t i = 0; i + B::size <= points.size(); i += B::size) {
     alignas(32) float x[B::size], y[B::size], z[B::size], v[B::size];
-    for (size_t k = 0; k < B::size; ++k) x[k] = points[i + k].x, y[k] = points[i + k].y, z[k] = points[i + k].z;
+    for (size_t k = 0; k < B::size; ++k)
+      x[k] = points[i + k].x, y[k] = points[i + k].y, z[k] = points[i + k].z;
     shadow_visibility(*map, B::load_aligned(x), B::load_aligned(y), B::load_aligned(z)).store_aligned(v);
     for (size_t k = 0; k < B::size; ++k) c.simd_mismatch += v[k] != map->visibility(points[i + k]);
   }
@@ -76,8 +77,8 @@ Counts compare_with_embree(const Fixture& f, const Light& light, int size) {
 void expect_agreement(const Light& light, const char* name) {
   const Fixture f;
   const Counts c = compare_with_embree(f, light, 512);
-  std::printf("%s: shadow map agrees with Embree at %d of %d points; SIMD lookup differs at %d\n", name, c.agree,
-              c.points, c.simd_mismatch);
+  std::printf("%s: shadow map agrees with Embree at %d of %d points; SIMD lookup differs at %d\n", name,
+              c.agree, c.points, c.simd_mismatch);
   EXPECT_GE(double(c.agree) / c.points, 0.98) << name << ": " << c.agree << " / " << c.points;
   EXPECT_LE(c.simd_mismatch, c.points / 1000) << name;
 }

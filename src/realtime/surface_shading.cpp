@@ -18,9 +18,9 @@ constexpr int kShadeTile = 16;
 
 // Light arriving at a surface point from one light, before shadowing and media.
 struct Incident {
-  RGB radiance;     // irradiance on a surface facing the light (delta lights)
-  Vec3 wi;          // unit, towards the light
-  Vec3 light_point; // where the light's path starts (for the media between)
+  RGB radiance;      // irradiance on a surface facing the light (delta lights)
+  Vec3 wi;           // unit, towards the light
+  Vec3 light_point;  // where the light's path starts (for the media between)
 };
 
 std::optional<Incident> from_arrival(const std::optional<DeltaArrival>& a, Vec3 p) {
@@ -32,8 +32,12 @@ struct IncidentAt {
   Vec3 p;
   float far;  // a distance that leaves every surface and volume (directional lights)
 
-  std::optional<Incident> operator()(const PointLight& l) const { return from_arrival(delta_arrival(l, p), p); }
-  std::optional<Incident> operator()(const SpotLight& l) const { return from_arrival(delta_arrival(l, p), p); }
+  std::optional<Incident> operator()(const PointLight& l) const {
+    return from_arrival(delta_arrival(l, p), p);
+  }
+  std::optional<Incident> operator()(const SpotLight& l) const {
+    return from_arrival(delta_arrival(l, p), p);
+  }
   std::optional<Incident> operator()(const BoxLight& l) const { return from_arrival(delta_arrival(l, p), p); }
   std::optional<Incident> operator()(const DirectionalLight& l) const {
     return Incident{l.irradiance, -l.direction, p - l.direction * far};
@@ -124,7 +128,8 @@ Vec3 pixel_point(const View& v, int x, int y, float depth, Vec3& eye) {
   const float ndc_y = 1.0f - 2.0f * (float(y) + 0.5f) / float(v.resolution.y);
   if (v.projection == Projection::perspective) {
     eye = v.eye;
-    const Vec3 d = v.forward + v.right * (ndc_x * v.tan_half_fov_y * v.aspect) + v.up * (ndc_y * v.tan_half_fov_y);
+    const Vec3 d =
+        v.forward + v.right * (ndc_x * v.tan_half_fov_y * v.aspect) + v.up * (ndc_y * v.tan_half_fov_y);
     return eye + d * depth;
   }
   eye = v.eye + v.right * (ndc_x * v.half_width) + v.up * (ndc_y * v.half_height);

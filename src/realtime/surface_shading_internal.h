@@ -25,6 +25,7 @@ RGB light_term(const ShadeContext& c, const FrameLight& light, Vec3 p, Vec3 n, R
 // The whole pixel: emission plus the active lights, times the camera ray's transmittance.
 RGB shade_pixel(const ShadeContext& c, size_t pixel, Vec3 p, Vec3 eye, std::span<const int> active);
 // Shades pixels [x0, x) of row y 8 at a time and returns x (<= x1); the caller shades the rest.
-int shade_row_simd(const ShadeContext& c, int y, int x0, int x1, std::span<const int> active, ColorPlanes& out);
+int shade_row_simd(const ShadeContext& c, int y, int x0, int x1, std::span<const int> active,
+                   ColorPlanes& out);
 
 }  // namespace caligo::shading

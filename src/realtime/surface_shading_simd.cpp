@@ -58,7 +58,11 @@ struct ArrivalAt {
     const B inv = B(1.0f) / dist;
     const V3 wi{d.x * inv, d.y * inv, d.z * inv};
     const B scale = range_window(dist, range) / dist2;
-    return {B(intensity.r) * scale, B(intensity.g) * scale, B(intensity.b) * scale, wi, dist,
+    return {B(intensity.r) * scale,
+            B(intensity.g) * scale,
+            B(intensity.b) * scale,
+            wi,
+            dist,
             (dist2 > B(0.0f)) & (scale > B(0.0f))};
   }
   Arrival operator()(const PointLight& l) const { return point_like(l.position, l.intensity, l.range); }
@@ -88,7 +92,9 @@ struct ArrivalAt {
   Arrival operator()(const QuadLight&) const { return none(); }
   Arrival operator()(const TriangleLight&) const { return none(); }
   Arrival operator()(const EnvironmentLight&) const { return none(); }
-  static Arrival none() { return {B(0.0f), B(0.0f), B(0.0f), {B(0.0f), B(0.0f), B(0.0f)}, B(0.0f), Mask(false)}; }
+  static Arrival none() {
+    return {B(0.0f), B(0.0f), B(0.0f), {B(0.0f), B(0.0f), B(0.0f)}, B(0.0f), Mask(false)};
+  }
 };
 
 // Lights whose emission the batch code models completely.
@@ -135,9 +141,9 @@ void lane_transmittance(const VolumeScene& volumes, const V3& a, const V3& b, Ma
 struct Group {
   V3 p, eye, n;
   Mask valid;
-  B fr, fg, fb;   // albedo / pi (0 for non-diffuse materials)
+  B fr, fg, fb;  // albedo / pi (0 for non-diffuse materials)
   Mask diffuse;
-  B r, g, b;      // radiance so far
+  B r, g, b;  // radiance so far
 };
 
 void add_simple_light(const ShadeContext& c, const FrameLight& fl, Group& q) {
@@ -148,7 +154,8 @@ void add_simple_light(const ShadeContext& c, const FrameLight& fl, Group& q) {
   B weight = xsimd::select(m, cos_theta, B(0.0f));
   if (fl.shadow) weight *= shadowed_visibility(*fl.shadow, q.p, q.n);
   B tr_r(1.0f), tr_g(1.0f), tr_b(1.0f);
-  if (!c.scene.volumes().empty()) lane_transmittance(c.scene.volumes(), q.p, madd(q.p, a.wi, a.distance), m, tr_r, tr_g, tr_b);
+  if (!c.scene.volumes().empty())
+    lane_transmittance(c.scene.volumes(), q.p, madd(q.p, a.wi, a.distance), m, tr_r, tr_g, tr_b);
   // Masked lanes may hold inf or NaN (a point at the light): select, never multiply by 0.
   q.r += xsimd::select(m, q.fr * a.r * weight * tr_r, B(0.0f));
   q.g += xsimd::select(m, q.fg * a.g * weight * tr_g, B(0.0f));
@@ -202,7 +209,8 @@ Group load_group(const ShadeContext& c, int x, int y, B depth) {
     if (m >= 0) {
       const Material& mat = c.scene.materials()[size_t(m)];
       if (!mat.emission.is_black() && (c.g.front[pixel + i] || mat.two_sided_emission)) ei = mat.emission;
-      if (const auto* d = std::get_if<DiffuseBsdf>(&mat.bsdf)) fi = d->reflectance * kInvPi, diffuse[i] = 1.0f;
+      if (const auto* d = std::get_if<DiffuseBsdf>(&mat.bsdf))
+        fi = d->reflectance * kInvPi, diffuse[i] = 1.0f;
     }
     f[0][i] = fi.r, f[1][i] = fi.g, f[2][i] = fi.b;
     e[0][i] = ei.r, e[1][i] = ei.g, e[2][i] = ei.b;
@@ -215,7 +223,8 @@ Group load_group(const ShadeContext& c, int x, int y, B depth) {
 
 }  // namespace
 
-int shade_row_simd(const ShadeContext& c, int y, int x0, int x1, std::span<const int> active, ColorPlanes& out) {
+int shade_row_simd(const ShadeContext& c, int y, int x0, int x1, std::span<const int> active,
+                   ColorPlanes& out) {
   int x = x0;
   for (; x + int(kLanes) <= x1; x += int(kLanes)) {
     const B depth = B::load_unaligned(c.g.depth.row(y) + x);

@@ -93,7 +93,8 @@ TEST(SurfaceShading, OneSidedEmission) {
     desc.camera.look_at = {0, 0, 0};
     desc.materials.push_back({"glow", BlackBsdf{}, RGB(2.0f, 1.0f, 0.5f), false});
     const Vec3 e1{2, 0, 0}, e2{0, 2, 0};
-    desc.shapes.push_back({facing ? RectangleShape{{-1, -1, 0}, e1, e2} : RectangleShape{{-1, -1, 0}, e2, e1}, {}, 0});
+    desc.shapes.push_back(
+        {facing ? RectangleShape{{-1, -1, 0}, e1, e2} : RectangleShape{{-1, -1, 0}, e2, e1}, {}, 0});
     const auto scene = Scene::build(desc);
     const View view = View::from_camera(scene->camera({32, 32}), {32, 32});
     const GBuffer g = rasterize_gbuffer(RasterScene::build(*scene), view);
@@ -140,7 +141,8 @@ TEST(SurfaceShading, SimdMatchesScalar) {
   std::vector<std::optional<ShadowMap>> maps;
   std::vector<FrameLight> lights;
   for (const Light& l : scene->lights()) maps.push_back(render_shadow_map(raster, l, 512, raster.bounds()));
-  for (size_t i = 0; i < maps.size(); ++i) lights.push_back({scene->lights()[i], {}, maps[i] ? &*maps[i] : nullptr});
+  for (size_t i = 0; i < maps.size(); ++i)
+    lights.push_back({scene->lights()[i], {}, maps[i] ? &*maps[i] : nullptr});
   const ColorPlanes simd = shade_surfaces(g, view, *scene, lights, true);
   const ColorPlanes scalar = shade_surfaces(g, view, *scene, lights, false);
   int differ = 0, lit = 0;
@@ -155,7 +157,8 @@ TEST(SurfaceShading, SimdMatchesScalar) {
     }
   }
   EXPECT_GT(lit, int(simd.r.data.size() / 3));
-  std::printf("shading SIMD vs scalar: %d of %zu pixels differ by more than 1e-4\n", differ, simd.r.data.size());
+  std::printf("shading SIMD vs scalar: %d of %zu pixels differ by more than 1e-4\n", differ,
+              simd.r.data.size());
   EXPECT_LE(differ, int(simd.r.data.size() / 1000)) << differ << " pixels differ";
 }
 

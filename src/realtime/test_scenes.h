@@ -11,7 +11,8 @@
 namespace caligo::test_scenes {
 
 inline int add_diffuse(SceneDesc& desc, float albedo) {
-  desc.materials.push_back({"diffuse" + std::to_string(desc.materials.size()), DiffuseBsdf{RGB(albedo)}, {}, false});
+  desc.materials.push_back(
+      {"diffuse" + std::to_string(desc.materials.size()), DiffuseBsdf{RGB(albedo)}, {}, false});
   return int(desc.materials.size()) - 1;
 }
 
