@@ -46,6 +46,7 @@ struct RealtimeOptions {
   std::optional<int> gather_radius;
   std::optional<float> ms_floor;
   std::optional<bool> temporal;
+  std::optional<float> still_time;  // --time: every frame at this time (a still scene)
   int warmup = 3;
   bool exr = false;
   bool scalar = false;

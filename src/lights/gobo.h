@@ -25,6 +25,8 @@ class GoboImage {
   int width() const { return width_; }
   int height() const { return height_; }
   RGB pixel(int x, int y) const { return pixels_[static_cast<size_t>(y) * width_ + x]; }
+  // Row-major pixels (width() * height()), for lane-parallel lookups that gather from them.
+  const RGB* data() const { return pixels_.data(); }
 
  private:
   int width_, height_;

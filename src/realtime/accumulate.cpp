@@ -121,21 +121,28 @@ void accumulate_light(const FrameLight& light, const VolumeScene& volumes, const
   const bool use_simd = settings.simd && simd.supported();
   const float intensity = light.options.volumetric_intensity;
   const PixelRect rect = light_screen_bounds(light.light, view);
-  parallel_for(std::max(0, rect.y1 - rect.y0), [&](int row) {
-    const int y = rect.y0 + row;
+  // Square tiles rather than rows: neighbouring rays sample neighbouring shadow-map texels,
+  // and a tile's samples stay in cache where a 480-pixel row's do not.
+  constexpr int kTile = 16;
+  const int tiles_x = (std::max(0, rect.x1 - rect.x0) + kTile - 1) / kTile;
+  const int tiles_y = (std::max(0, rect.y1 - rect.y0) + kTile - 1) / kTile;
+  parallel_for(tiles_x * tiles_y, [&](int tile) {
+    const int tx0 = rect.x0 + (tile % tiles_x) * kTile, ty0 = rect.y0 + (tile / tiles_x) * kTile;
     thread_local IntervalScratch scratch;
     PixelMarch march;
-    float* out_r = accum.r.row(y);
-    float* out_g = accum.g.row(y);
-    float* out_b = accum.b.row(y);
-    const float* d = depth.row(y);
-    for (int x = rect.x0; x < rect.x1; ++x) {
-      if (!setup_pixel_march(light.light, volumes, view, d[x], x, y, settings, scratch, march)) continue;
-      const RGB l = use_simd ? simd.march(march)
-                             : march_scalar(light, volumes, march, settings.multiple_scattering_floor, far);
-      out_r[x] += l.r * intensity;
-      out_g[x] += l.g * intensity;
-      out_b[x] += l.b * intensity;
+    for (int y = ty0; y < std::min(ty0 + kTile, rect.y1); ++y) {
+      float* out_r = accum.r.row(y);
+      float* out_g = accum.g.row(y);
+      float* out_b = accum.b.row(y);
+      const float* d = depth.row(y);
+      for (int x = tx0; x < std::min(tx0 + kTile, rect.x1); ++x) {
+        if (!setup_pixel_march(light.light, volumes, view, d[x], x, y, settings, scratch, march)) continue;
+        const RGB l = use_simd ? simd.march(march)
+                               : march_scalar(light, volumes, march, settings.multiple_scattering_floor, far);
+        out_r[x] += l.r * intensity;
+        out_g[x] += l.g * intensity;
+        out_b[x] += l.b * intensity;
+      }
     }
   });
 }

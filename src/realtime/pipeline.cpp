@@ -67,6 +67,7 @@ RealtimePipeline::RealtimePipeline(const SceneDesc& desc, const RealtimeSettings
   // Geometry never moves: the scene (surfaces, materials) and its triangles are built once.
   scene_ = Scene::build(desc_.at_time(0.0f));
   raster_ = std::make_unique<RasterScene>(RasterScene::build(*scene_));
+  gbuffer_ = std::make_unique<GBuffer>();
   shadows_.resize(desc_.lights.size());
 }
 
@@ -91,20 +92,26 @@ void RealtimePipeline::update_shadow_maps(const std::vector<Light>& lights, Real
   }
 }
 
+const Plane& RealtimePipeline::depth() const { return gbuffer_->depth; }
+
 const RealtimeFrame& RealtimePipeline::render(float time, uint32_t frame_index) {
   const auto frame_start = Clock::now();
   const SceneDesc now = desc_.at_time(time);
-  RealtimeFrame next;
+  std::swap(frame_, previous_);
+  RealtimeFrame& next = frame_;
   PassTimes& times = next.times;
+  times = {};
   const Camera camera(now.camera, settings_.resolution);
   next.view = View::from_camera(camera, settings_.resolution);
   const int scale = settings_.scale;
   const Vec2i low_res{(settings_.resolution.x + scale - 1) / scale, (settings_.resolution.y + scale - 1) / scale};
-  const View low_view = View::from_camera(camera, low_res);
+  next.low_view = View::from_camera(camera, low_res);
 
   auto t = Clock::now();
-  GBuffer gbuffer = settings_.scene_buffers == SceneBufferMethod::raster ? rasterize_gbuffer(*raster_, next.view)
-                                                                          : trace_gbuffer(*scene_, next.view);
+  if (settings_.scene_buffers == SceneBufferMethod::raster)
+    rasterize_gbuffer(*raster_, next.view, *gbuffer_, settings_.simd);
+  else
+    *gbuffer_ = trace_gbuffer(*scene_, next.view);
   times.depth = micros_since(t);
 
   t = Clock::now();
@@ -118,7 +125,7 @@ const RealtimeFrame& RealtimePipeline::render(float time, uint32_t frame_index) 
   // Media move with the wind: their frame-time description drives the in-scattering.
   const VolumeScene volumes(now.volumes);
   t = Clock::now();
-  const Plane low_depth = downsample_depth(gbuffer.depth, scale);
+  next.low_depth = downsample_depth(gbuffer_->depth, scale);
   ColorPlanes accum(low_res.x, low_res.y);
   AccumulationSettings acc = settings_.accumulation;
   acc.frame_seed = frame_index;
@@ -127,55 +134,59 @@ const RealtimeFrame& RealtimePipeline::render(float time, uint32_t frame_index) 
   for (size_t i = 0; i < lights.size(); ++i) {
     if (!lights[i].options.volumetric) continue;
     const auto light_start = Clock::now();
-    accumulate_light(lights[i], volumes, low_view, low_depth, acc, accum);
+    accumulate_light(lights[i], volumes, next.low_view, next.low_depth, acc, accum);
     times.per_light[i] = micros_since(light_start);
   }
   times.accumulation = micros_since(t);
 
   t = Clock::now();
-  const ColorPlanes gathered =
-      settings_.gather_radius > 0
-          ? bilateral_gather(accum, low_depth, settings_.gather_radius, settings_.gather_depth_falloff, settings_.simd)
-          : accum;
+  ColorPlanes gathered = settings_.gather_radius > 0
+                             ? bilateral_gather(accum, next.low_depth, settings_.gather_radius,
+                                                settings_.gather_depth_falloff, settings_.simd)
+                             : std::move(accum);
   times.gather = micros_since(t);
 
-  t = Clock::now();
-  ColorPlanes volumetric = scale == 1 ? gathered
-                                      : upsample_nearest_depth(gathered, low_depth, gbuffer.depth, 0.05f,
-                                                               settings_.simd);
-  times.upsample = micros_since(t);
-
+  // Temporal reprojection at accumulation resolution: the interleaving pattern and the
+  // flicker it fights live there, and it costs scale^2 times less than at full resolution.
   t = Clock::now();
   if (settings_.temporal && has_history_)
-    volumetric = temporal_reproject(volumetric, gbuffer.depth, next.view, frame_.volumetric, frame_.depth,
-                                    frame_.view, settings_.temporal_blend, settings_.simd);
+    temporal_reproject(gathered, next.low_depth, next.low_view, previous_.low_volumetric, previous_.low_depth,
+                       previous_.low_view, settings_.temporal_blend, next.low_volumetric, settings_.simd);
+  else
+    next.low_volumetric = std::move(gathered);
   times.temporal = micros_since(t);
 
   t = Clock::now();
-  next.surfaces = shade_surfaces(gbuffer, next.view, *scene_, lights);
-  times.surfaces = micros_since(t);
+  if (scale == 1)
+    next.volumetric = next.low_volumetric;
+  else
+    upsample_nearest_depth(next.low_volumetric, next.low_depth, gbuffer_->depth, next.volumetric, 0.05f,
+                           settings_.simd);
+  times.upsample = micros_since(t);
 
   t = Clock::now();
-  next.color = ColorPlanes(settings_.resolution.x, settings_.resolution.y);
+  next.surfaces = shade_surfaces(*gbuffer_, next.view, *scene_, lights);
+  times.surfaces = micros_since(t);
+
   // Composite before tone mapping (the seed adds the upscaled buffer to the lit scene).
+  t = Clock::now();
+  if (next.color.width() != settings_.resolution.x || next.color.height() != settings_.resolution.y)
+    next.color = ColorPlanes(settings_.resolution.x, settings_.resolution.y);
   parallel_for(settings_.resolution.y, [&](int y) {
     const auto add_row = [y](Plane& out, const Plane& a, const Plane& b) {
       float* o = out.row(y);
       const float *pa = a.row(y), *pb = b.row(y);
       for (int x = 0; x < out.width; ++x) o[x] = pa[x] + pb[x];
     };
-    add_row(next.color.r, next.surfaces.r, volumetric.r);
-    add_row(next.color.g, next.surfaces.g, volumetric.g);
-    add_row(next.color.b, next.surfaces.b, volumetric.b);
+    add_row(next.color.r, next.surfaces.r, next.volumetric.r);
+    add_row(next.color.g, next.surfaces.g, next.volumetric.g);
+    add_row(next.color.b, next.surfaces.b, next.volumetric.b);
   });
   times.composite = micros_since(t);
 
-  next.depth = std::move(gbuffer.depth);
-  next.volumetric = std::move(volumetric);
   times.total = micros_since(frame_start);
-  frame_ = std::move(next);
   has_history_ = true;
-  return frame_;
+  return next;
 }
 
 }  // namespace caligo

@@ -1,7 +1,8 @@
 // One real-time frame, pass by pass (the seed's pipeline, DESIGN.md "A frame in the
 // real-time pipeline"): scene buffers -> shadow maps (cached while a light stands still) ->
-// per-light accumulation at low resolution -> bilateral gather -> nearest-depth upsampling
-// -> temporal reprojection -> composite over the simply lit surfaces. Each pass is a pure
+// per-light accumulation at low resolution -> bilateral gather -> temporal reprojection
+// (at low resolution: see docs/techniques.md) -> nearest-depth upsampling -> composite over
+// the simply lit surfaces. Each pass is a pure
 // function (passes.h, scene_buffers.h, shadow_map.h, surface_shading.h); this class only
 // owns what lives across frames (the built scene, cached shadow maps, the history) and
 // times every pass.
@@ -20,6 +21,7 @@ namespace caligo {
 
 class Scene;
 class RasterScene;
+struct GBuffer;
 struct ShadowMap;
 
 enum class SceneBufferMethod { raster, embree };
@@ -49,11 +51,13 @@ struct PassTimes {
 };
 
 struct RealtimeFrame {
-  View view;
-  Plane depth;             // full resolution, linear
-  ColorPlanes surfaces;    // directly lit surfaces, attenuated by the media in front of them
-  ColorPlanes volumetric;  // in-scattered light at full resolution (after temporal)
-  ColorPlanes color;       // surfaces + volumetric, linear, before tone mapping
+  View view;                   // full resolution
+  ColorPlanes surfaces;        // directly lit surfaces, attenuated by the media in front of them
+  ColorPlanes volumetric;      // in-scattered light at full resolution
+  ColorPlanes color;           // surfaces + volumetric, linear, before tone mapping
+  View low_view;               // accumulation resolution
+  Plane low_depth;             // linear depth at accumulation resolution
+  ColorPlanes low_volumetric;  // gathered and temporally filtered: next frame's history
   PassTimes times;
   int shadow_maps_rendered = 0;
 };
@@ -69,6 +73,8 @@ class RealtimePipeline {
   // previous call's frame is the temporal history.
   const RealtimeFrame& render(float time, uint32_t frame_index);
   void reset_history() { has_history_ = false; }
+  // Full-resolution depth of the last frame.
+  const Plane& depth() const;
   const Scene& scene() const { return *scene_; }
   const RealtimeSettings& settings() const { return settings_; }
 
@@ -82,7 +88,8 @@ class RealtimePipeline {
   std::unique_ptr<Scene> scene_;
   std::unique_ptr<RasterScene> raster_;
   std::vector<CachedShadow> shadows_;
-  RealtimeFrame frame_;
+  std::unique_ptr<GBuffer> gbuffer_;  // reused frame to frame (allocation costs as much as drawing it)
+  RealtimeFrame frame_, previous_;   // swapped each frame so their buffers are reused
   bool has_history_ = false;
 };
 

@@ -136,32 +136,30 @@ Vec3 pixel_point(const View& v, int x, int y, float depth, Vec3& eye) {
   return eye + v.forward * depth;
 }
 
-void shade_tile(const ShadeContext& c, const Tile& tile, ColorPlanes& out) {
+void shade_tile(const ShadeContext& c, const shading::SimdFrame* simd, const Tile& tile, ColorPlanes& out) {
   const int w = c.g.depth.width;
-  std::vector<Vec3> points(size_t(tile.x1 - tile.x0) * size_t(tile.y1 - tile.y0));
-  std::vector<Vec3> eyes(points.size());
-  Vec3 lo(kInfinity), hi(-kInfinity);
+  // The SIMD path takes the columns that fill whole batches; the scalar one the rest.
+  const int x_simd = simd ? tile.x0 + (tile.x1 - tile.x0) / 8 * 8 : tile.x0;
+  const int cols = tile.x1 - x_simd;
+  Vec3 points[kShadeTile * kShadeTile], eyes[kShadeTile * kShadeTile];
+  Bounds3 bounds = simd ? shading::points_bounds_simd(c, tile.y0, tile.y1, tile.x0, x_simd) : Bounds3{};
   for (int y = tile.y0; y < tile.y1; ++y)
-    for (int x = tile.x0; x < tile.x1; ++x) {
+    for (int x = x_simd; x < tile.x1; ++x) {
       const float depth = c.g.depth.at(x, y);
       if (depth >= kSkyDepth) continue;
-      const size_t k = size_t(y - tile.y0) * size_t(tile.x1 - tile.x0) + size_t(x - tile.x0);
-      const Vec3 p = pixel_point(c.camera, x, y, depth, eyes[k]);
-      points[k] = p;
-      for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], p[a]), hi[a] = std::max(hi[a], p[a]);
+      const size_t k = size_t(y - tile.y0) * size_t(cols) + size_t(x - x_simd);
+      points[k] = pixel_point(c.camera, x, y, depth, eyes[k]);
+      bounds.extend(points[k]);
     }
-  Bounds3 bounds;
-  bounds.lo = lo;
-  bounds.hi = hi;
   if (bounds.empty()) return;
   std::vector<int> active;
   for (size_t i = 0; i < c.lights.size(); ++i)
     if (std::visit(Reaches{bounds}, c.lights[i].light)) active.push_back(int(i));
   for (int y = tile.y0; y < tile.y1; ++y) {
-    const int x_done = c.simd ? shading::shade_row_simd(c, y, tile.x0, tile.x1, active, out) : tile.x0;
-    for (int x = x_done; x < tile.x1; ++x) {
+    if (simd) shading::shade_row_simd(c, *simd, y, tile.x0, x_simd, active, out);
+    for (int x = x_simd; x < tile.x1; ++x) {
       if (c.g.depth.at(x, y) >= kSkyDepth) continue;
-      const size_t k = size_t(y - tile.y0) * size_t(tile.x1 - tile.x0) + size_t(x - tile.x0);
+      const size_t k = size_t(y - tile.y0) * size_t(cols) + size_t(x - x_simd);
       out.set(x, y, shading::shade_pixel(c, size_t(y) * size_t(w) + size_t(x), points[k], eyes[k], active));
     }
   }
@@ -181,8 +179,9 @@ ColorPlanes shade_surfaces(const GBuffer& gbuffer, const View& camera, const Sce
   const int w = gbuffer.depth.width, h = gbuffer.depth.height;
   ColorPlanes out(w, h);
   const ShadeContext context{gbuffer, camera, scene, lights, escape_distance(scene), simd};
+  const shading::SimdFramePtr frame = simd ? shading::prepare_simd(context) : nullptr;
   parallel_for_tiles(make_tiles({w, h}, kShadeTile),
-                     [&](const Tile& tile) { shade_tile(context, tile, out); });
+                     [&](const Tile& tile) { shade_tile(context, frame.get(), tile, out); });
   return out;
 }
 

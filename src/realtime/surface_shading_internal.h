@@ -1,10 +1,11 @@
 // Internal to surface_shading.cpp and surface_shading_simd.cpp: the scalar per-pixel
-// shading (the reference, and the fallback for lanes the SIMD path does not handle) and the
-// 8-wide row loop.
+// shading (the reference) and the 8-wide path with its once-per-frame set-up.
 #pragma once
 
+#include <memory>
 #include <span>
 
+#include "core/bounds.h"
 #include "realtime/surface_shading.h"
 #include "scene/scene.h"
 
@@ -24,8 +25,21 @@ RGB transmittance(const VolumeScene& volumes, Vec3 a, Vec3 b);
 RGB light_term(const ShadeContext& c, const FrameLight& light, Vec3 p, Vec3 n, RGB f);
 // The whole pixel: emission plus the active lights, times the camera ray's transmittance.
 RGB shade_pixel(const ShadeContext& c, size_t pixel, Vec3 p, Vec3 eye, std::span<const int> active);
-// Shades pixels [x0, x) of row y 8 at a time and returns x (<= x1); the caller shades the rest.
-int shade_row_simd(const ShadeContext& c, int y, int x0, int x1, std::span<const int> active,
-                   ColorPlanes& out);
+
+// What the 8-wide path derives once per frame: material tables, per-light constants (gobo
+// rotation, frames), the media in object space. Defined in surface_shading_simd.cpp.
+struct SimdFrame;
+struct SimdFrameDeleter {
+  void operator()(SimdFrame* f) const;
+};
+using SimdFramePtr = std::unique_ptr<SimdFrame, SimdFrameDeleter>;
+SimdFramePtr prepare_simd(const ShadeContext& c);
+
+// Bounds of the surface points of rows [y0, y1), columns [x0, x1) (x1 - x0 a multiple of 8),
+// reconstructed exactly as shade_row_simd reconstructs them; sky pixels are left out.
+Bounds3 points_bounds_simd(const ShadeContext& c, int y0, int y1, int x0, int x1);
+// Shades pixels [x0, x1) of row y 8 at a time (x1 - x0 a multiple of 8).
+void shade_row_simd(const ShadeContext& c, const SimdFrame& f, int y, int x0, int x1,
+                    std::span<const int> active, ColorPlanes& out);
 
 }  // namespace caligo::shading
