@@ -151,6 +151,7 @@ void print_table(const SceneDesc& desc, const std::vector<PassTimes>& timed) {
   row("depth + normals", [](const PassTimes& t) { return t.depth; });
   row("shadow maps", [](const PassTimes& t) { return t.shadows; });
   row("accumulation", [](const PassTimes& t) { return t.accumulation; });
+  row("  camera rays (all lights)", [](const PassTimes& t) { return t.rays; });
   for (size_t i = 0; i < desc.lights.size(); ++i) {
     if (!desc.options(i).volumetric) continue;
     char name[64];

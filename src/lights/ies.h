@@ -31,6 +31,8 @@ class IesProfile {
 
   const std::vector<float>& vertical_degrees() const { return vertical_; }
   const std::vector<float>& horizontal_degrees() const { return horizontal_; }
+  // The normalised table, [h * vertical_degrees().size() + v], for lane-parallel lookups.
+  const std::vector<float>& values() const { return values_; }
 
  private:
   IesProfile() = default;

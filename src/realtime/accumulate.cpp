@@ -7,11 +7,13 @@
 // integrators/volume_direct.cpp), so the real-time frame converges to its reference.
 #include <algorithm>
 #include <cmath>
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
 
 #include "core/parallel.h"
 #include "lights/light_profile.h"
 #include "realtime/accumulate_internal.h"
-#include "realtime/interleave.h"
 #include "realtime/light_volume.h"
 #include "realtime/media.h"
 #include "realtime/shadow_map.h"
@@ -38,7 +40,7 @@ struct Arrival {
 RGB camera_optical_depth(const VolumeScene& volumes, const PixelMarch& march, float t) {
   const Ray ray{march.origin, march.dir, 0.0f, kInfinity};
   RGB tau;
-  for (const VolumeInterval& iv : *march.intervals)
+  for (const VolumeInterval& iv : march.intervals)
     if (t > iv.t0)
       tau += primitive_optical_depth(volumes.primitive(iv.primitive), ray, iv.t0, std::min(t, iv.t1));
   return tau;
@@ -54,35 +56,24 @@ float media_extent(const VolumeScene& volumes) {
   return b.empty() ? 0.0f : length(b.diagonal()) * 1.01f + 1e-3f;
 }
 
-bool setup_pixel_march(const Light& light, const VolumeScene& volumes, const View& view, float depth, int x,
-                       int y, const AccumulationSettings& settings, IntervalScratch& scratch,
+bool setup_pixel_march(const Light& light, const AccumulationRays::PixelRay& ray,
+                       std::span<const VolumeInterval> intervals, const AccumulationSettings& settings,
                        PixelMarch& march) {
-  const Ray ray = view.ray({float(x) + 0.5f, float(y) + 0.5f});
-  const float t_depth = depth / view.depth_per_t(ray.direction);
-  if (!(t_depth > 0.0f)) return false;
-  // The light volume first: it is the cheaper test and rejects most pixels of small lights.
-  const auto span = light_volume_interval(light, ray.origin, ray.direction, 0.0f, t_depth);
+  if (intervals.empty()) return false;
+  const auto span = light_volume_interval(light, ray.origin, ray.dir, 0.0f, ray.t_end);
   if (!span) return false;
-  // Every medium from the eye on: the camera's transmittance needs those before the span too.
-  volumes.intervals(Ray{ray.origin, ray.direction, 0.0f, t_depth}, scratch);
-  if (scratch.intervals.empty()) return false;
   // Clamped to the extent of the media on the ray (the light volume is convex, so clipping
   // its interval is the same as intersecting the volumes).
-  float t0 = kInfinity, t1 = -kInfinity;
-  for (const VolumeInterval& iv : scratch.intervals) {
-    t0 = std::min(t0, iv.t0);
-    t1 = std::max(t1, iv.t1);
-  }
-  t0 = std::max(t0, span->t0);
-  t1 = std::min(t1, span->t1);
+  const float t0 = std::max(ray.media_t0, span->t0);
+  const float t1 = std::min(ray.media_t1, span->t1);
   if (!(t1 > t0)) return false;
   march.origin = ray.origin;
-  march.dir = ray.direction;
+  march.dir = ray.dir;
   march.t0 = t0;
   march.samples = std::max(1, settings.samples);
   march.step = (t1 - t0) / float(march.samples);
-  march.offset = interleaved_offset(x, y, settings.tile_size, settings.frame_seed);
-  march.intervals = &scratch.intervals;
+  march.offset = ray.offset;
+  march.intervals = intervals;
   return true;
 }
 
@@ -97,7 +88,7 @@ RGB march_scalar(const FrameLight& light, const VolumeScene& volumes, const Pixe
     // sigma_s x phase summed over the primitives here: overlapping media add their
     // coefficients and mix their phase functions in proportion to sigma_s.
     RGB scatter;
-    for (const VolumeInterval& iv : *march.intervals) {
+    for (const VolumeInterval& iv : march.intervals) {
       if (t < iv.t0 || t > iv.t1) continue;
       const VolumePrimitive& prim = volumes.primitive(iv.primitive);
       scatter += prim.shader.sigma_s *
@@ -113,38 +104,59 @@ RGB march_scalar(const FrameLight& light, const VolumeScene& volumes, const Pixe
   return sum * march.step;
 }
 
-void accumulate_light(const FrameLight& light, const VolumeScene& volumes, const View& view,
-                      const Plane& depth, const AccumulationSettings& settings, ColorPlanes& accum) {
+void accumulate_light(const FrameLight& light, const VolumeScene& volumes, const AccumulationRays& rays,
+                      const AccumulationSettings& settings, ColorPlanes& accum) {
   if (!light.options.volumetric || volumes.empty()) return;
   const float far = media_extent(volumes);
   SimdMarcher simd(light, volumes, settings.multiple_scattering_floor, far);
   const bool use_simd = settings.simd && simd.supported();
   const float intensity = light.options.volumetric_intensity;
-  const PixelRect rect = light_screen_bounds(light.light, view);
+  const PixelRect rect = light_screen_bounds(light.light, rays.view());
   // Square tiles rather than rows: neighbouring rays sample neighbouring shadow-map texels,
-  // and a tile's samples stay in cache where a 480-pixel row's do not.
+  // gobo texels and noise cells, and a tile's samples stay in cache where a row's do not.
   constexpr int kTile = 16;
   const int tiles_x = (std::max(0, rect.x1 - rect.x0) + kTile - 1) / kTile;
   const int tiles_y = (std::max(0, rect.y1 - rect.y0) + kTile - 1) / kTile;
+  static std::atomic<long> stat_rect{0}, stat_marched{0};
+  stat_rect += long(std::max(0, rect.x1 - rect.x0)) * std::max(0, rect.y1 - rect.y0);
   parallel_for(tiles_x * tiles_y, [&](int tile) {
     const int tx0 = rect.x0 + (tile % tiles_x) * kTile, ty0 = rect.y0 + (tile / tiles_x) * kTile;
-    thread_local IntervalScratch scratch;
-    PixelMarch march;
-    for (int y = ty0; y < std::min(ty0 + kTile, rect.y1); ++y) {
-      float* out_r = accum.r.row(y);
-      float* out_g = accum.g.row(y);
-      float* out_b = accum.b.row(y);
-      const float* d = depth.row(y);
-      for (int x = tx0; x < std::min(tx0 + kTile, rect.x1); ++x) {
-        if (!setup_pixel_march(light.light, volumes, view, d[x], x, y, settings, scratch, march)) continue;
-        const RGB l = use_simd ? simd.march(march)
-                               : march_scalar(light, volumes, march, settings.multiple_scattering_floor, far);
-        out_r[x] += l.r * intensity;
-        out_g[x] += l.g * intensity;
-        out_b[x] += l.b * intensity;
+    const int x_end = std::min(tx0 + kTile, rect.x1), y_end = std::min(ty0 + kTile, rect.y1);
+    // Set up one pixel ahead of the one being marched, and let the SIMD marcher prefetch
+    // the next pixel's shadow-map texels while this one computes.
+    PixelMarch marches[2];
+    int pending_x = -1, pending_y = -1;
+    auto flush = [&](const PixelMarch& march) {
+      const RGB l = use_simd ? simd.march(march)
+                             : march_scalar(light, volumes, march, settings.multiple_scattering_floor, far);
+      accum.r.at(pending_x, pending_y) += l.r * intensity;
+      accum.g.at(pending_x, pending_y) += l.g * intensity;
+      accum.b.at(pending_x, pending_y) += l.b * intensity;
+    };
+    int slot = 0;
+    for (int y = ty0; y < y_end; ++y) {
+      for (int x = tx0; x < x_end; ++x) {
+        const AccumulationRays::PixelRay& ray = rays.pixel(x, y);
+        PixelMarch& next = marches[slot];
+        if (!setup_pixel_march(light.light, ray, rays.intervals(y, ray), settings, next)) continue;
+        stat_marched++;
+        if (use_simd) simd.prefetch(next);
+        if (pending_x >= 0) flush(marches[1 - slot]);
+        pending_x = x;
+        pending_y = y;
+        slot = 1 - slot;
       }
     }
+    if (pending_x >= 0) flush(marches[1 - slot]);
   });
+  if (getenv("ACC_STATS")) fprintf(stderr, "rect %ld marched %ld\n", stat_rect.exchange(0), stat_marched.exchange(0));
+}
+
+void print_stats_now() {}
+void accumulate_light(const FrameLight& light, const VolumeScene& volumes, const View& view,
+                      const Plane& depth, const AccumulationSettings& settings, ColorPlanes& accum) {
+  if (!light.options.volumetric || volumes.empty()) return;
+  accumulate_light(light, volumes, AccumulationRays(volumes, view, depth, settings), settings, accum);
 }
 
 }  // namespace caligo

@@ -4,11 +4,13 @@
 #pragma once
 
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "core/rgb.h"
 #include "core/vec.h"
 #include "realtime/frame_light.h"
+#include "realtime/accumulation_rays.h"
 #include "realtime/passes.h"
 #include "volumes/volume_scene.h"
 
@@ -19,13 +21,13 @@ struct PixelMarch {
   Vec3 origin, dir;  // dir unit
   float t0 = 0.0f, step = 0.0f, offset = 0.5f;
   int samples = 0;
-  const std::vector<VolumeInterval>* intervals = nullptr;  // the volume primitives on the ray
+  std::span<const VolumeInterval> intervals;  // the volume primitives on the ray
 };
 
-// The march of pixel (x, y) of `view` for `light`, or false when the light volume, the
-// depth and the media leave nothing to march. Fills scratch.intervals.
-bool setup_pixel_march(const Light& light, const VolumeScene& volumes, const View& view, float depth, int x,
-                       int y, const AccumulationSettings& settings, IntervalScratch& scratch,
+// The march of one pixel's ray for `light`, or false when the light volume, the depth and
+// the media leave nothing to march.
+bool setup_pixel_march(const Light& light, const AccumulationRays::PixelRay& ray,
+                       std::span<const VolumeInterval> intervals, const AccumulationSettings& settings,
                        PixelMarch& march);
 
 // Distance beyond which no medium lies from any point inside one (directional lights'
@@ -47,6 +49,10 @@ class SimdMarcher {
   // area lights); march() then must not be called.
   bool supported() const { return supported_; }
   RGB march(const PixelMarch& march) const;
+  // Cache hints for the shadow-map texels march() will read: issued a pixel ahead, so the
+  // scattered texel loads (the march's main cost when a map outgrows the cache) overlap
+  // the previous pixel's arithmetic instead of stalling it.
+  void prefetch(const PixelMarch& march) const;
 
   struct Data;
 

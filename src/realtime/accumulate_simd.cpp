@@ -1,217 +1,28 @@
 // The SIMD march of accumulate_light: 8 consecutive samples of one pixel per xsimd batch
-// (AVX2 with -march=x86-64-v3). It re-implements the common cases of light_profile.h
-// (inverse square, range window, cone smoothstep, box extent), of media.h (homogeneous
-// and noise-modulated primitives, mean density for transmittance) and of the noise lookup
-// lane-parallel; gobos and IES profiles fall back to the scalar delta_arrival per lane;
-// shadow maps use shadow_map_simd.h's batch lookup. accumulate_test.cpp checks it against
-// march_scalar.
+// (AVX2 with -march=x86-64-v3). It re-implements light_profile.h lane-parallel (inverse
+// square, range window, cone smoothstep, box extent; gobos and IES profiles through
+// light_profile_simd.h), the media through accumulate_lanes.h, and shadow maps through
+// shadow_map_simd.h's batch lookup. accumulate_test.cpp checks it against march_scalar.
 #include <xsimd/xsimd.hpp>
 
 #include <cmath>
+#include <optional>
 
-#include "lights/light_profile.h"
 #include "realtime/accumulate_internal.h"
-#include "realtime/media.h"
+#include "realtime/accumulate_lanes.h"
+#include "realtime/light_profile_simd.h"
 #include "realtime/shadow_map_simd.h"
 
 namespace caligo {
 
-using Batch = xsimd::batch<float>;
-using Mask = xsimd::batch_bool<float>;
+using lanes::Batch;
+using lanes::BatchVec;
+using lanes::Mask;
 constexpr int kLanes = int(Batch::size);
 
-namespace {
+namespace lanes {
 
-enum class LightKind { point, spot, box, directional, unsupported };
-
-struct BatchVec {
-  Batch x, y, z;
-};
-inline Batch dot(const BatchVec& a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-
-// A volume primitive reduced to what the lanes need: world -> object affine rows, its
-// shape in object space and density-scaled coefficients.
-struct LanePrimitive {
-  bool sphere = false;  // unit sphere; else the box [lo, hi]
-  float m[3][4];        // world -> object
-  Vec3 lo, hi;
-  RGB sigma_t, sigma_s;
-  PhaseFunction phase;
-  const NoiseModulation* noise = nullptr;
-
-  BatchVec to_object(const BatchVec& p) const {
-    return {p.x * m[0][0] + p.y * m[0][1] + p.z * m[0][2] + m[0][3],
-            p.x * m[1][0] + p.y * m[1][1] + p.z * m[1][2] + m[1][3],
-            p.x * m[2][0] + p.y * m[2][1] + p.z * m[2][2] + m[2][3]};
-  }
-  // Fraction in [0, 1] of the segment a -> b inside the primitive (segment parameter s is
-  // the same in world and object space: the map is affine).
-  Batch overlap_fraction(const BatchVec& a, const BatchVec& b) const {
-    const BatchVec oa = to_object(a), ob = to_object(b);
-    const BatchVec d{ob.x - oa.x, ob.y - oa.y, ob.z - oa.z};
-    Batch s0(0.0f), s1(1.0f);
-    if (sphere) {
-      const Batch qa = d.x * d.x + d.y * d.y + d.z * d.z;
-      const Batch qb = oa.x * d.x + oa.y * d.y + oa.z * d.z;
-      const Batch qc = oa.x * oa.x + oa.y * oa.y + oa.z * oa.z - 1.0f;
-      const Batch disc = qb * qb - qa * qc;
-      const Batch root = xsimd::sqrt(xsimd::max(disc, Batch(0.0f)));
-      const Batch inv = 1.0f / xsimd::max(qa, Batch(1e-30f));
-      s0 = xsimd::max(s0, (-qb - root) * inv);
-      s1 = xsimd::min(s1, (-qb + root) * inv);
-      return xsimd::select(disc > 0.0f, xsimd::max(s1 - s0, Batch(0.0f)), Batch(0.0f));
-    }
-    const Batch oc[3] = {oa.x, oa.y, oa.z}, dc[3] = {d.x, d.y, d.z};
-    for (int a = 0; a < 3; ++a) {
-      // A tiny denominator instead of 0 keeps every lane finite (no inf * 0).
-      const Batch dd = xsimd::select(xsimd::abs(dc[a]) < 1e-20f, Batch(1e-20f), dc[a]);
-      const Batch inv = 1.0f / dd;
-      const Batch tn = (lo[a] - oc[a]) * inv, tf = (hi[a] - oc[a]) * inv;
-      s0 = xsimd::max(s0, xsimd::min(tn, tf));
-      s1 = xsimd::min(s1, xsimd::max(tn, tf));
-    }
-    return xsimd::max(s1 - s0, Batch(0.0f));
-  }
-};
-
-// Henyey-Greenstein written as phase.cpp's henyey_greenstein (same branch on the sign of g).
-Batch hg(const Batch& cos_theta, float g) {
-  const Batch denom = g >= 0.0f ? Batch(sqr(1.0f - g)) + (2.0f * g) * (1.0f - cos_theta)
-                                : Batch(sqr(1.0f + g)) - (2.0f * g) * (1.0f + cos_theta);
-  return (kInv4Pi * (1.0f - g) * (1.0f + g)) / (denom * xsimd::sqrt(denom));
-}
-
-struct PhaseBatch {
-  Batch cos_theta;
-  Batch operator()(const IsotropicPhase&) const { return Batch(kInv4Pi); }
-  Batch operator()(const HenyeyGreensteinPhase& p) const { return hg(cos_theta, p.g); }
-  Batch operator()(const SchlickPhase& p) const {
-    const float k = p.k;
-    const Batch denom =
-        k >= 0.0f ? Batch(1.0f - k) + k * (1.0f - cos_theta) : Batch(1.0f + k) - k * (1.0f + cos_theta);
-    return (kInv4Pi * (1.0f - k) * (1.0f + k)) / (denom * denom);
-  }
-  Batch operator()(const DoubleHenyeyGreensteinPhase& p) const {
-    return p.w * hg(cos_theta, p.g1) + (1.0f - p.w) * hg(cos_theta, p.g2);
-  }
-};
-
-Batch exp_neg(const Batch& tau) { return xsimd::exp(-tau); }
-
-// volumes/noise.cpp's NoiseTexture::lookup and noise_density, lane-parallel (the same
-// arithmetic in the same order, with gathers for the lattice values).
-using IBatch = xsimd::batch<int32_t>;
-constexpr int kNoiseN = NoiseTexture::kSize;
-
-Batch noise_lookup(const float* values, const Batch& x, const Batch& y, const Batch& z) {
-  IBatch cell[3];
-  Batch t[3];
-  const Batch coord[3] = {x, y, z};
-  for (int a = 0; a < 3; ++a) {
-    const Batch r = coord[a] - float(kNoiseN) * xsimd::floor(coord[a] / float(kNoiseN));
-    const Batch f = xsimd::floor(r);
-    cell[a] = xsimd::batch_cast<int32_t>(f) & IBatch(kNoiseN - 1);
-    const Batch u = xsimd::min(xsimd::max(r - f, Batch(0.0f)), Batch(1.0f));
-    t[a] = u * u * u * (u * (u * 6.0f - 15.0f) + 10.0f);
-  }
-  const IBatch mask(kNoiseN - 1);
-  auto at = [&](int dx, int dy, int dz) {
-    const IBatch index =
-        (((cell[2] + dz) & mask) * kNoiseN + ((cell[1] + dy) & mask)) * kNoiseN + ((cell[0] + dx) & mask);
-    return Batch::gather(values, index);
-  };
-  auto lerp = [](const Batch& w, const Batch& a, const Batch& b) { return (1.0f - w) * a + w * b; };
-  const Batch x00 = lerp(t[0], at(0, 0, 0), at(1, 0, 0));
-  const Batch x10 = lerp(t[0], at(0, 1, 0), at(1, 1, 0));
-  const Batch x01 = lerp(t[0], at(0, 0, 1), at(1, 0, 1));
-  const Batch x11 = lerp(t[0], at(0, 1, 1), at(1, 1, 1));
-  return lerp(t[2], lerp(t[1], x00, x10), lerp(t[1], x01, x11));
-}
-
-Batch noise_density_batch(const NoiseModulation& noise, const Batch& px, const Batch& py, const Batch& pz) {
-  const float* values = NoiseTexture::shared().values().data();
-  const Batch qx = (px - noise.offset.x) * noise.scale, qy = (py - noise.offset.y) * noise.scale,
-              qz = (pz - noise.offset.z) * noise.scale;
-  const Batch fbm =
-      (2.0f / 3.0f) * noise_lookup(values, qx, qy, qz) +
-      (1.0f / 3.0f) * noise_lookup(values, qx * 2.0f + 11.37f, qy * 2.0f + 5.71f, qz * 2.0f + 17.13f);
-  return xsimd::max(Batch(0.0f), 1.0f + noise.amplitude * fbm);
-}
-
-}  // namespace
-
-struct SimdMarcher::Data {
-  const FrameLight* light = nullptr;
-  LightKind kind = LightKind::unsupported;
-  bool scalar_arrival = false;  // gobo or IES: delta_arrival per lane
-  Vec3 position, direction, up, right;
-  float cos_inner = 1.0f, cos_outer = 0.0f, range = kInfinity, inv_range = 0.0f;
-  float half_width = 0.0f, half_height = 0.0f;
-  RGB color;
-  std::vector<LanePrimitive> prims;
-  bool grey = true;  // every sigma_t grey: one exp per sample instead of three
-  float floor = 0.0f, far = 0.0f;
-
-  // Light arriving at the lanes' points: direction to the light, distance, radiance.
-  struct LaneArrival {
-    BatchVec wi;
-    Batch dist, r, g, b;
-  };
-  LaneArrival arrival(const BatchVec& p) const;
-  LaneArrival arrival_scalar(const BatchVec& p) const;
-};
-
-namespace {
-
-// Fills the light part of Data; false for lights the SIMD path does not handle.
-struct DescribeLight {
-  SimdMarcher::Data& d;
-  static float inv(float range) { return std::isfinite(range) ? 1.0f / range : 0.0f; }
-  void operator()(const PointLight& l) const {
-    d.kind = LightKind::point;
-    d.position = l.position;
-    d.range = l.range;
-    d.inv_range = inv(l.range);
-    d.color = l.intensity;
-    d.scalar_arrival = bool(l.ies.profile);
-  }
-  void operator()(const SpotLight& l) const {
-    d.kind = LightKind::spot;
-    d.position = l.position;
-    d.direction = l.direction;
-    d.cos_inner = l.cos_inner;
-    d.cos_outer = l.cos_outer;
-    d.range = l.range;
-    d.inv_range = inv(l.range);
-    d.color = l.intensity;
-    d.scalar_arrival = bool(l.ies.profile) || bool(l.gobo.image);
-  }
-  void operator()(const BoxLight& l) const {
-    d.kind = LightKind::box;
-    d.position = l.position;
-    d.direction = l.direction;
-    d.up = l.up;
-    d.right = cross(l.direction, l.up);
-    d.half_width = l.half_width;
-    d.half_height = l.half_height;
-    d.range = l.range;
-    d.color = l.irradiance;
-    d.scalar_arrival = bool(l.gobo.image);
-  }
-  void operator()(const DirectionalLight& l) const {
-    d.kind = LightKind::directional;
-    d.direction = l.direction;
-    d.color = l.irradiance;
-  }
-  void operator()(const SphereLight&) const { d.kind = LightKind::unsupported; }
-  void operator()(const QuadLight&) const { d.kind = LightKind::unsupported; }
-  void operator()(const TriangleLight&) const { d.kind = LightKind::unsupported; }
-  void operator()(const EnvironmentLight&) const { d.kind = LightKind::unsupported; }
-};
-
-// Object-space description of a primitive for the lanes; false for density fields the
-// SIMD path does not integrate (radial falloff).
-bool describe_primitive(const VolumePrimitive& prim, LanePrimitive& out) {
+bool describe_primitive(const VolumePrimitive& prim, Primitive& out) {
   if (!has_constant_field(prim.shader)) return false;
   const Mat4* inv = nullptr;
   if (const auto* s = std::get_if<SphereVolumeShape>(&prim.shape)) {
@@ -233,6 +44,82 @@ bool describe_primitive(const VolumePrimitive& prim, LanePrimitive& out) {
   return true;
 }
 
+LightSide LightSide::parallel_light(const Primitive& prim, Vec3 wi) {
+  LightSide s;
+  s.parallel = true;
+  s.d = prim.to_object_dir(wi);
+  s.inv = {safe_reciprocal(s.d.x), safe_reciprocal(s.d.y), safe_reciprocal(s.d.z)};
+  s.qa = std::max(length_squared(s.d), 1e-30f);
+  s.inv_qa = 1.0f / s.qa;
+  return s;
+}
+
+LightSide LightSide::point_light(const Primitive& prim, const VolumePrimitive& source, Vec3 position) {
+  LightSide s;
+  s.light_inside = prim.contains_object(prim.to_object(position));
+  // The bounding ball of the primitive's world bounds, and the cone of directions from the
+  // light that can meet it (widened by 1e-4 in cosine against rounding).
+  const Bounds3 b = volume_bounds(source.shape);
+  const Vec3 centre = (b.lo + b.hi) * 0.5f;
+  const float radius = 0.5f * length(b.diagonal());
+  const float dist = distance(centre, position);
+  if (dist > radius * 1.001f) {
+    s.cone_cull = true;
+    s.cone_axis = (centre - position) / dist;
+    s.cone_cos = std::sqrt(1.0f - sqr(radius / dist)) - 1e-4f;
+  }
+  return s;
+}
+
+// volumes/noise.cpp's NoiseTexture::lookup and noise_density, lane-parallel (the same
+// arithmetic in the same order, with AVX2 gathers for the lattice values).
+namespace {
+
+constexpr int kNoiseN = NoiseTexture::kSize;
+
+Batch noise_lookup(const float* values, const Batch& x, const Batch& y, const Batch& z) {
+  IBatch cell[3];
+  Batch t[3];
+  const Batch coord[3] = {x, y, z};
+  for (int a = 0; a < 3; ++a) {
+    const Batch r = coord[a] - float(kNoiseN) * xsimd::floor(coord[a] / float(kNoiseN));
+    const Batch f = xsimd::floor(r);
+    cell[a] = xsimd::batch_cast<int32_t>(f) & IBatch(kNoiseN - 1);
+    const Batch u = xsimd::min(xsimd::max(r - f, Batch(0.0f)), Batch(1.0f));
+    t[a] = u * u * u * (u * (u * 6.0f - 15.0f) + 10.0f);
+  }
+  const IBatch mask(kNoiseN - 1);
+  auto at = [&](int dx, int dy, int dz) {
+    const IBatch index =
+        (((cell[2] + dz) & mask) * kNoiseN + ((cell[1] + dy) & mask)) * kNoiseN + ((cell[0] + dx) & mask);
+    return Batch(_mm256_i32gather_ps(values, index, 4));
+  };
+  auto lerp = [](const Batch& w, const Batch& a, const Batch& b) { return (1.0f - w) * a + w * b; };
+  const Batch x00 = lerp(t[0], at(0, 0, 0), at(1, 0, 0));
+  const Batch x10 = lerp(t[0], at(0, 1, 0), at(1, 1, 0));
+  const Batch x01 = lerp(t[0], at(0, 0, 1), at(1, 0, 1));
+  const Batch x11 = lerp(t[0], at(0, 1, 1), at(1, 1, 1));
+  return lerp(t[2], lerp(t[1], x00, x10), lerp(t[1], x01, x11));
+}
+
+}  // namespace
+
+Batch noise_density_batch(const NoiseModulation& noise, const Batch& px, const Batch& py, const Batch& pz) {
+  const float* values = NoiseTexture::shared().values().data();
+  const Batch qx = (px - noise.offset.x) * noise.scale, qy = (py - noise.offset.y) * noise.scale,
+              qz = (pz - noise.offset.z) * noise.scale;
+  const Batch fbm =
+      (2.0f / 3.0f) * noise_lookup(values, qx, qy, qz) +
+      (1.0f / 3.0f) * noise_lookup(values, qx * 2.0f + 11.37f, qy * 2.0f + 5.71f, qz * 2.0f + 17.13f);
+  return xsimd::max(Batch(0.0f), 1.0f + noise.amplitude * fbm);
+}
+
+}  // namespace lanes
+
+namespace {
+
+enum class LightKind { point, spot, box, directional, unsupported };
+
 Batch range_window(const Batch& dist, float range, float inv_range) {
   if (!std::isfinite(range)) return Batch(1.0f);
   const Batch x = dist * inv_range;
@@ -249,33 +136,84 @@ Batch smoothstep(float e0, float e1, const Batch& x) {
 
 }  // namespace
 
-SimdMarcher::Data::LaneArrival SimdMarcher::Data::arrival_scalar(const BatchVec& p) const {
-  alignas(32) float px[kLanes], py[kLanes], pz[kLanes];
-  alignas(32) float out[7][kLanes];
-  p.x.store_aligned(px);
-  p.y.store_aligned(py);
-  p.z.store_aligned(pz);
-  for (int i = 0; i < kLanes; ++i) {
-    const Vec3 q{px[i], py[i], pz[i]};
-    std::optional<DeltaArrival> a;
-    if (const auto* l = std::get_if<PointLight>(&light->light))
-      a = delta_arrival(*l, q);
-    else if (const auto* s = std::get_if<SpotLight>(&light->light))
-      a = delta_arrival(*s, q);
-    else if (const auto* b = std::get_if<BoxLight>(&light->light))
-      a = delta_arrival(*b, q);
-    const DeltaArrival v = a.value_or(DeltaArrival{RGB(0.0f), Vec3(0.0f, 0.0f, 1.0f), 0.0f});
-    const float vals[7] = {v.wi.x, v.wi.y, v.wi.z, v.distance, v.radiance.r, v.radiance.g, v.radiance.b};
-    for (int c = 0; c < 7; ++c) out[c][i] = vals[c];
+struct SimdMarcher::Data {
+  const FrameLight* light = nullptr;
+  LightKind kind = LightKind::unsupported;
+  Vec3 position, direction, up, right;
+  float cos_inner = 1.0f, cos_outer = 0.0f, range = kInfinity, inv_range = 0.0f;
+  float half_width = 0.0f, half_height = 0.0f;
+  RGB color;
+  std::optional<SpotGoboSampler> spot_gobo;
+  std::optional<GoboSampler> box_gobo;
+  std::optional<IesSampler> ies;
+  std::vector<lanes::Primitive> prims;
+  std::vector<lanes::LightSide> sides;  // per primitive, for this light
+  bool grey = true;                     // every sigma_t grey: one exp per sample instead of three
+  bool any_light_inside = false;        // some side needs the camera's inside masks
+  float floor = 0.0f, far = 0.0f;
+
+  // Light arriving at the lanes' points: direction to the light, distance, radiance.
+  struct LaneArrival {
+    BatchVec wi;
+    Batch dist, r, g, b;
+  };
+  LaneArrival arrival(const BatchVec& p) const;
+};
+
+namespace {
+
+// Fills the light part of Data; kind stays unsupported for lights the SIMD path does not handle.
+struct DescribeLight {
+  SimdMarcher::Data& d;
+  static float inv(float range) { return std::isfinite(range) ? 1.0f / range : 0.0f; }
+  void operator()(const PointLight& l) const {
+    d.kind = LightKind::point;
+    d.position = l.position;
+    d.range = l.range;
+    d.inv_range = inv(l.range);
+    d.color = l.intensity;
+    if (l.ies.profile) d.ies.emplace(l.ies);
   }
-  auto ld = [&](int c) { return Batch::load_aligned(out[c]); };
-  return {{ld(0), ld(1), ld(2)}, ld(3), ld(4), ld(5), ld(6)};
-}
+  void operator()(const SpotLight& l) const {
+    d.kind = LightKind::spot;
+    d.position = l.position;
+    d.direction = l.direction;
+    d.cos_inner = l.cos_inner;
+    d.cos_outer = l.cos_outer;
+    d.range = l.range;
+    d.inv_range = inv(l.range);
+    d.color = l.intensity;
+    if (l.ies.profile) d.ies.emplace(l.ies);
+    if (l.gobo.image) d.spot_gobo.emplace(l);
+  }
+  void operator()(const BoxLight& l) const {
+    d.kind = LightKind::box;
+    d.position = l.position;
+    d.direction = l.direction;
+    d.up = l.up;
+    d.right = cross(l.direction, l.up);
+    d.half_width = l.half_width;
+    d.half_height = l.half_height;
+    d.range = l.range;
+    d.color = l.irradiance;
+    if (l.gobo.image) d.box_gobo.emplace(l.gobo);
+  }
+  void operator()(const DirectionalLight& l) const {
+    d.kind = LightKind::directional;
+    d.direction = l.direction;
+    d.color = l.irradiance;
+  }
+  void operator()(const SphereLight&) const { d.kind = LightKind::unsupported; }
+  void operator()(const QuadLight&) const { d.kind = LightKind::unsupported; }
+  void operator()(const TriangleLight&) const { d.kind = LightKind::unsupported; }
+  void operator()(const EnvironmentLight&) const { d.kind = LightKind::unsupported; }
+};
+
+}  // namespace
 
 SimdMarcher::Data::LaneArrival SimdMarcher::Data::arrival(const BatchVec& p) const {
-  if (scalar_arrival) return arrival_scalar(p);
   LaneArrival a;
-  Batch scale;
+  Batch scale, r(color.r), g(color.g), b(color.b);
   switch (kind) {
     case LightKind::point:
     case LightKind::spot: {
@@ -285,19 +223,29 @@ SimdMarcher::Data::LaneArrival SimdMarcher::Data::arrival(const BatchVec& p) con
       const Batch inv = 1.0f / a.dist;
       a.wi = {d.x * inv, d.y * inv, d.z * inv};
       scale = range_window(a.dist, range, inv_range) / dist2;
-      if (kind == LightKind::spot) scale *= smoothstep(cos_outer, cos_inner, -dot(a.wi, direction));
+      const BatchVec out{-a.wi.x, -a.wi.y, -a.wi.z};  // leaving the light
+      if (kind == LightKind::spot) scale *= smoothstep(cos_outer, cos_inner, lanes::dot(out, direction));
       scale = xsimd::select(dist2 > 0.0f, scale, Batch(0.0f));
+      if (ies && xsimd::any(scale > 0.0f)) scale *= ies->factor(out.x, out.y, out.z);
+      if (spot_gobo && xsimd::any(scale > 0.0f)) {
+        const RgbBatch f = spot_gobo->filter(out.x, out.y, out.z);
+        r *= f.r, g *= f.g, b *= f.b;
+      }
       break;
     }
     case LightKind::box: {
       const BatchVec l{p.x - position.x, p.y - position.y, p.z - position.z};
-      const Batch along = dot(l, direction);
-      const Batch x = dot(l, right), y = dot(l, up);
+      const Batch along = lanes::dot(l, direction);
+      const Batch x = lanes::dot(l, right), y = lanes::dot(l, up);
       const Mask inside =
           (along >= 0.0f) & (along <= range) & (xsimd::abs(x) <= half_width) & (xsimd::abs(y) <= half_height);
       a.wi = {Batch(-direction.x), Batch(-direction.y), Batch(-direction.z)};
       a.dist = along;
       scale = xsimd::select(inside, Batch(1.0f), Batch(0.0f));
+      if (box_gobo && xsimd::any(inside)) {
+        const RgbBatch f = box_gobo->filter(0.5f + 0.5f * x / half_width, 0.5f + 0.5f * y / half_height);
+        r *= f.r, g *= f.g, b *= f.b;
+      }
       break;
     }
     case LightKind::directional:
@@ -307,9 +255,9 @@ SimdMarcher::Data::LaneArrival SimdMarcher::Data::arrival(const BatchVec& p) con
       scale = Batch(1.0f);
       break;
   }
-  a.r = scale * color.r;
-  a.g = scale * color.g;
-  a.b = scale * color.b;
+  a.r = scale * r;
+  a.g = scale * g;
+  a.b = scale * b;
   return a;
 }
 
@@ -324,13 +272,66 @@ SimdMarcher::SimdMarcher(const FrameLight& light, const VolumeScene& volumes, fl
   supported_ = d.kind != LightKind::unsupported;
   d.prims.resize(volumes.primitives().size());
   for (size_t i = 0; i < d.prims.size(); ++i) {
-    supported_ = supported_ && describe_primitive(volumes.primitives()[i], d.prims[i]);
+    supported_ = supported_ && lanes::describe_primitive(volumes.primitives()[i], d.prims[i]);
     const RGB st = d.prims[i].sigma_t;
     d.grey = d.grey && st.r == st.g && st.g == st.b;
+  }
+  if (!supported_) return;
+  const bool parallel = d.kind == LightKind::directional || d.kind == LightKind::box;
+  for (size_t i = 0; i < d.prims.size(); ++i) {
+    d.sides.push_back(parallel
+                          ? lanes::LightSide::parallel_light(d.prims[i], -d.direction)
+                          : lanes::LightSide::point_light(d.prims[i], volumes.primitives()[i], d.position));
+    d.any_light_inside = d.any_light_inside || d.sides.back().light_inside;
   }
 }
 
 SimdMarcher::~SimdMarcher() = default;
+
+namespace {
+
+// Which primitives hold which lanes' points, from the camera's intervals (the first few
+// primitives only: enough for real-time scenes, and the others just take the general test).
+constexpr size_t kInsideSlots = 16;
+
+}  // namespace
+
+void SimdMarcher::prefetch(const PixelMarch& m) const {
+  const ShadowMap* map = data_->light->shadow;
+  if (!map) return;
+  alignas(32) static constexpr float kLaneIndex[8] = {0, 1, 2, 3, 4, 5, 6, 7};
+  const Batch lane = Batch::load_aligned(kLaneIndex);
+  for (int k0 = 0; k0 < m.samples; k0 += kLanes) {
+    const Batch t = m.t0 + (lane + (float(k0) + m.offset)) * m.step;
+    const Batch px = m.origin.x + m.dir.x * t, py = m.origin.y + m.dir.y * t, pz = m.origin.z + m.dir.z * t;
+    const int face = map->faces.size() == 1 ? 0 : shadow_detail::common_cube_face(*map, px, py, pz);
+    if (face < 0) continue;
+    // The texel face_visibility will read (clamped into the face; only a hint).
+    const View& v = map->faces[size_t(face)];
+    const Plane& depth = map->depth[size_t(face)];
+    const Batch dx = px - v.eye.x, dy = py - v.eye.y, dz = pz - v.eye.z;
+    const Batch xr = dx * v.right.x + dy * v.right.y + dz * v.right.z;
+    const Batch yu = dx * v.up.x + dy * v.up.y + dz * v.up.z;
+    Batch ndc_x, ndc_y;
+    if (v.projection == Projection::perspective) {
+      const Batch z = xsimd::max(dx * v.forward.x + dy * v.forward.y + dz * v.forward.z, Batch(1e-6f));
+      const Batch inv = 1.0f / (z * v.tan_half_fov_y);
+      ndc_x = xr * inv / v.aspect;
+      ndc_y = yu * inv;
+    } else {
+      ndc_x = xr / v.half_width;
+      ndc_y = yu / v.half_height;
+    }
+    const float w = float(depth.width), h = float(depth.height);
+    const Batch fx = xsimd::clip(xsimd::floor((ndc_x + 1.0f) * (0.5f * w)), Batch(0.0f), Batch(w - 1.0f));
+    const Batch fy = xsimd::clip(xsimd::floor((1.0f - ndc_y) * (0.5f * h)), Batch(0.0f), Batch(h - 1.0f));
+    alignas(32) int32_t index[kLanes];
+    (xsimd::batch_cast<int32_t>(fy) * depth.width + xsimd::batch_cast<int32_t>(fx)).store_aligned(index);
+    const int lanes_here = std::min(kLanes, m.samples - k0);
+    for (int i = 0; i < lanes_here; ++i)
+      _mm_prefetch(reinterpret_cast<const char*>(depth.data.data() + index[i]), _MM_HINT_T0);
+  }
+}
 
 RGB SimdMarcher::march(const PixelMarch& m) const {
   const Data& d = *data_;
@@ -338,6 +339,8 @@ RGB SimdMarcher::march(const PixelMarch& m) const {
   static_assert(kLanes == 8, "built for AVX2 (-march=x86-64-v3)");
   const Batch lane = Batch::load_aligned(kLaneIndex);
   Batch sum_r(0.0f), sum_g(0.0f), sum_b(0.0f);
+  Mask inside[kInsideSlots];
+  const size_t slots = d.any_light_inside ? std::min(kInsideSlots, d.prims.size()) : 0;
   for (int k0 = 0; k0 < m.samples; k0 += kLanes) {
     const Batch k = lane + float(k0);
     const Batch t = m.t0 + (k + m.offset) * m.step;
@@ -347,21 +350,23 @@ RGB SimdMarcher::march(const PixelMarch& m) const {
     if (xsimd::none(ok)) continue;
 
     // Scattering (sigma_s x phase, summed over the primitives here) and camera optical depth.
-    const Batch cos_theta = xsimd::min(xsimd::max(dot(a.wi, m.dir), Batch(-1.0f)), Batch(1.0f));
+    const Batch cos_theta = xsimd::min(xsimd::max(lanes::dot(a.wi, m.dir), Batch(-1.0f)), Batch(1.0f));
     Batch s_r(0.0f), s_g(0.0f), s_b(0.0f);
     Batch tau_r(0.0f), tau_g(0.0f), tau_b(0.0f);
-    for (const VolumeInterval& iv : *m.intervals) {
-      const LanePrimitive& prim = d.prims[iv.primitive];
+    for (size_t i = 0; i < slots; ++i) inside[i] = Mask(false);
+    for (const VolumeInterval& iv : m.intervals) {
+      const lanes::Primitive& prim = d.prims[iv.primitive];
       const Mask in = (t >= iv.t0) & (t <= iv.t1);
+      if (iv.primitive < slots) inside[iv.primitive] = in;
       const Batch covered = xsimd::min(xsimd::max(t - iv.t0, Batch(0.0f)), Batch(iv.t1 - iv.t0));
       tau_r += covered * prim.sigma_t.r;
       if (!d.grey) {
         tau_g += covered * prim.sigma_t.g;
         tau_b += covered * prim.sigma_t.b;
       }
-      if (xsimd::none(in)) continue;
-      Batch w = xsimd::select(in, std::visit(PhaseBatch{cos_theta}, prim.phase), Batch(0.0f));
-      if (prim.noise) w *= noise_density_batch(*prim.noise, p.x, p.y, p.z);
+      if (xsimd::none(in & ok)) continue;
+      Batch w = xsimd::select(in, std::visit(lanes::PhaseBatch{cos_theta}, prim.phase), Batch(0.0f));
+      if (prim.noise) w *= lanes::noise_density_batch(*prim.noise, p.x, p.y, p.z);
       s_r += w * prim.sigma_s.r;
       s_g += w * prim.sigma_s.g;
       s_b += w * prim.sigma_s.b;
@@ -369,23 +374,29 @@ RGB SimdMarcher::march(const PixelMarch& m) const {
     ok = ok & ((s_r > 0.0f) | (s_g > 0.0f) | (s_b > 0.0f));
     if (xsimd::none(ok)) continue;
 
+    // The shadow map before the light's optical depth: shadowed lanes need no segment.
+    Batch v(1.0f);
+    if (d.light->shadow) {
+      v = xsimd::max(shadow_visibility(*d.light->shadow, p.x, p.y, p.z), Batch(d.floor));
+      ok = ok & (v > 0.0f);
+      if (xsimd::none(ok)) continue;
+    }
+
     // Optical depth towards the light, through every primitive of the scene.
     const Batch reach = xsimd::min(a.dist, Batch(d.far));
-    const BatchVec q{p.x + a.wi.x * reach, p.y + a.wi.y * reach, p.z + a.wi.z * reach};
-    for (const LanePrimitive& prim : d.prims) {
-      const Batch len = prim.overlap_fraction(p, q) * reach;
-      tau_r += len * prim.sigma_t.r;
+    for (size_t i = 0; i < d.prims.size(); ++i) {
+      const Batch len =
+          d.sides[i].overlap(d.prims[i], p, a.wi, reach, i < slots ? inside[i] : Mask(false), ok);
+      tau_r += len * d.prims[i].sigma_t.r;
       if (!d.grey) {
-        tau_g += len * prim.sigma_t.g;
-        tau_b += len * prim.sigma_t.b;
+        tau_g += len * d.prims[i].sigma_t.g;
+        tau_b += len * d.prims[i].sigma_t.b;
       }
     }
 
-    Batch v(1.0f);
-    if (d.light->shadow) v = xsimd::max(shadow_visibility(*d.light->shadow, p.x, p.y, p.z), Batch(d.floor));
-    const Batch tr_r = exp_neg(tau_r);
-    const Batch tr_g = d.grey ? tr_r : exp_neg(tau_g);
-    const Batch tr_b = d.grey ? tr_r : exp_neg(tau_b);
+    const Batch tr_r = lanes::exp_neg(tau_r);
+    const Batch tr_g = d.grey ? tr_r : lanes::exp_neg(tau_g);
+    const Batch tr_b = d.grey ? tr_r : lanes::exp_neg(tau_b);
     sum_r += xsimd::select(ok, s_r * a.r * tr_r * v, Batch(0.0f));
     sum_g += xsimd::select(ok, s_g * a.g * tr_g * v, Batch(0.0f));
     sum_b += xsimd::select(ok, s_b * a.b * tr_b * v, Batch(0.0f));

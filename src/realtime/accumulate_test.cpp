@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "lights/gobo.h"
+#include "lights/ies.h"
 #include "realtime/accumulate_internal.h"
 #include "realtime/media.h"
 #include "realtime/passes.h"
@@ -84,9 +86,39 @@ TestScene comparison_scene(bool grey) {
   return s;
 }
 
-void expect_simd_matches_scalar(bool grey) {
+// The lights of test_lights() with gobos (rotated, shifted) and IES profiles attached: the
+// SIMD path looks those up lane-parallel (light_profile_simd.h).
+std::vector<Light> profiled_lights() {
+  std::vector<RGB> pixels;
+  for (int i = 0; i < 6 * 5; ++i)
+    pixels.push_back(
+        RGB(0.2f + 0.8f * float(i % 7) / 6.0f, 0.1f + 0.9f * float(i % 5) / 4.0f, float(i % 3) / 2.0f));
+  Gobo gobo;
+  gobo.image = std::make_shared<const GoboImage>(6, 5, std::move(pixels));
+  gobo.rotation = 0.4f;
+  gobo.offset = {0.3f, -0.2f};
+  IesAttachment ies;
+  ies.profile = std::make_shared<const IesProfile>(IesProfile::parse(
+      "IESNA:LM-63-2002\nTILT=NONE\n1 1000 1 4 3 1 2 0 0 0\n1.0 1.0 100\n0 20 60 120\n0 45 90\n"
+      "100 80 30 0 90 60 40 5 70 70 20 10\n",
+      "test.ies"));
+  ies.axis = normalize(Vec3(0.2f, -1.0f, -0.3f));
+  std::vector<Light> lights = test_lights();
+  PointLight point = std::get<PointLight>(lights[0]);
+  point.ies = ies;
+  SpotLight spot = std::get<SpotLight>(lights[1]);
+  spot.up = normalize(cross(cross(spot.direction, Vec3(0, 0, 1)), spot.direction));
+  spot.gobo = gobo;
+  spot.ies = ies;
+  spot.ies.axis = spot.direction;
+  BoxLight box = std::get<BoxLight>(lights[2]);
+  box.gobo = gobo;
+  return {point, spot, box};
+}
+
+void expect_simd_matches_scalar(bool grey, const std::vector<Light>& lights = test_lights()) {
   const TestScene scene = comparison_scene(grey);
-  for (const Light& light : test_lights()) {
+  for (const Light& light : lights) {
     const FrameLight fl = frame_light(light);
     // The comparison is only meaningful if the SIMD path really runs.
     ASSERT_TRUE(SimdMarcher(fl, scene.volumes, 0.0f, 100.0f).supported()) << "light " << light.index();
@@ -119,6 +151,32 @@ void expect_simd_matches_scalar(bool grey) {
 
 TEST(Accumulate, SimdMatchesScalarColouredMedia) { expect_simd_matches_scalar(false); }
 TEST(Accumulate, SimdMatchesScalarGreyMedia) { expect_simd_matches_scalar(true); }
+TEST(Accumulate, SimdMatchesScalarWithGobosAndIesProfiles) {
+  expect_simd_matches_scalar(false, profiled_lights());
+}
+
+// The per-frame rays shared by all lights give exactly the per-light setup's result.
+TEST(Accumulate, SharedRaysMatchPerLightSetup) {
+  const TestScene scene = comparison_scene(false);
+  AccumulationSettings s;
+  s.frame_seed = 5;
+  const AccumulationRays rays(scene.volumes, scene.view, scene.depth, s);
+  for (bool simd : {false, true}) {
+    s.simd = simd;
+    ColorPlanes shared(61, 37), separate(61, 37);
+    for (const Light& light : test_lights()) {
+      accumulate_light(frame_light(light), scene.volumes, rays, s, shared);
+      accumulate_light(frame_light(light), scene.volumes, scene.view, scene.depth, s, separate);
+    }
+    float peak = 0.0f;
+    for (size_t i = 0; i < shared.r.data.size(); ++i) {
+      EXPECT_EQ(shared.r.data[i], separate.r.data[i]);
+      EXPECT_EQ(shared.b.data[i], separate.b.data[i]);
+      peak = std::max(peak, shared.r.data[i]);
+    }
+    EXPECT_GT(peak, 0.0f);
+  }
+}
 
 // Orthographic rays along +x through a slab of fog, lit by a directional light from above:
 // every sample sees the light through the same height h of fog, so

@@ -6,6 +6,8 @@
 // Kept apart from media.h so that only SIMD code includes xsimd.
 #pragma once
 
+#include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include <xsimd/xsimd.hpp>
@@ -22,10 +24,11 @@ class SegmentMediaBatch {
   explicit SegmentMediaBatch(const VolumeScene& volumes) {
     for (const VolumePrimitive& prim : volumes.primitives()) {
       if (!has_constant_field(prim.shader)) {
-        scalar_.push_back(&prim);
+        scalar_.push_back({&prim, volume_bounds(prim.shape)});
         continue;
       }
       Homogeneous h;
+      h.bounds = volume_bounds(prim.shape);
       const Mat4* inv = nullptr;
       if (const auto* s = std::get_if<SphereVolumeShape>(&prim.shape)) {
         h.sphere = true;
@@ -44,20 +47,54 @@ class SegmentMediaBatch {
   }
 
   bool empty() const { return homogeneous_.empty() && scalar_.empty(); }
+  size_t size() const { return homogeneous_.size() + scalar_.size(); }
+
+  // How one primitive meets a family of segments, known ahead (per screen tile) so that the
+  // lanes skip primitives the segments miss and the intersection of those they lie inside.
+  enum class Overlap : uint8_t { none, whole, partial };
+
+  // For each primitive (size() entries): how it meets every segment that starts in the
+  // world box `a` and ends in the world box `b` (conservative: `partial` when unsure).
+  // The segments lie in the convex hull of a and b, inside the box around both.
+  void classify(const Bounds3& a, const Bounds3& b, Overlap* out) const {
+    Bounds3 hull = a;
+    hull.extend(b);
+    size_t k = 0;
+    for (const Homogeneous& h : homogeneous_)
+      out[k++] = !overlaps(hull, h.bounds)        ? Overlap::none
+                 : h.contains(a) && h.contains(b) ? Overlap::whole
+                                                  : Overlap::partial;
+    for (const Scalar& s : scalar_) out[k++] = overlaps(hull, s.bounds) ? Overlap::partial : Overlap::none;
+  }
 
   // exp(-optical depth) per channel of the segments a -> b in the lanes of `m` (1 elsewhere).
+  // `overlaps` (size() entries, from classify) or null: test every primitive.
   void transmittance(const B& ax, const B& ay, const B& az, const B& bx, const B& by, const B& bz, Mask m,
-                     B& r, B& g, B& b) const {
+                     const Overlap* overlaps, B& r, B& g, B& b) const {
     B tr(0.0f), tg(0.0f), tb(0.0f);
-    if (!homogeneous_.empty()) {
-      const B dx = bx - ax, dy = by - ay, dz = bz - az;
-      const B len = xsimd::sqrt(dx * dx + dy * dy + dz * dz);
-      for (const Homogeneous& h : homogeneous_) {
-        const B l = h.overlap_fraction(ax, ay, az, bx, by, bz) * len;
-        tr += B(h.sigma_t.r) * l, tg += B(h.sigma_t.g) * l, tb += B(h.sigma_t.b) * l;
+    bool any = false;
+    B len;
+    for (size_t k = 0; k < homogeneous_.size(); ++k) {
+      const Overlap o = overlaps ? overlaps[k] : Overlap::partial;
+      if (o == Overlap::none) continue;
+      if (!any) {
+        const B dx = bx - ax, dy = by - ay, dz = bz - az;
+        len = xsimd::sqrt(dx * dx + dy * dy + dz * dz);
+        any = true;
       }
+      const Homogeneous& h = homogeneous_[k];
+      const B l = o == Overlap::whole ? len : h.overlap_fraction(ax, ay, az, bx, by, bz) * len;
+      tr += B(h.sigma_t.r) * l, tg += B(h.sigma_t.g) * l, tb += B(h.sigma_t.b) * l;
     }
-    if (!scalar_.empty()) add_scalar(ax, ay, az, bx, by, bz, m, tr, tg, tb);
+    for (size_t k = 0; k < scalar_.size(); ++k) {
+      if (overlaps && overlaps[homogeneous_.size() + k] == Overlap::none) continue;
+      add_scalar(*scalar_[k].primitive, ax, ay, az, bx, by, bz, m, tr, tg, tb);
+      any = true;
+    }
+    if (!any) {
+      r = g = b = B(1.0f);
+      return;
+    }
     r = xsimd::select(m, xsimd::exp(-tr), B(1.0f));
     g = xsimd::select(m, xsimd::exp(-tg), B(1.0f));
     b = xsimd::select(m, xsimd::exp(-tb), B(1.0f));
@@ -69,7 +106,30 @@ class SegmentMediaBatch {
     bool sphere = false;  // the unit sphere; else the box [lo, hi]
     float m[3][4];
     Vec3 lo, hi;
-    RGB sigma_t;  // (sigma_a + sigma_s) x density
+    RGB sigma_t;     // (sigma_a + sigma_s) x density
+    Bounds3 bounds;  // world
+
+    // Does the convex shape hold the whole world box? Its object-space bounding box (centre
+    // and half extent through |M|) is tested, shrunk by a relative 1e-5 against rounding.
+    bool contains(const Bounds3& w) const {
+      if (w.empty() || !std::isfinite(w.lo.x + w.lo.y + w.lo.z + w.hi.x + w.hi.y + w.hi.z)) return false;
+      const Vec3 c = w.center(), e = w.diagonal() * 0.5f;
+      Vec3 oc, oe;
+      for (int r = 0; r < 3; ++r) {
+        oc[r] = m[r][0] * c.x + m[r][1] * c.y + m[r][2] * c.z + m[r][3];
+        oe[r] = std::abs(m[r][0]) * e.x + std::abs(m[r][1]) * e.y + std::abs(m[r][2]) * e.z;
+      }
+      if (sphere) {
+        // The farthest corner of the object box from the centre.
+        const Vec3 far{std::abs(oc.x) + oe.x, std::abs(oc.y) + oe.y, std::abs(oc.z) + oe.z};
+        return length_squared(far) <= 1.0f - 1e-5f;
+      }
+      for (int r = 0; r < 3; ++r) {
+        const float slack = 1e-5f * (hi[r] - lo[r]);
+        if (!(oc[r] - oe[r] >= lo[r] + slack && oc[r] + oe[r] <= hi[r] - slack)) return false;
+      }
+      return true;
+    }
 
     // Fraction in [0, 1] of the segment a -> b inside the primitive: the segment parameter
     // is the same in world and object space (the map is affine).
@@ -94,7 +154,7 @@ class SegmentMediaBatch {
         const B half = xsimd::sqrt(xsimd::max(h2, B(0.0f)) * inv);
         s0 = xsimd::max(s0, -sc - half);
         s1 = xsimd::min(s1, -sc + half);
-        return xsimd::select(h2 >= B(0.0f) & (qa > B(0.0f)), xsimd::max(s1 - s0, B(0.0f)), B(0.0f));
+        return xsimd::select((h2 >= B(0.0f)) & (qa > B(0.0f)), xsimd::max(s1 - s0, B(0.0f)), B(0.0f));
       }
       for (int a = 0; a < 3; ++a) {
         // A tiny denominator instead of 0 keeps every lane finite (no inf * 0).
@@ -108,9 +168,19 @@ class SegmentMediaBatch {
     }
   };
 
-  // media.h's interval and quadrature for the primitives the lanes do not integrate.
-  void add_scalar(const B& ax, const B& ay, const B& az, const B& bx, const B& by, const B& bz, Mask m, B& tr,
-                  B& tg, B& tb) const {
+  struct Scalar {
+    const VolumePrimitive* primitive;
+    Bounds3 bounds;
+  };
+
+  static bool overlaps(const Bounds3& a, const Bounds3& b) {
+    return a.lo.x <= b.hi.x && a.hi.x >= b.lo.x && a.lo.y <= b.hi.y && a.hi.y >= b.lo.y && a.lo.z <= b.hi.z &&
+           a.hi.z >= b.lo.z;
+  }
+
+  // media.h's interval and quadrature for a primitive the lanes do not integrate.
+  static void add_scalar(const VolumePrimitive& prim, const B& ax, const B& ay, const B& az, const B& bx,
+                         const B& by, const B& bz, Mask m, B& tr, B& tg, B& tb) {
     alignas(32) float add[3][B::size] = {};
     for (size_t i = 0; i < B::size; ++i) {
       if (!m.get(i)) continue;
@@ -118,17 +188,16 @@ class SegmentMediaBatch {
       const float len = distance(a, b);
       if (!(len > 0.0f)) continue;
       const Ray ray{a, (b - a) / len, 0.0f, len};
-      RGB tau;
-      for (const VolumePrimitive* prim : scalar_)
-        if (const auto overlap = volume_interval(prim->shape, ray))
-          tau += primitive_optical_depth(*prim, ray, overlap->first, overlap->second);
-      add[0][i] = tau.r, add[1][i] = tau.g, add[2][i] = tau.b;
+      if (const auto overlap = volume_interval(prim.shape, ray)) {
+        const RGB tau = primitive_optical_depth(prim, ray, overlap->first, overlap->second);
+        add[0][i] = tau.r, add[1][i] = tau.g, add[2][i] = tau.b;
+      }
     }
     tr += B::load_aligned(add[0]), tg += B::load_aligned(add[1]), tb += B::load_aligned(add[2]);
   }
 
   std::vector<Homogeneous> homogeneous_;
-  std::vector<const VolumePrimitive*> scalar_;
+  std::vector<Scalar> scalar_;
 };
 
 }  // namespace caligo

@@ -131,10 +131,13 @@ const RealtimeFrame& RealtimePipeline::render(float time, uint32_t frame_index) 
   acc.frame_seed = frame_index;
   acc.simd = settings_.simd;
   times.per_light.assign(lights.size(), 0.0);
+  const auto rays_start = Clock::now();
+  accumulation_rays_.build(volumes, next.low_view, next.low_depth, acc);
+  times.rays = micros_since(rays_start);
   for (size_t i = 0; i < lights.size(); ++i) {
     if (!lights[i].options.volumetric) continue;
     const auto light_start = Clock::now();
-    accumulate_light(lights[i], volumes, next.low_view, next.low_depth, acc, accum);
+    accumulate_light(lights[i], volumes, accumulation_rays_, acc, accum);
     times.per_light[i] = micros_since(light_start);
   }
   times.accumulation = micros_since(t);
@@ -165,7 +168,7 @@ const RealtimeFrame& RealtimePipeline::render(float time, uint32_t frame_index) 
   times.upsample = micros_since(t);
 
   t = Clock::now();
-  next.surfaces = shade_surfaces(*gbuffer_, next.view, *scene_, lights);
+  shade_surfaces(*gbuffer_, next.view, *scene_, lights, next.surfaces, settings_.simd);
   times.surfaces = micros_since(t);
 
   // Composite before tone mapping (the seed adds the upscaled buffer to the lit scene).

@@ -12,6 +12,7 @@
 #include <optional>
 #include <vector>
 
+#include "realtime/accumulation_rays.h"
 #include "realtime/passes.h"
 #include "realtime/plane.h"
 #include "realtime/view.h"
@@ -43,9 +44,11 @@ RealtimeSettings realtime_settings(const SceneDesc& desc);
 
 // Microseconds spent in each pass of one frame.
 struct PassTimes {
-  double depth = 0, shadows = 0, accumulation = 0, gather = 0, upsample = 0, temporal = 0, surfaces = 0,
+  double depth = 0, shadows = 0, rays = 0, accumulation = 0, gather = 0, upsample = 0, temporal = 0, surfaces = 0,
          composite = 0, total = 0;
   std::vector<double> per_light;  // accumulation of each light (0 for non-volumetric ones)
+  // accumulation includes `rays`: the camera side shared by all lights (rays, media intervals,
+  // interleaved offsets), built once per frame.
   // The budget: accumulation + gather + upsample + temporal.
   double volumetric() const { return accumulation + gather + upsample + temporal; }
 };
@@ -88,6 +91,7 @@ class RealtimePipeline {
   std::unique_ptr<Scene> scene_;
   std::unique_ptr<RasterScene> raster_;
   std::vector<CachedShadow> shadows_;
+  AccumulationRays accumulation_rays_;  // per-frame camera side of accumulation, storage reused
   std::unique_ptr<GBuffer> gbuffer_;  // reused frame to frame (allocation costs as much as drawing it)
   RealtimeFrame frame_, previous_;   // swapped each frame so their buffers are reused
   bool has_history_ = false;

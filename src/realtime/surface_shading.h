@@ -7,11 +7,12 @@
 // --max-depth 1 (sphere, quad, triangle and environment lights are not shaded here; a sun
 // with an angular radius is shaded as a delta direction).
 //
-// Lights are culled per 16 x 16 pixel tile against the tile's world-space bounds (range
-// spheres and box-light volumes), as a Forward+ renderer does. Sky pixels are black. The
-// SIMD path evaluates point, spot, box and directional lights 8 pixels at a time; lights
-// with a gobo image or an IES profile, cube-map lookups and media transmittance fall back
-// to the scalar functions lane by lane.
+// Lights are culled per 64 x 4 pixel tile against the tile's world-space bounds (range
+// spheres, spot cones, box-light volumes), as a Forward+ renderer does; tiles are wide
+// because their rows are what the G-buffer loads stream through. Sky pixels are black.
+// The SIMD path (surface_shading_simd.cpp) evaluates every delta light 8 pixels at a time,
+// gobos and media transmittance included; only IES profiles and cube-map lookups that
+// straddle faces call the scalar functions lane by lane.
 #pragma once
 
 #include <span>
@@ -28,5 +29,9 @@ class Scene;
 // `simd = false` runs the scalar reference path (tests compare the two within 1e-4).
 ColorPlanes shade_surfaces(const GBuffer& gbuffer, const View& camera, const Scene& scene,
                            std::span<const FrameLight> lights, bool simd = true);
+// The same into `out`, reusing its storage when the size matches (a new 1080p frame's three
+// zeroed planes cost ~10 ms of page faults); every pixel is overwritten.
+void shade_surfaces(const GBuffer& gbuffer, const View& camera, const Scene& scene,
+                    std::span<const FrameLight> lights, ColorPlanes& out, bool simd = true);
 
 }  // namespace caligo

@@ -20,6 +20,9 @@ struct ShadeContext {
   bool simd;
 };
 
+// May the spot light's outer cone (where spot_cone is non-zero) meet the box? Conservative
+// (tile culling); cones of 90 degrees or wider always may.
+bool spot_cone_may_reach(const SpotLight& light, const Bounds3& box);
 RGB transmittance(const VolumeScene& volumes, Vec3 a, Vec3 b);
 // One light's reflected radiance at a diffuse point p with unit normal n, f = albedo / pi.
 RGB light_term(const ShadeContext& c, const FrameLight& light, Vec3 p, Vec3 n, RGB f);
@@ -38,8 +41,9 @@ SimdFramePtr prepare_simd(const ShadeContext& c);
 // Bounds of the surface points of rows [y0, y1), columns [x0, x1) (x1 - x0 a multiple of 8),
 // reconstructed exactly as shade_row_simd reconstructs them; sky pixels are left out.
 Bounds3 points_bounds_simd(const ShadeContext& c, int y0, int y1, int x0, int x1);
-// Shades pixels [x0, x1) of row y 8 at a time (x1 - x0 a multiple of 8).
-void shade_row_simd(const ShadeContext& c, const SimdFrame& f, int y, int x0, int x1,
-                    std::span<const int> active, ColorPlanes& out);
+// Shades pixels [x0, x1) x [y0, y1) 8 at a time (x1 - x0 a multiple of 8) with the lights
+// `active`; `bounds` holds every surface point of the tile they belong to.
+void shade_rect_simd(const ShadeContext& c, const SimdFrame& f, int y0, int y1, int x0, int x1,
+                     std::span<const int> active, const Bounds3& bounds, ColorPlanes& out);
 
 }  // namespace caligo::shading

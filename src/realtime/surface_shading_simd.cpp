@@ -1,12 +1,20 @@
 // 8-wide surface shading (xsimd, AVX2): the point, spot, box and directional light models
-// of lights/light_profile.cpp for lights without a gobo image or IES profile, written once
-// more over batches. Everything else (gobo/IES lights, media transmittance, cube-map
-// normal offsets) calls the scalar functions lane by lane, so the two paths share one
-// definition of the physics; surface_shading_test.cpp compares them.
-#include <xsimd/xsimd.hpp>
+// of lights/light_profile.cpp written once more over batches, gobos and IES profiles through
+// light_profile_simd.h, media transmittance through media_simd.h, shadows through
+// shadow_map_simd.h. Everything that does
+// not change over a frame (material tables, gobo rotations, light frames, the media in
+// object space) is derived once in prepare_simd. surface_shading_test.cpp compares the
+// result with the scalar reference path.
+#include <immintrin.h>
 
 #include <cmath>
+#include <optional>
+#include <vector>
 
+#include <xsimd/xsimd.hpp>
+
+#include "realtime/light_profile_simd.h"
+#include "realtime/media_simd.h"
 #include "realtime/shadow_map_simd.h"
 #include "realtime/surface_shading_internal.h"
 
@@ -14,6 +22,7 @@ namespace caligo::shading {
 namespace {
 
 using B = xsimd::batch<float>;
+using I = xsimd::batch<int32_t>;
 using Mask = xsimd::batch_bool<float>;
 constexpr size_t kLanes = B::size;
 
@@ -26,6 +35,7 @@ inline V3 minus(Vec3 a, const V3& b) { return {B(a.x) - b.x, B(a.y) - b.y, B(a.z
 inline V3 minus(const V3& a, Vec3 b) { return {a.x - B(b.x), a.y - B(b.y), a.z - B(b.z)}; }
 inline V3 madd(const V3& a, const V3& d, B t) { return {a.x + d.x * t, a.y + d.y * t, a.z + d.z * t}; }
 inline Vec3 lane(const V3& v, size_t i) { return {v.x.get(i), v.y.get(i), v.z.get(i)}; }
+inline B gather(const float* base, const I& index) { return B(_mm256_i32gather_ps(base, index, 4)); }
 
 // lights/light_profile.cpp's range_window and math.h's smoothstep, over batches.
 B range_window(B distance, float range) {
@@ -40,6 +50,40 @@ B smoothstep(float e0, float e1, B x) {
   return t * t * (B(3.0f) - B(2.0f) * t);
 }
 
+// Per light, what the batches need beyond the light itself (light_profile_simd.h's
+// samplers hold the gobo rotation, the light frames and the IES table pointers).
+struct LightPrep {
+  Vec3 right;                                // box lights: cross(direction, up)
+  std::optional<SpotGoboSampler> spot_gobo;  // spot lights with a gobo image
+  std::optional<GoboSampler> box_gobo;       // box lights with a gobo image
+  std::optional<IesSampler> ies;             // point and spot lights with a profile
+};
+
+struct Prepare {
+  LightPrep operator()(const PointLight& l) const {
+    LightPrep p;
+    if (l.ies.profile) p.ies.emplace(l.ies);
+    return p;
+  }
+  LightPrep operator()(const SpotLight& l) const {
+    LightPrep p;
+    if (l.gobo.image) p.spot_gobo.emplace(l);
+    if (l.ies.profile) p.ies.emplace(l.ies);
+    return p;
+  }
+  LightPrep operator()(const BoxLight& l) const {
+    LightPrep p;
+    p.right = cross(l.direction, l.up);
+    if (l.gobo.image) p.box_gobo.emplace(l.gobo);
+    return p;
+  }
+  LightPrep operator()(const DirectionalLight&) const { return {}; }
+  LightPrep operator()(const SphereLight&) const { return {}; }
+  LightPrep operator()(const QuadLight&) const { return {}; }
+  LightPrep operator()(const TriangleLight&) const { return {}; }
+  LightPrep operator()(const EnvironmentLight&) const { return {}; }
+};
+
 struct Arrival {
   B r, g, b;  // radiance (already / d^2) or irradiance
   V3 wi;      // towards the light
@@ -47,66 +91,72 @@ struct Arrival {
   Mask mask;  // where the light arrives
 };
 
+Arrival none() { return {B(0.0f), B(0.0f), B(0.0f), {B(0.0f), B(0.0f), B(0.0f)}, B(0.0f), Mask(false)}; }
+
+// light_profile.cpp's delta_arrival over batches.
 struct ArrivalAt {
   const V3& p;
+  const LightPrep& prep;
   float far;
 
-  Arrival point_like(Vec3 position, RGB intensity, float range) const {
+  // Direction, distance, inverse square and range window shared by point and spot lights.
+  Arrival point_like(Vec3 position, float range, B& scale) const {
     const V3 d = minus(position, p);
     const B dist2 = dot(d, d);
     const B dist = xsimd::sqrt(dist2);
     const B inv = B(1.0f) / dist;
-    const V3 wi{d.x * inv, d.y * inv, d.z * inv};
-    const B scale = range_window(dist, range) / dist2;
-    return {B(intensity.r) * scale,
-            B(intensity.g) * scale,
-            B(intensity.b) * scale,
-            wi,
-            dist,
-            (dist2 > B(0.0f)) & (scale > B(0.0f))};
+    scale = range_window(dist, range) / dist2;
+    return {B(0.0f), B(0.0f), B(0.0f), {d.x * inv, d.y * inv, d.z * inv}, dist, dist2 > B(0.0f)};
   }
-  Arrival operator()(const PointLight& l) const { return point_like(l.position, l.intensity, l.range); }
+  Arrival operator()(const PointLight& l) const {
+    B scale;
+    Arrival a = point_like(l.position, l.range, scale);
+    if (prep.ies && xsimd::any(a.mask & (scale > B(0.0f))))
+      scale *= prep.ies->factor(B(0.0f) - a.wi.x, B(0.0f) - a.wi.y, B(0.0f) - a.wi.z);
+    a.mask = a.mask & (scale > B(0.0f));
+    a.r = B(l.intensity.r) * scale, a.g = B(l.intensity.g) * scale, a.b = B(l.intensity.b) * scale;
+    return a;
+  }
   Arrival operator()(const SpotLight& l) const {
-    Arrival a = point_like(l.position, l.intensity, l.range);
-    const B cone = smoothstep(l.cos_outer, l.cos_inner, B(0.0f) - dot(a.wi, l.direction));
-    a.r *= cone, a.g *= cone, a.b *= cone;
-    a.mask = a.mask & (cone > B(0.0f));
+    B scale;
+    Arrival a = point_like(l.position, l.range, scale);
+    const V3 w{B(0.0f) - a.wi.x, B(0.0f) - a.wi.y, B(0.0f) - a.wi.z};  // leaving the light
+    const B z = dot(w, l.direction);
+    scale *= smoothstep(l.cos_outer, l.cos_inner, z);
+    if (prep.ies && xsimd::any(a.mask & (scale > B(0.0f)))) scale *= prep.ies->factor(w.x, w.y, w.z);
+    a.mask = a.mask & (scale > B(0.0f));
+    a.r = B(l.intensity.r) * scale, a.g = B(l.intensity.g) * scale, a.b = B(l.intensity.b) * scale;
+    if (prep.spot_gobo && xsimd::any(a.mask)) {
+      const RgbBatch gobo = prep.spot_gobo->filter(w.x, w.y, w.z);
+      a.r *= gobo.r, a.g *= gobo.g, a.b *= gobo.b;
+    }
     return a;
   }
   Arrival operator()(const BoxLight& l) const {
     const V3 local = minus(p, l.position);
     const B along = dot(local, l.direction);
-    const Vec3 right = cross(l.direction, l.up);
-    const B x = dot(local, right), y = dot(local, l.up);
+    const B x = dot(local, prep.right), y = dot(local, l.up);
     const Mask inside = (along >= B(0.0f)) & (along <= B(l.range)) & (xsimd::abs(x) <= B(l.half_width)) &
                         (xsimd::abs(y) <= B(l.half_height));
     const V3 wi{B(-l.direction.x), B(-l.direction.y), B(-l.direction.z)};
-    return {B(l.irradiance.r), B(l.irradiance.g), B(l.irradiance.b), wi, along, inside};
+    Arrival a{B(l.irradiance.r), B(l.irradiance.g), B(l.irradiance.b), wi, along, inside};
+    if (prep.box_gobo && xsimd::any(inside)) {
+      // delta_arrival's uv on the emitting face.
+      const RgbBatch gobo = prep.box_gobo->filter(B(0.5f) + B(0.5f) * x / B(l.half_width),
+                                                  B(0.5f) + B(0.5f) * y / B(l.half_height));
+      a.r *= gobo.r, a.g *= gobo.g, a.b *= gobo.b;
+    }
+    return a;
   }
   Arrival operator()(const DirectionalLight& l) const {
     const V3 wi{B(-l.direction.x), B(-l.direction.y), B(-l.direction.z)};
     return {B(l.irradiance.r), B(l.irradiance.g), B(l.irradiance.b), wi, B(far), Mask(true)};
   }
-  // Never called: simple() is false for these (and tile culling drops them).
+  // Area and environment lights are never active (tile culling drops them).
   Arrival operator()(const SphereLight&) const { return none(); }
   Arrival operator()(const QuadLight&) const { return none(); }
   Arrival operator()(const TriangleLight&) const { return none(); }
   Arrival operator()(const EnvironmentLight&) const { return none(); }
-  static Arrival none() {
-    return {B(0.0f), B(0.0f), B(0.0f), {B(0.0f), B(0.0f), B(0.0f)}, B(0.0f), Mask(false)};
-  }
-};
-
-// Lights whose emission the batch code models completely.
-struct Simple {
-  bool operator()(const PointLight& l) const { return !l.ies.profile; }
-  bool operator()(const SpotLight& l) const { return !l.ies.profile && !l.gobo.image; }
-  bool operator()(const BoxLight& l) const { return !l.gobo.image; }
-  bool operator()(const DirectionalLight&) const { return true; }
-  bool operator()(const SphereLight&) const { return false; }
-  bool operator()(const QuadLight&) const { return false; }
-  bool operator()(const TriangleLight&) const { return false; }
-  bool operator()(const EnvironmentLight&) const { return false; }
 };
 
 // Shadow visibility at p offset by one texel along n (the scalar path's normal offset).
@@ -128,16 +178,6 @@ B shadowed_visibility(const ShadowMap& map, const V3& p, const V3& n) {
   return shadow_visibility(map, q.x, q.y, q.z);
 }
 
-// Per-lane scalar transmittance between a and b (media are rare and irregular).
-void lane_transmittance(const VolumeScene& volumes, const V3& a, const V3& b, Mask m, B& r, B& g, B& bl) {
-  alignas(32) float tr[3][kLanes];
-  for (size_t i = 0; i < kLanes; ++i) {
-    const RGB t = m.get(i) ? transmittance(volumes, lane(a, i), lane(b, i)) : RGB(0.0f);
-    tr[0][i] = t.r, tr[1][i] = t.g, tr[2][i] = t.b;
-  }
-  r = B::load_aligned(tr[0]), g = B::load_aligned(tr[1]), bl = B::load_aligned(tr[2]);
-}
-
 struct Group {
   V3 p, eye, n;
   Mask valid;
@@ -146,41 +186,10 @@ struct Group {
   B r, g, b;  // radiance so far
 };
 
-void add_simple_light(const ShadeContext& c, const FrameLight& fl, Group& q) {
-  const Arrival a = std::visit(ArrivalAt{q.p, c.far}, fl.light);
-  const B cos_theta = dot(q.n, a.wi);
-  Mask m = q.valid & q.diffuse & a.mask & (cos_theta > B(0.0f));
-  if (!xsimd::any(m)) return;
-  B weight = xsimd::select(m, cos_theta, B(0.0f));
-  if (fl.shadow) weight *= shadowed_visibility(*fl.shadow, q.p, q.n);
-  B tr_r(1.0f), tr_g(1.0f), tr_b(1.0f);
-  if (!c.scene.volumes().empty())
-    lane_transmittance(c.scene.volumes(), q.p, madd(q.p, a.wi, a.distance), m, tr_r, tr_g, tr_b);
-  // Masked lanes may hold inf or NaN (a point at the light): select, never multiply by 0.
-  q.r += xsimd::select(m, q.fr * a.r * weight * tr_r, B(0.0f));
-  q.g += xsimd::select(m, q.fg * a.g * weight * tr_g, B(0.0f));
-  q.b += xsimd::select(m, q.fb * a.b * weight * tr_b, B(0.0f));
-}
-
-void add_scalar_light(const ShadeContext& c, const FrameLight& fl, Group& q) {
-  alignas(32) float out[3][kLanes];
-  for (size_t i = 0; i < kLanes; ++i) {
-    RGB l;
-    if (q.valid.get(i) && q.diffuse.get(i))
-      l = light_term(c, fl, lane(q.p, i), lane(q.n, i), RGB(q.fr.get(i), q.fg.get(i), q.fb.get(i)));
-    out[0][i] = l.r, out[1][i] = l.g, out[2][i] = l.b;
-  }
-  q.r += B::load_aligned(out[0]), q.g += B::load_aligned(out[1]), q.b += B::load_aligned(out[2]);
-}
-
-// Positions, normals, materials and emission of pixels x .. x + 7 of row y.
-Group load_group(const ShadeContext& c, int x, int y, B depth) {
+// Surface points and camera-ray origins of pixels x .. x + 7 of row y at linear depth.
+// Sky lanes get depth 1 (finite arithmetic); callers mask them with `valid`.
+void reconstruct(const View& v, int x, int y, B depth, V3& p, V3& eye) {
   alignas(32) static constexpr float kLaneCentres[kLanes] = {0.5f, 1.5f, 2.5f, 3.5f, 4.5f, 5.5f, 6.5f, 7.5f};
-  const View& v = c.camera;
-  const size_t pixel = size_t(y) * size_t(c.g.depth.width) + size_t(x);
-  Group q;
-  q.valid = depth < B(kSkyDepth);
-  depth = xsimd::select(q.valid, depth, B(1.0f));
   const B px = B(float(x)) + B::load_aligned(kLaneCentres);
   const B ndc_x = B(2.0f) * px / B(float(v.resolution.x)) - B(1.0f);
   const float ndc_y = 1.0f - 2.0f * (float(y) + 0.5f) / float(v.resolution.y);
@@ -190,64 +199,239 @@ Group load_group(const ShadeContext& c, int x, int y, B depth) {
     const float b = ndc_y * v.tan_half_fov_y;
     const V3 d{B(v.forward.x + v.up.x * b) + B(v.right.x) * a, B(v.forward.y + v.up.y * b) + B(v.right.y) * a,
                B(v.forward.z + v.up.z * b) + B(v.right.z) * a};
-    q.eye = {B(v.eye.x), B(v.eye.y), B(v.eye.z)};
-    q.p = madd(q.eye, d, depth);
+    eye = {B(v.eye.x), B(v.eye.y), B(v.eye.z)};
+    p = madd(eye, d, depth);
   } else {
     const B a = ndc_x * B(v.half_width);
     const float b = ndc_y * v.half_height;
-    q.eye = {B(v.eye.x + v.up.x * b) + B(v.right.x) * a, B(v.eye.y + v.up.y * b) + B(v.right.y) * a,
-             B(v.eye.z + v.up.z * b) + B(v.right.z) * a};
-    q.p = madd(q.eye, {B(v.forward.x), B(v.forward.y), B(v.forward.z)}, depth);
+    eye = {B(v.eye.x + v.up.x * b) + B(v.right.x) * a, B(v.eye.y + v.up.y * b) + B(v.right.y) * a,
+           B(v.eye.z + v.up.z * b) + B(v.right.z) * a};
+    p = madd(eye, {B(v.forward.x), B(v.forward.y), B(v.forward.z)}, depth);
   }
-  q.n = {B::load_unaligned(c.g.nx.data.data() + pixel), B::load_unaligned(c.g.ny.data.data() + pixel),
-         B::load_unaligned(c.g.nz.data.data() + pixel)};
-  alignas(32) float f[3][kLanes], e[3][kLanes], diffuse[kLanes];
-  for (size_t i = 0; i < kLanes; ++i) {
-    const int32_t m = c.g.material[pixel + i];
-    RGB fi, ei;
-    diffuse[i] = 0.0f;
-    if (m >= 0) {
-      const Material& mat = c.scene.materials()[size_t(m)];
-      if (!mat.emission.is_black() && (c.g.front[pixel + i] || mat.two_sided_emission)) ei = mat.emission;
-      if (const auto* d = std::get_if<DiffuseBsdf>(&mat.bsdf))
-        fi = d->reflectance * kInvPi, diffuse[i] = 1.0f;
-    }
-    f[0][i] = fi.r, f[1][i] = fi.g, f[2][i] = fi.b;
-    e[0][i] = ei.r, e[1][i] = ei.g, e[2][i] = ei.b;
+}
+
+// A tile's rows are 7.7 KB apart at 1080p, one or two cache lines per buffer each: too
+// scattered for the hardware prefetchers, and the shading loop stalled on its loads. While
+// the bounds pass walks a row, fetch the next row's depth and this row's normals, materials
+// and face flags, which the shading pass reads right after.
+void prefetch_row(const GBuffer& g, int y, int x0, int x1) {
+  const size_t w = size_t(g.depth.width);
+  const size_t row = size_t(y) * w;
+  const size_t next = y + 1 < g.depth.height ? row + w : row;
+  for (int x = x0; x < x1; x += 16) {
+    const size_t i = row + size_t(x);
+    _mm_prefetch(reinterpret_cast<const char*>(g.depth.data.data() + next + size_t(x)), _MM_HINT_T0);
+    _mm_prefetch(reinterpret_cast<const char*>(g.nx.data.data() + i), _MM_HINT_T0);
+    _mm_prefetch(reinterpret_cast<const char*>(g.ny.data.data() + i), _MM_HINT_T0);
+    _mm_prefetch(reinterpret_cast<const char*>(g.nz.data.data() + i), _MM_HINT_T0);
+    _mm_prefetch(reinterpret_cast<const char*>(g.material.data() + i), _MM_HINT_T0);
+    _mm_prefetch(reinterpret_cast<const char*>(g.front.data() + i), _MM_HINT_T0);
   }
-  q.fr = B::load_aligned(f[0]), q.fg = B::load_aligned(f[1]), q.fb = B::load_aligned(f[2]);
-  q.r = B::load_aligned(e[0]), q.g = B::load_aligned(e[1]), q.b = B::load_aligned(e[2]);
-  q.diffuse = B::load_aligned(diffuse) > B(0.0f);
-  return q;
 }
 
 }  // namespace
 
-int shade_row_simd(const ShadeContext& c, int y, int x0, int x1, std::span<const int> active,
-                   ColorPlanes& out) {
-  int x = x0;
-  for (; x + int(kLanes) <= x1; x += int(kLanes)) {
-    const B depth = B::load_unaligned(c.g.depth.row(y) + x);
-    if (!xsimd::any(depth < B(kSkyDepth))) continue;
-    Group q = load_group(c, x, y, depth);
-    if (xsimd::any(q.valid & q.diffuse))
-      for (int i : active) {
-        const FrameLight& fl = c.lights[size_t(i)];
-        if (std::visit(Simple{}, fl.light))
-          add_simple_light(c, fl, q);
-        else
-          add_scalar_light(c, fl, q);
-      }
-    if (!c.scene.volumes().empty()) {
-      B tr_r, tr_g, tr_b;
-      lane_transmittance(c.scene.volumes(), q.eye, q.p, q.valid, tr_r, tr_g, tr_b);
-      q.r *= tr_r, q.g *= tr_g, q.b *= tr_b;
+struct SimdFrame {
+  explicit SimdFrame(const VolumeScene& volumes) : media(volumes) {}
+  // Per material: albedo / pi (0 unless diffuse), emission, and 1 / 0 flags.
+  std::vector<float> f[3], emission[3], diffuse, two_sided;
+  std::vector<LightPrep> lights;  // per light of the context
+  SegmentMediaBatch media;
+};
+
+void SimdFrameDeleter::operator()(SimdFrame* f) const { delete f; }
+
+SimdFramePtr prepare_simd(const ShadeContext& c) {
+  SimdFramePtr frame(new SimdFrame(c.scene.volumes()));
+  for (const Material& m : c.scene.materials()) {
+    RGB f;
+    const auto* d = std::get_if<DiffuseBsdf>(&m.bsdf);
+    if (d) f = d->reflectance * kInvPi;
+    for (int k = 0; k < 3; ++k) {
+      frame->f[k].push_back(f[k]);
+      frame->emission[k].push_back(m.emission[k]);
     }
-    xsimd::select(q.valid, q.r, B(0.0f)).store_unaligned(out.r.row(y) + x);
-    xsimd::select(q.valid, q.g, B(0.0f)).store_unaligned(out.g.row(y) + x);
-    xsimd::select(q.valid, q.b, B(0.0f)).store_unaligned(out.b.row(y) + x);
+    frame->diffuse.push_back(d ? 1.0f : 0.0f);
+    frame->two_sided.push_back(m.two_sided_emission ? 1.0f : 0.0f);
   }
-  return x;
+  for (const FrameLight& fl : c.lights) frame->lights.push_back(std::visit(Prepare{}, fl.light));
+  return frame;
+}
+
+Bounds3 points_bounds_simd(const ShadeContext& c, int y0, int y1, int x0, int x1) {
+  B lo_x(kInfinity), lo_y(kInfinity), lo_z(kInfinity);
+  B hi_x(-kInfinity), hi_y(-kInfinity), hi_z(-kInfinity);
+  for (int y = y0; y < y1; ++y) {
+    prefetch_row(c.g, y, x0, x1);
+    for (int x = x0; x < x1; x += int(kLanes)) {
+      const B depth = B::load_unaligned(c.g.depth.row(y) + x);
+      const Mask valid = depth < B(kSkyDepth);
+      if (!xsimd::any(valid)) continue;
+      V3 p, eye;
+      reconstruct(c.camera, x, y, xsimd::select(valid, depth, B(1.0f)), p, eye);
+      lo_x = xsimd::min(lo_x, xsimd::select(valid, p.x, B(kInfinity)));
+      lo_y = xsimd::min(lo_y, xsimd::select(valid, p.y, B(kInfinity)));
+      lo_z = xsimd::min(lo_z, xsimd::select(valid, p.z, B(kInfinity)));
+      hi_x = xsimd::max(hi_x, xsimd::select(valid, p.x, B(-kInfinity)));
+      hi_y = xsimd::max(hi_y, xsimd::select(valid, p.y, B(-kInfinity)));
+      hi_z = xsimd::max(hi_z, xsimd::select(valid, p.z, B(-kInfinity)));
+    }
+  }
+  alignas(32) float lanes[6][kLanes];
+  lo_x.store_aligned(lanes[0]), lo_y.store_aligned(lanes[1]), lo_z.store_aligned(lanes[2]);
+  hi_x.store_aligned(lanes[3]), hi_y.store_aligned(lanes[4]), hi_z.store_aligned(lanes[5]);
+  Bounds3 b;
+  for (size_t i = 0; i < kLanes; ++i) {
+    b.lo = min(b.lo, Vec3(lanes[0][i], lanes[1][i], lanes[2][i]));
+    b.hi = max(b.hi, Vec3(lanes[3][i], lanes[4][i], lanes[5][i]));
+  }
+  return b;
+}
+
+namespace {
+
+// Positions, normals, materials and emission of pixels x .. x + 7 of row y.
+Group load_group(const ShadeContext& c, const SimdFrame& f, int x, int y, B depth) {
+  const size_t pixel = size_t(y) * size_t(c.g.depth.width) + size_t(x);
+  Group q;
+  q.valid = depth < B(kSkyDepth);
+  reconstruct(c.camera, x, y, xsimd::select(q.valid, depth, B(1.0f)), q.p, q.eye);
+  q.n = {B::load_unaligned(c.g.nx.data.data() + pixel), B::load_unaligned(c.g.ny.data.data() + pixel),
+         B::load_unaligned(c.g.nz.data.data() + pixel)};
+  const __m256i material = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(c.g.material.data() + pixel));
+  const Mask has_material(_mm256_castsi256_ps(_mm256_cmpgt_epi32(material, _mm256_set1_epi32(-1))));
+  const I m(_mm256_max_epi32(material, _mm256_setzero_si256()));
+  // The front-face bytes widened to 32-bit lanes.
+  const __m256i front =
+      _mm256_cvtepu8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(c.g.front.data() + pixel)));
+  const Mask back(_mm256_castsi256_ps(_mm256_cmpeq_epi32(front, _mm256_setzero_si256())));
+  const Mask lit = q.valid & has_material;
+  q.diffuse = lit & (gather(f.diffuse.data(), m) > B(0.0f));
+  const Mask glows = lit & ((!back) | (gather(f.two_sided.data(), m) > B(0.0f)));
+  q.fr = xsimd::select(q.diffuse, gather(f.f[0].data(), m), B(0.0f));
+  q.fg = xsimd::select(q.diffuse, gather(f.f[1].data(), m), B(0.0f));
+  q.fb = xsimd::select(q.diffuse, gather(f.f[2].data(), m), B(0.0f));
+  q.r = xsimd::select(glows, gather(f.emission[0].data(), m), B(0.0f));
+  q.g = xsimd::select(glows, gather(f.emission[1].data(), m), B(0.0f));
+  q.b = xsimd::select(glows, gather(f.emission[2].data(), m), B(0.0f));
+  return q;
+}
+
+using Overlap = SegmentMediaBatch::Overlap;
+
+// Where the light ends of one light's transmittance segments lie, for segments that start in
+// the world box `from` (the surface points of a tile).
+struct LightEnds {
+  const Bounds3& from;
+  float far;
+
+  static Bounds3 point(Vec3 p) {
+    Bounds3 b;
+    b.extend(p);
+    return b;
+  }
+  // `from` swept along v (to from + v).
+  Bounds3 swept(Vec3 v) const {
+    Bounds3 b = from;
+    b.extend(Bounds3{from.lo + v, from.hi + v});
+    return b;
+  }
+  Bounds3 operator()(const PointLight& l) const { return point(l.position); }
+  Bounds3 operator()(const SpotLight& l) const { return point(l.position); }
+  Bounds3 operator()(const BoxLight& l) const { return swept(-l.direction * l.range); }
+  Bounds3 operator()(const DirectionalLight& l) const {
+    const Vec3 v = -l.direction * far;
+    return {from.lo + v, from.hi + v};
+  }
+  // Never active (tile culling drops them); an unbounded box keeps every primitive tested.
+  Bounds3 operator()(const SphereLight&) const { return swept(Vec3(kInfinity)); }
+  Bounds3 operator()(const QuadLight&) const { return swept(Vec3(kInfinity)); }
+  Bounds3 operator()(const TriangleLight&) const { return swept(Vec3(kInfinity)); }
+  Bounds3 operator()(const EnvironmentLight&) const { return swept(Vec3(kInfinity)); }
+};
+
+void add_light(const ShadeContext& c, const SimdFrame& f, const FrameLight& fl, const LightPrep& prep,
+               const Overlap* overlaps, Group& q) {
+  const Arrival a = std::visit(ArrivalAt{q.p, prep, c.far}, fl.light);
+  const B cos_theta = dot(q.n, a.wi);
+  Mask m = q.diffuse & a.mask & (cos_theta > B(0.0f));
+  if (!xsimd::any(m)) return;
+  B weight = xsimd::select(m, cos_theta, B(0.0f));
+  if (fl.shadow) {
+    weight *= shadowed_visibility(*fl.shadow, q.p, q.n);
+    m = m & (weight > B(0.0f));
+    if (!xsimd::any(m)) return;
+  }
+  B tr_r(1.0f), tr_g(1.0f), tr_b(1.0f);
+  if (!f.media.empty()) {
+    const V3 l = madd(q.p, a.wi, a.distance);
+    f.media.transmittance(q.p.x, q.p.y, q.p.z, l.x, l.y, l.z, m, overlaps, tr_r, tr_g, tr_b);
+  }
+  // Masked lanes may hold inf or NaN (a point at the light): select, never multiply by 0.
+  q.r += xsimd::select(m, q.fr * a.r * weight * tr_r, B(0.0f));
+  q.g += xsimd::select(m, q.fg * a.g * weight * tr_g, B(0.0f));
+  q.b += xsimd::select(m, q.fb * a.b * weight * tr_b, B(0.0f));
+}
+
+}  // namespace
+
+void shade_rect_simd(const ShadeContext& c, const SimdFrame& f, int y0, int y1, int x0, int x1,
+                     std::span<const int> active, const Bounds3& bounds, ColorPlanes& out) {
+  // How each primitive meets the camera segments (row 0) and each active light's (rows 1..).
+  const size_t n = f.media.size();
+  std::vector<Overlap> overlaps(n * (1 + active.size()));
+  const bool perspective = c.camera.projection == Projection::perspective;
+  if (n > 0) {
+    if (perspective) f.media.classify(LightEnds::point(c.camera.eye), bounds, overlaps.data());
+    for (size_t k = 0; k < active.size(); ++k)
+      f.media.classify(bounds, std::visit(LightEnds{bounds, c.far}, c.lights[size_t(active[k])].light),
+                       overlaps.data() + n * (1 + k));
+  }
+  // Orthographic camera rays start on a plane: test every primitive.
+  const Overlap* camera_overlaps = perspective ? overlaps.data() : nullptr;
+  // Groups are shaded in batches of up to kBatch, light by light: a light's shadow-map
+  // gathers for neighbouring groups are then independent and their cache misses overlap
+  // (group by group, each miss stalled the lights after it).
+  constexpr size_t kBatch = 32;
+  Group groups[kBatch];
+  int gx[kBatch], gy[kBatch];
+  size_t count = 0;
+  const auto flush = [&] {
+    for (size_t k = 0; k < active.size(); ++k) {
+      const size_t i = size_t(active[k]);
+      for (size_t j = 0; j < count; ++j)
+        if (xsimd::any(groups[j].diffuse))
+          add_light(c, f, c.lights[i], f.lights[i], overlaps.data() + n * (1 + k), groups[j]);
+    }
+    for (size_t j = 0; j < count; ++j) {
+      Group& q = groups[j];
+      if (!f.media.empty()) {
+        B tr_r, tr_g, tr_b;
+        f.media.transmittance(q.eye.x, q.eye.y, q.eye.z, q.p.x, q.p.y, q.p.z, q.valid, camera_overlaps, tr_r,
+                              tr_g, tr_b);
+        q.r *= tr_r, q.g *= tr_g, q.b *= tr_b;
+      }
+      const size_t at = size_t(gy[j]) * size_t(out.r.width) + size_t(gx[j]);
+      xsimd::select(q.valid, q.r, B(0.0f)).store_unaligned(out.r.data.data() + at);
+      xsimd::select(q.valid, q.g, B(0.0f)).store_unaligned(out.g.data.data() + at);
+      xsimd::select(q.valid, q.b, B(0.0f)).store_unaligned(out.b.data.data() + at);
+    }
+    count = 0;
+  };
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x + int(kLanes) <= x1; x += int(kLanes)) {
+      const B depth = B::load_unaligned(c.g.depth.row(y) + x);
+      if (!xsimd::any(depth < B(kSkyDepth))) {  // all sky: black
+        B(0.0f).store_unaligned(out.r.row(y) + x);
+        B(0.0f).store_unaligned(out.g.row(y) + x);
+        B(0.0f).store_unaligned(out.b.row(y) + x);
+        continue;
+      }
+      groups[count] = load_group(c, f, x, y, depth);
+      gx[count] = x, gy[count] = y;
+      if (++count == kBatch) flush();
+    }
+  flush();
 }
 
 }  // namespace caligo::shading
