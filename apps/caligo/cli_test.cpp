@@ -285,3 +285,20 @@ TEST_F(Cli, RealtimeRejectsBadOptionsBeforeRendering) {
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_NE(missing.err.find("does not exist"), std::string::npos);
 }
+
+TEST_F(Cli, RealtimeReportsBrokenGoboAndIesFilesWithTheirJsonPath) {
+  write("broken.ies", "IESNA:LM-63-2002\nTILT=NONE\n1 1000 1 3 1 1 2 0 0 0\n1 1 100\n0 45\n");
+  write("not-an-image.jpg", "this is not a PNG");
+  const std::string base = R"({"camera": {"position": [0, 1, 5], "look_at": [0, 1, 0]}, "lights": [)";
+  const fs::path ies = write("ies.json", base + R"({"type": "point", "position": [0, 2, 0], "intensity": 1,
+                                                   "ies": {"file": "broken.ies"}}]})");
+  const RunResult r1 = run("realtime " + ies.string() + " --frames 1");
+  EXPECT_EQ(r1.exit_code, 2);
+  EXPECT_NE(r1.err.find("/lights/0/ies/file"), std::string::npos) << r1.err;
+  const fs::path gobo = write("gobo.json", base + R"({"type": "spot", "position": [0, 2, 0], "look_at": [0, 0, 0],
+      "inner_angle": 10, "outer_angle": 20, "intensity": 1, "gobo": {"file": "not-an-image.jpg"}}]})");
+  const RunResult r2 = run("render " + gobo.string() + " --spp 1");
+  EXPECT_EQ(r2.exit_code, 2);
+  EXPECT_NE(r2.err.find("/lights/0/gobo/file"), std::string::npos) << r2.err;
+  EXPECT_TRUE(outputs().empty());
+}

@@ -136,14 +136,19 @@ void upsample_lanes(const Rows& rows, int low_width, const int32_t* x0, const in
 }  // namespace
 
 Plane downsample_depth(const Plane& full_depth, int scale) {
-  const int w = std::max(1, full_depth.width / scale), h = std::max(1, full_depth.height / scale);
+  // ceil, as the pipeline sizes its low-resolution view: no full-resolution pixel is left
+  // without low-resolution pixels over it.
+  const int w = std::max(1, (full_depth.width + scale - 1) / scale);
+  const int h = std::max(1, (full_depth.height + scale - 1) / scale);
   Plane low(w, h);
-  // The full-resolution pixel under the low-resolution pixel's centre ((x + 0.5) scale):
-  // exact for odd scales, half a full-resolution pixel off for even ones.
+  // The full-resolution pixel under the low-resolution pixel's centre. Both views cover the
+  // same film, so that centre is at (x + 0.5) * full / low (= (x + 0.5) scale when the size
+  // divides): exact for odd scales, half a full-resolution pixel off for even ones.
+  const float rx = float(full_depth.width) / float(w), ry = float(full_depth.height) / float(h);
   for (int y = 0; y < h; ++y) {
-    const int fy = std::min(full_depth.height - 1, int((float(y) + 0.5f) * float(scale)));
+    const int fy = std::min(full_depth.height - 1, int((float(y) + 0.5f) * ry));
     for (int x = 0; x < w; ++x) {
-      const int fx = std::min(full_depth.width - 1, int((float(x) + 0.5f) * float(scale)));
+      const int fx = std::min(full_depth.width - 1, int((float(x) + 0.5f) * rx));
       low.at(x, y) = full_depth.at(fx, fy);
     }
   }
