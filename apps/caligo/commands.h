@@ -23,6 +23,7 @@ struct RenderOptions {
   std::optional<int> max_depth;
   std::optional<int> max_volume_bounces;
   std::optional<std::string> distance_sampling;
+  float time = 0.0f;  // seconds: the camera on its path and the lights on their keys at this time
   float exposure = 0.0f;
   bool list_builtins = false;
   bool quiet = false;

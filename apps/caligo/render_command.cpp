@@ -30,6 +30,7 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                   "Maximum scattering events in media (overrides the scene)");
   cmd->add_option("--distance-sampling", o.distance_sampling,
                   "Distance sampling for light in media: mis (default), density or equiangular");
+  cmd->add_option("--time", o.time, "Render the scene at this time in seconds (camera path, light keys)");
   cmd->add_option("--exposure", o.exposure, "Exposure of the PNG preview, in stops");
   cmd->add_flag("--list-builtins", o.list_builtins, "List the built-in scenes and exit");
   cmd->add_flag("-q,--quiet", o.quiet, "No progress output");
@@ -117,7 +118,8 @@ int list_builtins() {
 
 int run_render(const RenderOptions& o) {
   if (o.list_builtins) return list_builtins();
-  const SceneDesc desc = load_scene(o.scene);
+  if (!(o.time >= 0.0f && o.time <= 1e6f)) throw InputError(kCommandLine, "--time: expected seconds in [0, 1e6]");
+  const SceneDesc desc = load_scene(o.scene).at_time(o.time);
   const RenderSettings settings = settings_from(o, desc);
   const std::filesystem::path exr = o.output.empty() ? default_output(o.scene) : o.output;
   check_output(exr);

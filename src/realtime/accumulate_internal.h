@@ -11,6 +11,7 @@
 #include "core/vec.h"
 #include "realtime/frame_light.h"
 #include "realtime/accumulation_rays.h"
+#include "realtime/light_volume.h"
 #include "realtime/passes.h"
 #include "volumes/volume_scene.h"
 
@@ -27,6 +28,10 @@ struct PixelMarch {
 // The march of one pixel's ray for `light`, or false when the light volume, the depth and
 // the media leave nothing to march.
 bool setup_pixel_march(const Light& light, const AccumulationRays::PixelRay& ray,
+                       std::span<const VolumeInterval> intervals, const AccumulationSettings& settings,
+                       PixelMarch& march);
+// The same given the light volume's span of the ray (light_volume_interval over [0, t_end]).
+bool setup_pixel_march(TInterval span, const AccumulationRays::PixelRay& ray,
                        std::span<const VolumeInterval> intervals, const AccumulationSettings& settings,
                        PixelMarch& march);
 

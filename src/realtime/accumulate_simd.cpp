@@ -128,9 +128,10 @@ Batch range_window(const Batch& dist, float range, float inv_range) {
   return xsimd::select(dist < range, w * w, Batch(0.0f));
 }
 
+// The edge width's reciprocal is taken once per call: a multiply, not a division, per lane.
 Batch smoothstep(float e0, float e1, const Batch& x) {
   if (e0 == e1) return xsimd::select(x < e0, Batch(0.0f), Batch(1.0f));
-  const Batch t = xsimd::min(xsimd::max((x - e0) / (e1 - e0), Batch(0.0f)), Batch(1.0f));
+  const Batch t = xsimd::min(xsimd::max((x - e0) * (1.0f / (e1 - e0)), Batch(0.0f)), Batch(1.0f));
   return t * t * (3.0f - 2.0f * t);
 }
 
@@ -222,7 +223,7 @@ SimdMarcher::Data::LaneArrival SimdMarcher::Data::arrival(const BatchVec& p) con
       a.dist = xsimd::sqrt(dist2);
       const Batch inv = 1.0f / a.dist;
       a.wi = {d.x * inv, d.y * inv, d.z * inv};
-      scale = range_window(a.dist, range, inv_range) / dist2;
+      scale = range_window(a.dist, range, inv_range) * (inv * inv);
       const BatchVec out{-a.wi.x, -a.wi.y, -a.wi.z};  // leaving the light
       if (kind == LightKind::spot) scale *= smoothstep(cos_outer, cos_inner, lanes::dot(out, direction));
       scale = xsimd::select(dist2 > 0.0f, scale, Batch(0.0f));
@@ -341,6 +342,18 @@ RGB SimdMarcher::march(const PixelMarch& m) const {
   Batch sum_r(0.0f), sum_g(0.0f), sum_b(0.0f);
   Mask inside[kInsideSlots];
   const size_t slots = d.any_light_inside ? std::min(kInsideSlots, d.prims.size()) : 0;
+  // Directional and box lights arrive from one direction everywhere, so the scattering
+  // angle is the same at every sample of the ray: each primitive's phase once per pixel.
+  constexpr size_t kPhaseSlots = 8;
+  const bool parallel = d.kind == LightKind::directional || d.kind == LightKind::box;
+  const bool hoist_phase = parallel && m.intervals.size() <= kPhaseSlots;
+  Batch phase[kPhaseSlots];
+  if (hoist_phase) {
+    const Vec3 wi = -d.direction;
+    const Batch cos_theta = xsimd::min(xsimd::max(Batch(dot(wi, m.dir)), Batch(-1.0f)), Batch(1.0f));
+    for (size_t j = 0; j < m.intervals.size(); ++j)
+      phase[j] = std::visit(lanes::PhaseBatch{cos_theta}, d.prims[m.intervals[j].primitive].phase);
+  }
   for (int k0 = 0; k0 < m.samples; k0 += kLanes) {
     const Batch k = lane + float(k0);
     const Batch t = m.t0 + (k + m.offset) * m.step;
@@ -354,7 +367,8 @@ RGB SimdMarcher::march(const PixelMarch& m) const {
     Batch s_r(0.0f), s_g(0.0f), s_b(0.0f);
     Batch tau_r(0.0f), tau_g(0.0f), tau_b(0.0f);
     for (size_t i = 0; i < slots; ++i) inside[i] = Mask(false);
-    for (const VolumeInterval& iv : m.intervals) {
+    for (size_t j = 0; j < m.intervals.size(); ++j) {
+      const VolumeInterval& iv = m.intervals[j];
       const lanes::Primitive& prim = d.prims[iv.primitive];
       const Mask in = (t >= iv.t0) & (t <= iv.t1);
       if (iv.primitive < slots) inside[iv.primitive] = in;
@@ -365,7 +379,8 @@ RGB SimdMarcher::march(const PixelMarch& m) const {
         tau_b += covered * prim.sigma_t.b;
       }
       if (xsimd::none(in & ok)) continue;
-      Batch w = xsimd::select(in, std::visit(lanes::PhaseBatch{cos_theta}, prim.phase), Batch(0.0f));
+      Batch w = xsimd::select(
+          in, hoist_phase ? phase[j] : std::visit(lanes::PhaseBatch{cos_theta}, prim.phase), Batch(0.0f));
       if (prim.noise) w *= lanes::noise_density_batch(*prim.noise, p.x, p.y, p.z);
       s_r += w * prim.sigma_s.r;
       s_g += w * prim.sigma_s.g;

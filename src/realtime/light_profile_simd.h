@@ -93,27 +93,67 @@ class GoboSampler {
     y = xsimd::select(finite, y, B(0.0f));
     const B fx = xsimd::floor(x), fy = xsimd::floor(y);
     const B tx = x - fx, ty = y - fy;
-    const I x0 = wrap(fx, w), y0 = wrap(fy, h);
+    const I x0 = wrap(fx, w, 1.0f / w), y0 = wrap(fy, h, 1.0f / h);
     const I x1 = xsimd::select(x0 + 1 >= I(int32_t(w)), I(0), x0 + 1);
     const I y1 = xsimd::select(y0 + 1 >= I(int32_t(h)), I(0), y0 + 1);
     const I width(image_->width());
-    const I i00 = (y0 * width + x0) * 3, i10 = (y0 * width + x1) * 3;
-    const I i01 = (y1 * width + x0) * 3, i11 = (y1 * width + x1) * 3;
-    const float* texels = &image_->data()->r;
+    const I i00 = y0 * width + x0, i10 = y0 * width + x1;
+    const I i01 = y1 * width + x0, i11 = y1 * width + x1;
     const B zero(0.0f);
+    // Neighbours in memory (no wrap between the taps, and 8 floats readable from the first
+    // tap: not the image's last two texels): one unaligned load per lane and row.
+    const int texel_count = image_->width() * image_->height();
+    const auto adjacent = (x1 == x0 + 1) & (i01 <= I(texel_count - 3)) & (i00 <= I(texel_count - 3));
+    if (texel_count >= 3 && xsimd::all(adjacent)) {
+      B top[3], bottom[3];
+      row_pairs(i00, tx, top);
+      row_pairs(i01, tx, bottom);
+      return {xsimd::select(finite, top[0] * (1.0f - ty) + bottom[0] * ty, zero),
+              xsimd::select(finite, top[1] * (1.0f - ty) + bottom[1] * ty, zero),
+              xsimd::select(finite, top[2] * (1.0f - ty) + bottom[2] * ty, zero)};
+    }
+    const float* texels = &image_->data()->r;
     auto channel = [&](int c) {
-      const B top = lerp_x(tx, profile_simd::gather(texels + c, i00), profile_simd::gather(texels + c, i10));
+      const B top =
+          lerp_x(tx, profile_simd::gather(texels + c, i00 * 3), profile_simd::gather(texels + c, i10 * 3));
       const B bottom =
-          lerp_x(tx, profile_simd::gather(texels + c, i01), profile_simd::gather(texels + c, i11));
+          lerp_x(tx, profile_simd::gather(texels + c, i01 * 3), profile_simd::gather(texels + c, i11 * 3));
       return xsimd::select(finite, top * (1.0f - ty) + bottom * ty, zero);
     };
     return {channel(0), channel(1), channel(2)};
   }
+  // The horizontal lerp of the texel pairs starting at texel `first` of each lane, per channel:
+  // 8 loads of r0 g0 b0 r1 g1 b1 (and 2 floats more), transposed into channel batches
+  // (12 gathers cost about twice as much).
+  void row_pairs(const I& first, const B& tx, B out[3]) const {
+    alignas(32) int32_t index[8];
+    (first * 3).store_aligned(index);
+    const float* texels = &image_->data()->r;
+    __m256 v[8];
+    for (int i = 0; i < 8; ++i) v[i] = _mm256_loadu_ps(texels + index[i]);
+    const __m256 t0 = _mm256_unpacklo_ps(v[0], v[1]), t1 = _mm256_unpackhi_ps(v[0], v[1]);
+    const __m256 t2 = _mm256_unpacklo_ps(v[2], v[3]), t3 = _mm256_unpackhi_ps(v[2], v[3]);
+    const __m256 t4 = _mm256_unpacklo_ps(v[4], v[5]), t5 = _mm256_unpackhi_ps(v[4], v[5]);
+    const __m256 t6 = _mm256_unpacklo_ps(v[6], v[7]), t7 = _mm256_unpackhi_ps(v[6], v[7]);
+    // Lanes 0-3 of the image's elements k (low half) and k + 4 (high half).
+    const __m256 u0 = _mm256_shuffle_ps(t0, t2, 0x44), u1 = _mm256_shuffle_ps(t0, t2, 0xEE);
+    const __m256 u2 = _mm256_shuffle_ps(t1, t3, 0x44), u3 = _mm256_shuffle_ps(t1, t3, 0xEE);
+    const __m256 u4 = _mm256_shuffle_ps(t4, t6, 0x44), u5 = _mm256_shuffle_ps(t4, t6, 0xEE);
+    const __m256 u6 = _mm256_shuffle_ps(t5, t7, 0x44), u7 = _mm256_shuffle_ps(t5, t7, 0xEE);
+    const B r0(_mm256_permute2f128_ps(u0, u4, 0x20)), g0(_mm256_permute2f128_ps(u1, u5, 0x20));
+    const B b0(_mm256_permute2f128_ps(u2, u6, 0x20)), r1(_mm256_permute2f128_ps(u3, u7, 0x20));
+    const B g1(_mm256_permute2f128_ps(u0, u4, 0x31)), b1(_mm256_permute2f128_ps(u1, u5, 0x31));
+    out[0] = lerp_x(tx, r0, r1);
+    out[1] = lerp_x(tx, g0, g1);
+    out[2] = lerp_x(tx, b0, b1);
+  }
   static B lerp_x(const B& t, const B& a, const B& b) { return a * (1.0f - t) + b * t; }
   // wrap(int(fmod(f, n)), n) for integral f: the remainder in [0, n), with a correction for
-  // the rounding of f / n at multiples of n.
-  static I wrap(const B& f, float n) {
-    B m = f - n * xsimd::floor(f / n);
+  // the rounding of f / n at multiples of n. f * (1 / n) instead of a division: its error
+  // stays below 1 / n for |f| < 2^23, so the floor can only be off at multiples of n, which
+  // the correction catches (and f - n floor(.) is exact there).
+  static I wrap(const B& f, float n, float inv_n) {
+    B m = f - n * xsimd::floor(f * inv_n);
     m = xsimd::select(m >= n, m - n, m);
     m = xsimd::select(m < 0.0f, m + n, m);
     return xsimd::batch_cast<int32_t>(m);
