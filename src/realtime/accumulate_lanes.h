@@ -32,10 +32,7 @@ inline Batch dot(const BatchVec& a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z
 
 // A volume primitive reduced to what the lanes need: world -> object affine rows, its
 // shape in object space and density-scaled coefficients.
-struct Primitive {
-  bool sphere = false;  // unit sphere; else the box [lo, hi]
-  float m[3][4];        // world -> object
-  Vec3 lo, hi;
+struct Primitive : ObjectSpaceShape {
   RGB sigma_t, sigma_s;
   PhaseFunction phase;
   const NoiseModulation* noise = nullptr;

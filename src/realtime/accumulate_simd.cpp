@@ -24,19 +24,7 @@ namespace lanes {
 
 bool describe_primitive(const VolumePrimitive& prim, Primitive& out) {
   if (!has_constant_field(prim.shader)) return false;
-  const Mat4* inv = nullptr;
-  if (const auto* s = std::get_if<SphereVolumeShape>(&prim.shape)) {
-    out.sphere = true;
-    inv = &s->sphere.object_to_world.inverse_matrix();
-  } else {
-    const auto& b = std::get<BoxVolumeShape>(prim.shape);
-    out.sphere = false;
-    out.lo = b.lo;
-    out.hi = b.hi;
-    inv = &b.object_to_world.inverse_matrix();
-  }
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 4; ++c) out.m[r][c] = inv->m[r][c];
+  static_cast<ObjectSpaceShape&>(out) = object_space_shape(prim.shape);
   out.sigma_t = (prim.shader.sigma_a + prim.shader.sigma_s) * prim.shader.density;
   out.sigma_s = prim.shader.sigma_s * prim.shader.density;
   out.phase = prim.shader.phase;

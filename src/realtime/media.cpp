@@ -72,4 +72,25 @@ RGB segment_optical_depth(const VolumeScene& volumes, Vec3 a, Vec3 b) {
   return tau;
 }
 
+ObjectSpaceShape object_space_shape(const VolumeShape& shape) {
+  struct Describe {
+    ObjectSpaceShape operator()(const SphereVolumeShape& s) const {
+      return from(true, s.sphere.object_to_world.inverse_matrix(), {}, {});
+    }
+    ObjectSpaceShape operator()(const BoxVolumeShape& b) const {
+      return from(false, b.object_to_world.inverse_matrix(), b.lo, b.hi);
+    }
+    static ObjectSpaceShape from(bool sphere, const Mat4& world_to_object, Vec3 lo, Vec3 hi) {
+      ObjectSpaceShape out;
+      out.sphere = sphere;
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 4; ++c) out.m[r][c] = world_to_object.m[r][c];
+      out.lo = lo;
+      out.hi = hi;
+      return out;
+    }
+  };
+  return std::visit(Describe{}, shape);
+}
+
 }  // namespace caligo

@@ -30,6 +30,15 @@ float mean_medium_density(const VolumePrimitive& primitive, Vec3 p);
 // (t0, t1 inside the primitive's interval; unit direction).
 RGB primitive_optical_depth(const VolumePrimitive& primitive, const Ray& ray, float t0, float t1);
 
+// A primitive's shape as the SIMD passes test it, lane-parallel in object space: the
+// world -> object affine rows and the object-space unit sphere or box [lo, hi].
+struct ObjectSpaceShape {
+  bool sphere = false;  // the unit sphere; else the box [lo, hi]
+  float m[3][4];        // world -> object
+  Vec3 lo, hi;
+};
+ObjectSpaceShape object_space_shape(const VolumeShape& shape);
+
 // Optical depth (per channel) of the straight segment from a to b.
 RGB segment_optical_depth(const VolumeScene& volumes, Vec3 a, Vec3 b);
 

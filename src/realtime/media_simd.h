@@ -28,19 +28,8 @@ class SegmentMediaBatch {
         continue;
       }
       Homogeneous h;
+      static_cast<ObjectSpaceShape&>(h) = object_space_shape(prim.shape);
       h.bounds = volume_bounds(prim.shape);
-      const Mat4* inv = nullptr;
-      if (const auto* s = std::get_if<SphereVolumeShape>(&prim.shape)) {
-        h.sphere = true;
-        inv = &s->sphere.object_to_world.inverse_matrix();
-      } else {
-        const auto& b = std::get<BoxVolumeShape>(prim.shape);
-        h.lo = b.lo;
-        h.hi = b.hi;
-        inv = &b.object_to_world.inverse_matrix();
-      }
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 4; ++c) h.m[r][c] = inv->m[r][c];
       h.sigma_t = (prim.shader.sigma_a + prim.shader.sigma_s) * prim.shader.density;
       homogeneous_.push_back(h);
     }
@@ -102,10 +91,7 @@ class SegmentMediaBatch {
 
  private:
   // A constant-density primitive: world -> object affine rows and its object-space shape.
-  struct Homogeneous {
-    bool sphere = false;  // the unit sphere; else the box [lo, hi]
-    float m[3][4];
-    Vec3 lo, hi;
+  struct Homogeneous : ObjectSpaceShape {
     RGB sigma_t;     // (sigma_a + sigma_s) x density
     Bounds3 bounds;  // world
 
