@@ -102,3 +102,33 @@ TEST(LightModels, NoiseModulatedMediumMatchesQuadrature) {
 
 }  // namespace
 }  // namespace caligo
+
+namespace caligo {
+namespace {
+
+// "shadow": false (Arnold's cast_shadows): surfaces do not block the light, so the floor
+// under an occluder receives the full inverse-square irradiance; the default blocks it.
+// Also the path tracer's reference of a real-time frame, where such lights have no shadow map.
+TEST(LightModels, LightsWithoutShadowsAreNotBlockedBySurfaces) {
+  for (bool shadow : {true, false}) {
+    SceneDesc desc;
+    desc.file = "test";
+    desc.camera = {{0, 1, 0}, {0, 0, 0}, {0, 0, -1}, 1e-3f, {1, 1}};  // looking straight down at the floor
+    desc.materials.push_back({"white", DiffuseBsdf{RGB(0.5f)}, RGB(0.0f), false});
+    desc.shapes.push_back({RectangleShape{{-5, 0, -5}, {0, 0, 10}, {10, 0, 0}}, {}, 0, {}});
+    desc.shapes.push_back({BoxShape{{-0.5f, 1.5f, -0.5f}, {0.5f, 1.6f, 0.5f}}, {}, 0, {}});
+    desc.lights.push_back(PointLight{{0, 3, 0}, RGB(9.0f)});
+    desc.light_options.push_back({});
+    desc.light_options[0].shadow = shadow;
+    const auto scene = Scene::build(desc);
+    RenderSettings s = default_settings(desc);
+    s.spp = 4;
+    s.max_depth = 1;
+    const float g = render(*scene, s).image.rgb(0, 0, 0).g;
+    const float unblocked = 0.5f / kPi * 9.0f / 9.0f;  // albedo/pi x I cos / d^2, d = 3
+    EXPECT_NEAR(g, shadow ? 0.0f : unblocked, 1e-3f * unblocked) << "shadow " << shadow;
+  }
+}
+
+}  // namespace
+}  // namespace caligo

@@ -70,7 +70,8 @@ RGB surface_direct_light(const Scene& scene, const SurfaceInteraction& si, Vec3 
   const RGB f = bsdf_eval(si.material->bsdf, si.ns, wo, ls->wi) * abs_dot(si.ns, ls->wi);
   if (f.is_black() || dot(si.ng, ls->wi) * dot(si.ng, wo) <= 0.0f) return RGB(0.0f);
   const RGB tr = light_transmittance(scene, offset_ray_origin(si.p, si.ng, ls->wi), si.p, *ls,
-                                     march_jitter(scene, sampler, depth), scratch, counters);
+                                     scene.casts_shadows(index), march_jitter(scene, sampler, depth), scratch,
+                                     counters);
   if (tr.is_black()) return RGB(0.0f);
   const float light_pdf_sa = pick_pmf * ls->pdf;
   const float weight =

@@ -44,7 +44,8 @@ std::optional<SurfaceHit> nearest_opaque_hit(const Scene& scene, Ray ray) {
 }
 
 // True when no shadow-casting surface lies between `origin` and the light sample.
-bool unoccluded(const Scene& scene, Vec3 origin, const LightSample& ls) {
+bool unoccluded(const Scene& scene, int light, Vec3 origin, const LightSample& ls) {
+  if (!scene.casts_shadows(light)) return true;
   const float tmax = std::isfinite(ls.distance) ? ls.distance * (1.0f - kShadowEpsilon) : kInfinity;
   return !scene.surfaces().occluded(Ray{origin, ls.wi, 0.0f, tmax});
 }
@@ -120,13 +121,14 @@ RGB scattered_once(const Scene& scene, const Segment& seg, float t, Pcg32& rng) 
   const Ray& ray = seg.ray;
   const Vec3 x = ray.at(t);
   RGB in_scattered;
-  for (const Light& light : scene.lights()) {
+  for (size_t i = 0; i < scene.lights().size(); ++i) {
+    const Light& light = scene.lights()[i];
     const int n = is_delta(light) ? 1 : kAreaLightSamples;
     for (int k = 0; k < n; ++k) {
       const auto ls = sample_light(light, x, next_2d(rng));
       if (!ls || ls->radiance.is_black() || !(ls->pdf > 0.0f)) continue;
       const RGB f = scattering_times_phase(seg, t, ray.direction, ls->wi);
-      if (f.is_black() || !unoccluded(scene, x, *ls)) continue;
+      if (f.is_black() || !unoccluded(scene, int(i), x, *ls)) continue;
       const RGB tr =
           reference_transmittance(scene, Ray{x, ls->wi, 0.0f, kInfinity}, ls->distance, kTransmittanceSteps);
       in_scattered += f * tr * ls->radiance * (1.0f / (ls->pdf * float(n)));
@@ -160,8 +162,9 @@ float ratio_tracking(const Segment& seg, int channel, Pcg32& rng) {
 }
 
 // Light arriving at `origin` from a light sample: surfaces block, media attenuate.
-float light_transmittance(const Scene& scene, Vec3 origin, const LightSample& ls, int channel, Pcg32& rng) {
-  if (!unoccluded(scene, origin, ls)) return 0.0f;
+float light_transmittance(const Scene& scene, int light, Vec3 origin, const LightSample& ls, int channel,
+                          Pcg32& rng) {
+  if (!unoccluded(scene, light, origin, ls)) return 0.0f;
   return ratio_tracking(make_segment(scene, Ray{origin, ls.wi, 0.0f, kInfinity}, ls.distance, channel),
                         channel, rng);
 }
@@ -171,12 +174,12 @@ float medium_direct_light(const Scene& scene, const Segment& seg, float t, float
                           Pcg32& rng) {
   const Vec3 x = seg.ray.at(t);
   float sum = 0.0f;
-  for (const Light& light : scene.lights()) {
-    const auto ls = sample_light(light, x, next_2d(rng));
+  for (size_t i = 0; i < scene.lights().size(); ++i) {
+    const auto ls = sample_light(scene.lights()[i], x, next_2d(rng));
     if (!ls || ls->radiance.is_black() || !(ls->pdf > 0.0f)) continue;
     const float phase = scattering_times_phase(seg, t, seg.ray.direction, ls->wi)[channel] / sigma_s;
     if (!(phase > 0.0f)) continue;
-    sum += phase * ls->radiance[channel] * light_transmittance(scene, x, *ls, channel, rng) / ls->pdf;
+    sum += phase * ls->radiance[channel] * light_transmittance(scene, int(i), x, *ls, channel, rng) / ls->pdf;
   }
   return sum;
 }
@@ -202,14 +205,14 @@ Vec3 sample_phase_mixture(const Segment& seg, float t, float sigma_s, int channe
 float surface_direct_light(const Scene& scene, const SurfaceInteraction& si, Vec3 wo, int channel,
                            Pcg32& rng) {
   float sum = 0.0f;
-  for (const Light& light : scene.lights()) {
-    const auto ls = sample_light(light, si.p, next_2d(rng));
+  for (size_t i = 0; i < scene.lights().size(); ++i) {
+    const auto ls = sample_light(scene.lights()[i], si.p, next_2d(rng));
     if (!ls || ls->radiance.is_black() || !(ls->pdf > 0.0f)) continue;
     if (dot(si.ng, ls->wi) * dot(si.ng, wo) <= 0.0f) continue;
     const float f = bsdf_eval(si.material->bsdf, si.ns, wo, ls->wi)[channel] * abs_dot(si.ns, ls->wi);
     if (!(f > 0.0f)) continue;
     const Vec3 origin = offset_ray_origin(si.p, si.ng, ls->wi);
-    sum += f * ls->radiance[channel] * light_transmittance(scene, origin, *ls, channel, rng) / ls->pdf;
+    sum += f * ls->radiance[channel] * light_transmittance(scene, int(i), origin, *ls, channel, rng) / ls->pdf;
   }
   return sum;
 }

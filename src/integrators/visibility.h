@@ -9,8 +9,9 @@
 namespace caligo {
 
 // Transmittance from `origin` (offset off its surface by the caller) to the light sample
-// `ls` taken there: 0 when a surface blocks it, the volumes' transmittance otherwise.
+// `ls` taken there: 0 when a surface blocks it (unless the light casts no shadows), the
+// volumes' transmittance otherwise.
 RGB light_transmittance(const Scene& scene, Vec3 origin, Vec3 sampled_from, const LightSample& ls,
-                        float jitter, PathScratch& scratch, PathCounters& counters);
+                        bool casts_shadows, float jitter, PathScratch& scratch, PathCounters& counters);
 
 }  // namespace caligo

@@ -30,7 +30,7 @@ std::optional<Vec3> light_centre(const Light& light) { return std::visit(LightCe
 
 // f(t) / p_light: the light arriving at x(t) and scattered back along the ray, for one light
 // sample at x(t), before dividing by the distance pdf.
-RGB scattered_light(const Scene& scene, const Ray& ray, const TransmittanceRecord& record, const Light& light,
+RGB scattered_light(const Scene& scene, const Ray& ray, const TransmittanceRecord& record, int light_index,
                     float pick_pmf, float t, Vec2 u_light, float jitter, PathScratch& scratch,
                     PathCounters& counters) {
   const int index = record.find_step(t);
@@ -38,11 +38,11 @@ RGB scattered_light(const Scene& scene, const Ray& ray, const TransmittanceRecor
   const MarchStep& step = record.steps()[size_t(index)];
   if (step.sigma_s.is_black()) return RGB(0.0f);
   const Vec3 x = ray.at(t);
-  const auto ls = sample_light(light, x, u_light);
+  const auto ls = sample_light(scene.lights()[size_t(light_index)], x, u_light);
   if (!ls || ls->radiance.is_black() || !(ls->pdf > 0.0f)) return RGB(0.0f);
   const RGB phase = mixed_phase_eval(record, step, ray.direction, ls->wi);
   if (phase.is_black()) return RGB(0.0f);
-  const RGB tr = light_transmittance(scene, x, x, *ls, jitter, scratch, counters);
+  const RGB tr = light_transmittance(scene, x, x, *ls, scene.casts_shadows(light_index), jitter, scratch, counters);
   if (tr.is_black()) return RGB(0.0f);
   const float light_pdf_sa = pick_pmf * ls->pdf;
   const float w =
@@ -123,7 +123,7 @@ RGB volume_direct_light(const Scene& scene, const Ray& ray, const TransmittanceR
   const float pdf = (eq ? equiangular_share * equiangular_pdf(*eq, t) : 0.0f) +
                     (1.0f - equiangular_share) * record.scatter_density_pdf(t);
   if (!(pdf > 0.0f)) return RGB(0.0f);
-  return scattered_light(scene, ray, record, light, pick_pmf, t,
+  return scattered_light(scene, ray, record, light_index, pick_pmf, t,
                          sampler.get_2d(bounce(depth, sample_dim::kVolumeLightPosition)),
                          march_jitter(scene, sampler, depth), scratch, counters) /
          pdf;

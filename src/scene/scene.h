@@ -44,6 +44,13 @@ class Scene {
     return light_selection_.empty() ? 0.0f : light_selection_.pmf(light);
   }
 
+  // False for a light whose scene entry says "shadow": false (Arnold's cast_shadows):
+  // surfaces do not block it, media still attenuate it. Lights made from emissive shapes
+  // always cast shadows.
+  bool casts_shadows(int light) const {
+    return size_t(light) >= desc_.lights.size() || desc_.options(size_t(light)).shadow;
+  }
+
   SurfaceInteraction interaction(const Ray& ray, const SurfaceHit& hit) const;
   const Material& material(const SurfaceHit& hit) const {
     return materials_[size_t(geometry_[hit.geom_id].material)];
