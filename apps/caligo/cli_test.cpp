@@ -302,3 +302,24 @@ TEST_F(Cli, RealtimeReportsBrokenGoboAndIesFilesWithTheirJsonPath) {
   EXPECT_NE(r2.err.find("/lights/0/gobo/file"), std::string::npos) << r2.err;
   EXPECT_TRUE(outputs().empty());
 }
+
+TEST_F(Cli, RealtimeReferencePerLight) {
+  std::string two_lights = kSmallRealtimeScene;
+  const std::string spot = R"("lights": [)";
+  two_lights.replace(two_lights.find(spot), spot.size(),
+                     R"("lights": [{"type": "point", "position": [1, 2, 1], "intensity": 3}, )");
+  const fs::path scene = write("rt2.json", two_lights);
+  const RunResult r = run("realtime " + scene.string() +
+                          " --frames 1 -q --reference-spp 64 --reference-per-light --compare-reference -o " +
+                          (dir_ / "last.png").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("64 spp per light"), std::string::npos) << r.out;
+
+  std::string glowing = two_lights;
+  const std::string grey = R"({"type": "diffuse", "reflectance": 0.5})";
+  glowing.replace(glowing.find(grey), grey.size(), R"({"type": "diffuse", "reflectance": 0.5, "emission": 1})");
+  const fs::path emissive = write("rt3.json", glowing);
+  const RunResult e = run("realtime " + emissive.string() + " --frames 1 --reference-per-light --compare-reference");
+  EXPECT_EQ(e.exit_code, 2);
+  EXPECT_NE(e.err.find("--reference-per-light"), std::string::npos) << e.err;
+}

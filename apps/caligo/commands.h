@@ -53,6 +53,7 @@ struct RealtimeOptions {
   bool scalar = false;
   bool compare_reference = false;
   int reference_spp = 256;
+  bool reference_per_light = false;
   float exposure = 0.0f;
   bool quiet = false;
 };
