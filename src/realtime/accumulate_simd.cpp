@@ -2,7 +2,8 @@
 // (AVX2 with -march=x86-64-v3). It re-implements light_profile.h lane-parallel (inverse
 // square, range window, cone smoothstep, box extent; gobos and IES profiles through
 // light_profile_simd.h), the media through accumulate_lanes.h, and shadow maps through
-// shadow_map_simd.h's batch lookup. accumulate_test.cpp checks it against march_scalar.
+// shadow_map_simd.h (single-face maps through ShadowRaySimd, whose texel coordinates are
+// prepared once per pixel ray). accumulate_test.cpp checks it against march_scalar.
 #include <xsimd/xsimd.hpp>
 
 #include <cmath>
@@ -290,6 +291,17 @@ void SimdMarcher::prefetch(const PixelMarch& m) const {
   if (!map) return;
   alignas(32) static constexpr float kLaneIndex[8] = {0, 1, 2, 3, 4, 5, 6, 7};
   const Batch lane = Batch::load_aligned(kLaneIndex);
+  if (ShadowRaySimd::applies(*map)) {
+    const ShadowRaySimd shadow(*map, m.origin, m.dir);
+    for (int k0 = 0; k0 < m.samples; k0 += kLanes) {
+      alignas(32) int32_t index[kLanes];
+      shadow.texels(m.t0 + (lane + (float(k0) + m.offset)) * m.step).store_aligned(index);
+      const int lanes_here = std::min(kLanes, m.samples - k0);
+      for (int i = 0; i < lanes_here; ++i)
+        _mm_prefetch(reinterpret_cast<const char*>(shadow.data() + index[i]), _MM_HINT_T0);
+    }
+    return;
+  }
   for (int k0 = 0; k0 < m.samples; k0 += kLanes) {
     const Batch t = m.t0 + (lane + (float(k0) + m.offset)) * m.step;
     const Batch px = m.origin.x + m.dir.x * t, py = m.origin.y + m.dir.y * t, pz = m.origin.z + m.dir.z * t;
@@ -336,6 +348,9 @@ RGB SimdMarcher::march(const PixelMarch& m) const {
   const bool parallel = d.kind == LightKind::directional || d.kind == LightKind::box;
   const bool hoist_phase = parallel && m.intervals.size() <= kPhaseSlots;
   Batch phase[kPhaseSlots];
+  const ShadowMap* map = d.light->shadow;
+  std::optional<ShadowRaySimd> shadow_ray;
+  if (map && ShadowRaySimd::applies(*map)) shadow_ray.emplace(*map, m.origin, m.dir);
   if (hoist_phase) {
     const Vec3 wi = -d.direction;
     const Batch cos_theta = xsimd::min(xsimd::max(Batch(dot(wi, m.dir)), Batch(-1.0f)), Batch(1.0f));
@@ -379,8 +394,9 @@ RGB SimdMarcher::march(const PixelMarch& m) const {
 
     // The shadow map before the light's optical depth: shadowed lanes need no segment.
     Batch v(1.0f);
-    if (d.light->shadow) {
-      v = xsimd::max(shadow_visibility(*d.light->shadow, p.x, p.y, p.z), Batch(d.floor));
+    if (map) {
+      v = xsimd::max(shadow_ray ? shadow_ray->visibility(t) : shadow_visibility(*map, p.x, p.y, p.z),
+                     Batch(d.floor));
       ok = ok & (v > 0.0f);
       if (xsimd::none(ok)) continue;
     }

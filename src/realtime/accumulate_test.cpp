@@ -8,6 +8,7 @@
 #include "realtime/media.h"
 #include "realtime/passes.h"
 #include "realtime/shadow_map.h"
+#include "realtime/shadow_map_simd.h"
 
 namespace caligo {
 namespace {
@@ -235,6 +236,48 @@ TEST(Accumulate, ShadowMapAndMultipleScatteringFloor) {
         EXPECT_NEAR(out.g.at(1, y), expected, 1e-3f * expected) << "floor " << floor << " simd " << simd;
       }
     }
+  }
+}
+
+// ShadowRaySimd's per-ray affine / projective texel coordinates against ShadowMap::visibility
+// at points of the ray, on a map of random depths (so every texel decides): orthographic and
+// perspective faces, rays from outside and inside the face's frustum. They may differ only
+// where rounding moves a point across a texel edge or the depth test's threshold: 0.5 %.
+TEST(Accumulate, ShadowRayLookupMatchesPointLookup) {
+  const View faces[] = {View::orthographic_view({1, 12, 0.5f}, normalize(Vec3(0.15f, -1, -0.1f)), {0, 0, -1},
+                                                11.0f, 9.0f, {97, 83}),
+                        View::perspective_view({-3, 6, 2}, normalize(Vec3(0.5f, -1, -0.4f)), {0, 1, 0},
+                                               radians(50.0f), {89, 71})};
+  uint32_t state = 12345u;
+  auto rnd = [&]() {
+    state = state * 1664525u + 1013904223u;
+    return float(state >> 8) / float(1u << 24);
+  };
+  for (const View& face : faces) {
+    ShadowMap map;
+    map.faces.push_back(face);
+    map.depth.emplace_back(face.resolution.x, face.resolution.y, 0.0f);
+    for (float& v : map.depth[0].data) v = 2.0f + 14.0f * rnd();
+    int total = 0, differ = 0, lit = 0;
+    for (int r = 0; r < 300; ++r) {
+      const Vec3 o(-8.0f + 16.0f * rnd(), 0.5f + 6.0f * rnd(), -8.0f + 16.0f * rnd());
+      const Vec3 d = normalize(Vec3(rnd() - 0.5f, rnd() - 0.5f, rnd() - 0.5f));
+      const ShadowRaySimd ray(map, o, d);
+      for (int k = 0; k < 4; ++k) {
+        alignas(32) float t[8], v[8];
+        for (int i = 0; i < 8; ++i) t[i] = 12.0f * rnd();
+        ray.visibility(xsimd::batch<float>::load_aligned(t)).store_aligned(v);
+        for (int i = 0; i < 8; ++i) {
+          const float expected = map.visibility(o + d * t[i]);
+          ++total;
+          lit += expected > 0.0f;
+          differ += v[i] != expected;
+        }
+      }
+    }
+    EXPECT_LE(differ, total / 200) << "projection " << int(face.projection);
+    EXPECT_GT(lit, total / 10);
+    EXPECT_LT(lit, total * 97 / 100);
   }
 }
 

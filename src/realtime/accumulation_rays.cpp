@@ -18,13 +18,17 @@ void AccumulationRays::build(const VolumeScene& volumes, const View& view, const
     thread_local IntervalScratch scratch;
     std::vector<VolumeInterval>& row = rows_[size_t(y)];
     const float* d = depth.row(y);
+    // The tile key changes every tile_size pixels: one hash per tile and row, not per pixel.
+    const int tile = std::max(1, settings.tile_size);
+    uint32_t key = 0;
     for (int x = 0; x < view.resolution.x; ++x) {
+      if (x % tile == 0) key = interleave_tile_key(x, y, settings.tile_size, settings.frame_seed);
       PixelRay& p = pixels_[size_t(y) * size_t(view.resolution.x) + x];
       const Ray ray = view.ray({float(x) + 0.5f, float(y) + 0.5f});
       p.origin = ray.origin;
       p.dir = ray.direction;
       p.t_end = d[x] / view.depth_per_t(ray.direction);
-      p.offset = interleaved_offset(x, y, settings.tile_size, settings.frame_seed);
+      p.offset = interleaved_offset_keyed(x, y, settings.tile_size, key);
       p.first = uint32_t(row.size());
       if (!(p.t_end > 0.0f)) continue;
       // Every medium from the eye on: the camera's transmittance needs those before a

@@ -36,12 +36,20 @@ uint32_t permute_index(uint32_t i, uint32_t n, uint32_t key) {
   return (i + key) % n;
 }
 
-float interleaved_offset(int x, int y, int tile_size, uint32_t frame_seed) {
+uint32_t interleave_tile_key(int x, int y, int tile_size, uint32_t frame_seed) {
+  if (tile_size <= 1) return 0;
+  return uint32_t(hash_values(uint64_t(x / tile_size), uint64_t(y / tile_size), frame_seed));
+}
+
+float interleaved_offset_keyed(int x, int y, int tile_size, uint32_t tile_key) {
   if (tile_size <= 1) return 0.5f;
   const uint32_t n = uint32_t(tile_size * tile_size);
   const uint32_t index = uint32_t((y % tile_size) * tile_size + (x % tile_size));
-  const uint32_t key = uint32_t(hash_values(uint64_t(x / tile_size), uint64_t(y / tile_size), frame_seed));
-  return (float(permute_index(index, n, key)) + 0.5f) / float(n);
+  return (float(permute_index(index, n, tile_key)) + 0.5f) / float(n);
+}
+
+float interleaved_offset(int x, int y, int tile_size, uint32_t frame_seed) {
+  return interleaved_offset_keyed(x, y, tile_size, interleave_tile_key(x, y, tile_size, frame_seed));
 }
 
 }  // namespace caligo

@@ -17,4 +17,9 @@ uint32_t permute_index(uint32_t i, uint32_t n, uint32_t key);
 // the permutation keyed by the tile and the frame seed. tile_size 1 gives 0.5 (midpoints).
 float interleaved_offset(int x, int y, int tile_size, uint32_t frame_seed);
 
+// The same in two steps, for loops over a row: the key of the tile holding (x, y) (one hash,
+// shared by the tile's pixels) and the offset of pixel (x, y) given that key.
+uint32_t interleave_tile_key(int x, int y, int tile_size, uint32_t frame_seed);
+float interleaved_offset_keyed(int x, int y, int tile_size, uint32_t tile_key);
+
 }  // namespace caligo

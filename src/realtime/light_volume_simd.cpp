@@ -134,7 +134,10 @@ void LightVolumeLanes::cone(const Batch& ox, const Batch& oy, const Batch& oz, c
   const Batch err_c = kEps * (va * va + cos2_ * vv);
   const Batch err_disc =
       2.0f * abs_b * err_b + abs_a * err_c + abs_c * err_a + kEps * (b * b + abs_a * abs_c);
-  Mask unsure = (!(xsimd::abs(disc) > err_disc)) | (!(xsimd::abs(da) > 1e-6f));
+  // Rays nearly parallel to a generator (a ~ 0) degenerate the quadratic: one root runs off
+  // to infinity and which side of it the ray lies on rests on a's last bits, which differ
+  // with the compiler's choices (-O2 and -O3 disagreed on a grazing test ray). Unsure.
+  Mask unsure = (!(xsimd::abs(disc) > err_disc)) | (!(xsimd::abs(da) > 1e-6f)) | (!(abs_a > 1e-4f));
 
   // Roots (no cancellation in b + sign(b) sqrt(disc)), sorted; q != 0 where disc > 0.
   const Batch root = xsimd::sqrt(xsimd::max(disc, Batch(0.0f)));

@@ -81,6 +81,105 @@ inline int common_cube_face(const ShadowMap& map, const xsimd::batch<float>& px,
 
 }  // namespace shadow_detail
 
+// The lookups of one ray o + t d in a single-face map, prepared once per ray: the face's
+// depth and texel coordinates of a point on the ray are affine in t for an orthographic face
+// (directional and box lights) and affine over affine for a perspective one (spot lights),
+// so a batch of samples needs three multiply-adds (and one division) instead of a point,
+// three dot products and two divisions. The same lookup as face_visibility up to rounding
+// (a sample exactly on a texel boundary may round to the other texel).
+class ShadowRaySimd {
+ public:
+  using B = xsimd::batch<float>;
+  using I = xsimd::batch<int32_t>;
+  // False for cube maps (their face changes along the ray): use shadow_visibility then.
+  static bool applies(const ShadowMap& map) { return map.faces.size() == 1; }
+
+  ShadowRaySimd(const ShadowMap& map, Vec3 origin, Vec3 dir) : map_(&map) {
+    const View& v = map.faces[0];
+    const Plane& d = map.depth[0];
+    data_ = d.data.data();
+    width_ = d.width;
+    w_ = float(v.resolution.x);
+    h_ = float(v.resolution.y);
+    perspective_ = v.projection == Projection::perspective;
+    // In double: the coefficients are rounded once, to float, per ray.
+    const double ox = double(origin.x) - v.eye.x, oy = double(origin.y) - v.eye.y,
+                 oz = double(origin.z) - v.eye.z;
+    auto along = [&](Vec3 axis, double& at0, double& per_t) {
+      at0 = ox * axis.x + oy * axis.y + oz * axis.z;
+      per_t = double(dir.x) * axis.x + double(dir.y) * axis.y + double(dir.z) * axis.z;
+    };
+    double z0, zt, x0, xt, y0, yt;
+    along(v.forward, z0, zt);
+    along(v.right, x0, xt);
+    along(v.up, y0, yt);
+    // Pixel coordinates: sx = w/2 (1 + ndc_x), sy = h/2 (1 - ndc_y).
+    const double kx =
+        perspective_ ? 0.5 * w_ / (double(v.tan_half_fov_y) * v.aspect) : 0.5 * w_ / v.half_width;
+    const double ky = perspective_ ? -0.5 * h_ / double(v.tan_half_fov_y) : -0.5 * h_ / v.half_height;
+    z0_ = float(z0), zt_ = float(zt);
+    x0_ = float(x0 * kx), xt_ = float(xt * kx);
+    y0_ = float(y0 * ky), yt_ = float(yt * ky);
+    if (!perspective_) {  // fold the centre offsets in
+      x0_ = float(x0 * kx + 0.5 * w_);
+      y0_ = float(y0 * ky + 0.5 * h_);
+    }
+    texel_ = perspective_ ? 2.0f * v.tan_half_fov_y / h_ : 2.0f * v.half_height / h_;
+    slack_ = map.bias;
+  }
+
+  // face_visibility(map, 0, o + t d, clamp = false) per lane.
+  B visibility(const B& t) const {
+    const B z = xsimd::fma(t, B(zt_), B(z0_));
+    B sx, sy, slack;
+    xsimd::batch_bool<float> valid(true);
+    if (perspective_) {
+      const B inv = B(1.0f) / z;
+      sx = xsimd::fma(xsimd::fma(t, B(xt_), B(x0_)), inv, B(0.5f * w_));
+      sy = xsimd::fma(xsimd::fma(t, B(yt_), B(y0_)), inv, B(0.5f * h_));
+      slack = xsimd::fma(z, B(map_->texel_bias * texel_), B(slack_));
+      valid = z > B(0.0f);
+    } else {
+      sx = xsimd::fma(t, B(xt_), B(x0_));
+      sy = xsimd::fma(t, B(yt_), B(y0_));
+      slack = B(slack_ + map_->texel_bias * texel_);
+    }
+    valid = valid & (sx >= B(0.0f)) & (sx < B(w_)) & (sy >= B(0.0f)) & (sy < B(h_));
+    const B fx = xsimd::select(valid, xsimd::floor(sx), B(0.0f));
+    const B fy = xsimd::select(valid, xsimd::floor(sy), B(0.0f));
+    const I index = xsimd::to_int(fy) * I(width_) + xsimd::to_int(fx);
+    const B stored(_mm256_i32gather_ps(data_, index, 4));
+    const auto lit = z <= stored + slack;
+    return xsimd::select(lit | !valid, B(1.0f), B(0.0f));
+  }
+
+  // The texels visibility(t) reads, clamped into the face (for cache hints).
+  I texels(const B& t) const {
+    B sx, sy;
+    if (perspective_) {
+      const B inv = B(1.0f) / xsimd::max(xsimd::fma(t, B(zt_), B(z0_)), B(1e-6f));
+      sx = xsimd::fma(xsimd::fma(t, B(xt_), B(x0_)), inv, B(0.5f * w_));
+      sy = xsimd::fma(xsimd::fma(t, B(yt_), B(y0_)), inv, B(0.5f * h_));
+    } else {
+      sx = xsimd::fma(t, B(xt_), B(x0_));
+      sy = xsimd::fma(t, B(yt_), B(y0_));
+    }
+    const B fx = xsimd::clip(xsimd::floor(sx), B(0.0f), B(w_ - 1.0f));
+    const B fy = xsimd::clip(xsimd::floor(sy), B(0.0f), B(h_ - 1.0f));
+    return xsimd::batch_cast<int32_t>(fy) * I(width_) + xsimd::batch_cast<int32_t>(fx);
+  }
+  const float* data() const { return data_; }
+
+ private:
+  const ShadowMap* map_;
+  const float* data_;
+  int width_ = 0;
+  float w_ = 0.0f, h_ = 0.0f;
+  bool perspective_ = false;
+  float z0_ = 0.0f, zt_ = 0.0f, x0_ = 0.0f, xt_ = 0.0f, y0_ = 0.0f, yt_ = 0.0f;
+  float texel_ = 0.0f, slack_ = 0.0f;
+};
+
 // 1 where lit, 0 in shadow, per lane. Single-face maps, and cube maps where all 8 points
 // fall in one face (the usual case for neighbouring pixels), are projected and gathered in
 // SIMD; other cube lookups fall back to the scalar one lane by lane.
