@@ -6,23 +6,14 @@
 #include <vector>
 
 #include "core/rng.h"
+#include "realtime/test_random.h"
 #include "realtime/light_volume.h"
 
 namespace caligo {
 namespace {
 
-Vec3 random_in_cube(Pcg32& rng, float half) {
-  return {(rng.next_float() * 2.0f - 1.0f) * half, (rng.next_float() * 2.0f - 1.0f) * half,
-          (rng.next_float() * 2.0f - 1.0f) * half};
-}
-
-Vec3 random_direction(Pcg32& rng) {
-  for (;;) {
-    const Vec3 v = random_in_cube(rng, 1.0f);
-    const float l2 = length_squared(v);
-    if (l2 > 1e-4f && l2 <= 1.0f) return v / std::sqrt(l2);
-  }
-}
+using testing::random_direction;
+using testing::random_in_cube;
 
 struct Ray8 {
   Vec3 o[8], d[8];

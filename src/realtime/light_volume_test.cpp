@@ -5,22 +5,13 @@
 #include <functional>
 
 #include "core/rng.h"
+#include "realtime/test_random.h"
 
 namespace caligo {
 namespace {
 
-Vec3 random_in_cube(Pcg32& rng, float half) {
-  return {(rng.next_float() * 2.0f - 1.0f) * half, (rng.next_float() * 2.0f - 1.0f) * half,
-          (rng.next_float() * 2.0f - 1.0f) * half};
-}
-
-Vec3 random_direction(Pcg32& rng) {
-  for (;;) {
-    const Vec3 v = random_in_cube(rng, 1.0f);
-    const float l2 = length_squared(v);
-    if (l2 > 1e-4f && l2 <= 1.0f) return v / std::sqrt(l2);
-  }
-}
+using testing::random_direction;
+using testing::random_in_cube;
 
 // Brute force: the first and last of kSteps dense samples along [tmin, tmax] where `inside`
 // holds. The analytic interval must contain every inside sample and start/end within one
