@@ -46,6 +46,7 @@ struct RealtimeOptions {
   std::optional<int> tile_size;
   std::optional<int> gather_radius;
   std::optional<float> ms_floor;
+  std::optional<std::string> steps;  // uniform or equiangular
   std::optional<bool> temporal;
   std::optional<float> still_time;  // --time: every frame at this time (a still scene)
   int warmup = 3;

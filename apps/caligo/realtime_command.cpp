@@ -38,6 +38,7 @@ void add_realtime_command(CLI::App& app, RealtimeOptions& o) {
   cmd->add_option("--samples", o.samples, "March steps per pixel per light");
   cmd->add_option("--tile", o.tile_size, "Interleaved-sampling tile side (1: no interleaving)");
   cmd->add_option("--gather-radius", o.gather_radius, "Bilateral gather taps each side (0: no gather)");
+  cmd->add_option("--steps", o.steps, "March steps of point and spot lights: uniform (the seed) or equiangular");
   cmd->add_option("--ms-floor", o.ms_floor, "Faked multiple scattering: minimum shadow term in [0, 1]");
   cmd->add_option("--temporal", o.temporal, "Temporal reprojection on or off (true/false)");
   cmd->add_option("--warmup", o.warmup, "Frames left out of the timing medians");
@@ -91,6 +92,11 @@ RealtimeSettings settings_from(const RealtimeOptions& o, const SceneDesc& desc) 
     s.accumulation.multiple_scattering_floor = *o.ms_floor;
   }
   if (o.temporal) s.temporal = *o.temporal;
+  if (o.steps) {
+    if (*o.steps != "uniform" && *o.steps != "equiangular")
+      throw InputError(kCommandLine, "--steps: expected uniform or equiangular, got \"" + *o.steps + "\"");
+    s.accumulation.equiangular = *o.steps == "equiangular";
+  }
   s.simd = !o.scalar;
   return s;
 }

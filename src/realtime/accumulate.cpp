@@ -109,12 +109,19 @@ bool setup_pixel_march(const Light& light, const AccumulationRays::PixelRay& ray
                        PixelMarch& march) {
   if (intervals.empty()) return false;
   const auto span = light_volume_interval(light, ray.origin, ray.dir, 0.0f, ray.t_end);
-  return span && setup_pixel_march(*span, ray, intervals, settings, march);
+  return span && setup_pixel_march(*span, ray, intervals, settings, march,
+                                   settings.equiangular ? equiangular_focus(light) : nullptr);
+}
+
+const Vec3* equiangular_focus(const Light& light) {
+  if (const auto* p = std::get_if<PointLight>(&light)) return &p->position;
+  if (const auto* s = std::get_if<SpotLight>(&light)) return &s->position;
+  return nullptr;
 }
 
 bool setup_pixel_march(TInterval span, const AccumulationRays::PixelRay& ray,
                        std::span<const VolumeInterval> intervals, const AccumulationSettings& settings,
-                       PixelMarch& march) {
+                       PixelMarch& march, const Vec3* focus) {
   // Clamped to the extent of the media on the ray (the light volume is convex, so clipping
   // its interval is the same as intersecting the volumes).
   const float t0 = std::max(ray.media_t0, span.t0);
@@ -127,6 +134,19 @@ bool setup_pixel_march(TInterval span, const AccumulationRays::PixelRay& ray,
   march.step = (t1 - t0) / float(march.samples);
   march.offset = ray.offset;
   march.intervals = intervals;
+  march.equiangular = false;
+  if (focus) {
+    const float tc = dot(*focus - ray.origin, ray.dir);
+    const float d = length(ray.origin + ray.dir * tc - *focus);
+    // A ray through the light itself has no finite angle range: uniform steps then.
+    if (d > 1e-6f * (t1 - t0)) {
+      march.equiangular = true;
+      march.tc = tc;
+      march.D = d;
+      march.theta0 = std::atan2(t0 - tc, d);
+      march.dtheta = (std::atan2(t1 - tc, d) - march.theta0) / float(march.samples);
+    }
+  }
   return true;
 }
 
@@ -134,7 +154,8 @@ RGB march_scalar(const FrameLight& light, const VolumeScene& volumes, const Pixe
                  float multiple_scattering_floor, float far) {
   RGB sum;
   for (int k = 0; k < march.samples; ++k) {
-    const float t = march.t0 + (float(k) + march.offset) * march.step;
+    float weight;
+    const float t = march_sample(march, float(k), weight);
     const Vec3 p = march.origin + march.dir * t;
     const auto arrival = std::visit(Arrival{p}, light.light);
     if (!arrival) continue;
@@ -152,9 +173,9 @@ RGB march_scalar(const FrameLight& light, const VolumeScene& volumes, const Pixe
     if (!(v > 0.0f)) continue;
     const Vec3 light_point = p + arrival->wi * std::min(arrival->distance, far);
     const RGB tau = camera_optical_depth(volumes, march, t) + segment_optical_depth(volumes, p, light_point);
-    sum += scatter * arrival->radiance * exp_neg(tau) * v;
+    sum += scatter * arrival->radiance * exp_neg(tau) * (v * weight);
   }
-  return sum * march.step;
+  return sum;
 }
 
 void accumulate_light(const FrameLight& light, const VolumeScene& volumes, const AccumulationRays& rays,
@@ -166,6 +187,7 @@ void accumulate_light(const FrameLight& light, const VolumeScene& volumes, const
   const float intensity = light.options.volumetric_intensity;
   const PixelRect rect = light_screen_bounds(light.light, rays.view());
   const LightVolumeLanes light_volume(light.light);
+  const Vec3* focus = settings.equiangular ? equiangular_focus(light.light) : nullptr;
   // Square tiles rather than rows: neighbouring rays sample neighbouring shadow-map texels,
   // gobo texels and noise cells, and a tile's samples stay in cache where a row's do not.
   constexpr int kTile = 16;
@@ -201,7 +223,7 @@ void accumulate_light(const FrameLight& light, const VolumeScene& volumes, const
           const int x = x0 + i;
           const AccumulationRays::PixelRay& ray = rays.pixel(x, y);
           PixelMarch march;
-          if (!setup_pixel_march(spans.span[i], ray, rays.intervals(y, ray), settings, march)) continue;
+          if (!setup_pixel_march(spans.span[i], ray, rays.intervals(y, ray), settings, march, focus)) continue;
           const int slot = queued % kLead;
           if (queued >= kLead) flush(slot);
           queue[slot] = march;

@@ -3,6 +3,7 @@
 // Internal to src/realtime; tests use it to compare the two marches pixel by pixel.
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <span>
 #include <vector>
@@ -23,7 +24,24 @@ struct PixelMarch {
   float t0 = 0.0f, step = 0.0f, offset = 0.5f;
   int samples = 0;
   std::span<const VolumeInterval> intervals;  // the volume primitives on the ray
+  // Equiangular placement (point and spot lights, Kulla & Fajardo 2012): the steps are
+  // uniform in the angle theta under which the light sees the ray, t = tc + D tan(theta),
+  // each weighted by dt/dtheta x dtheta = (D^2 + (t - tc)^2) / D x dtheta, which cancels the
+  // 1/d^2 of the light. Uniform steps miss the peak of a ray passing near the light.
+  bool equiangular = false;
+  float tc = 0.0f, D = 0.0f, theta0 = 0.0f, dtheta = 0.0f;
 };
+
+// Where sample k (plus the pixel's offset) lies on the ray, and its quadrature weight.
+inline float march_sample(const PixelMarch& m, float k, float& weight) {
+  if (!m.equiangular) {
+    weight = m.step;
+    return m.t0 + (k + m.offset) * m.step;
+  }
+  const float x = m.D * std::tan(m.theta0 + (k + m.offset) * m.dtheta);
+  weight = m.dtheta * (m.D * m.D + x * x) / m.D;
+  return m.tc + x;
+}
 
 // The march of one pixel's ray for `light`, or false when the light volume, the depth and
 // the media leave nothing to march.
@@ -31,9 +49,12 @@ bool setup_pixel_march(const Light& light, const AccumulationRays::PixelRay& ray
                        std::span<const VolumeInterval> intervals, const AccumulationSettings& settings,
                        PixelMarch& march);
 // The same given the light volume's span of the ray (light_volume_interval over [0, t_end]).
+// `focus`: the point light or spot apex the steps crowd towards (null: uniform steps).
 bool setup_pixel_march(TInterval span, const AccumulationRays::PixelRay& ray,
                        std::span<const VolumeInterval> intervals, const AccumulationSettings& settings,
-                       PixelMarch& march);
+                       PixelMarch& march, const Vec3* focus = nullptr);
+// The point equiangular placement aims at: point lights and spot apexes; null otherwise.
+const Vec3* equiangular_focus(const Light& light);
 
 // Distance beyond which no medium lies from any point inside one (directional lights'
 // transmittance segments end there).

@@ -284,6 +284,17 @@ namespace {
 // primitives only: enough for real-time scenes, and the others just take the general test).
 constexpr size_t kInsideSlots = 16;
 
+// march_sample for 8 samples k (lane-parallel): positions on the ray and quadrature weights.
+Batch sample_t(const PixelMarch& m, const Batch& k, Batch& weight) {
+  if (!m.equiangular) {
+    weight = Batch(m.step);
+    return m.t0 + (k + m.offset) * m.step;
+  }
+  const Batch x = m.D * xsimd::tan(m.theta0 + (k + m.offset) * m.dtheta);
+  weight = (m.dtheta / m.D) * (m.D * m.D + x * x);
+  return m.tc + x;
+}
+
 }  // namespace
 
 void SimdMarcher::prefetch(const PixelMarch& m) const {
@@ -295,7 +306,8 @@ void SimdMarcher::prefetch(const PixelMarch& m) const {
     const ShadowRaySimd shadow(*map, m.origin, m.dir);
     for (int k0 = 0; k0 < m.samples; k0 += kLanes) {
       alignas(32) int32_t index[kLanes];
-      shadow.texels(m.t0 + (lane + (float(k0) + m.offset)) * m.step).store_aligned(index);
+      Batch unused_weight;
+      shadow.texels(sample_t(m, lane + float(k0), unused_weight)).store_aligned(index);
       const int lanes_here = std::min(kLanes, m.samples - k0);
       for (int i = 0; i < lanes_here; ++i)
         _mm_prefetch(reinterpret_cast<const char*>(shadow.data() + index[i]), _MM_HINT_T0);
@@ -303,7 +315,8 @@ void SimdMarcher::prefetch(const PixelMarch& m) const {
     return;
   }
   for (int k0 = 0; k0 < m.samples; k0 += kLanes) {
-    const Batch t = m.t0 + (lane + (float(k0) + m.offset)) * m.step;
+    Batch unused_weight;
+    const Batch t = sample_t(m, lane + float(k0), unused_weight);
     const Batch px = m.origin.x + m.dir.x * t, py = m.origin.y + m.dir.y * t, pz = m.origin.z + m.dir.z * t;
     const int face = map->faces.size() == 1 ? 0 : shadow_detail::common_cube_face(*map, px, py, pz);
     if (face < 0) continue;
@@ -359,7 +372,8 @@ RGB SimdMarcher::march(const PixelMarch& m) const {
   }
   for (int k0 = 0; k0 < m.samples; k0 += kLanes) {
     const Batch k = lane + float(k0);
-    const Batch t = m.t0 + (k + m.offset) * m.step;
+    Batch weight;
+    const Batch t = sample_t(m, k, weight);
     const BatchVec p{m.origin.x + m.dir.x * t, m.origin.y + m.dir.y * t, m.origin.z + m.dir.z * t};
     const Data::LaneArrival a = d.arrival(p);
     Mask ok = (k < float(m.samples)) & ((a.r > 0.0f) | (a.g > 0.0f) | (a.b > 0.0f));
@@ -416,11 +430,12 @@ RGB SimdMarcher::march(const PixelMarch& m) const {
     const Batch tr_r = lanes::exp_neg(tau_r);
     const Batch tr_g = d.grey ? tr_r : lanes::exp_neg(tau_g);
     const Batch tr_b = d.grey ? tr_r : lanes::exp_neg(tau_b);
-    sum_r += xsimd::select(ok, s_r * a.r * tr_r * v, Batch(0.0f));
-    sum_g += xsimd::select(ok, s_g * a.g * tr_g * v, Batch(0.0f));
-    sum_b += xsimd::select(ok, s_b * a.b * tr_b * v, Batch(0.0f));
+    const Batch vw = v * weight;
+    sum_r += xsimd::select(ok, s_r * a.r * tr_r * vw, Batch(0.0f));
+    sum_g += xsimd::select(ok, s_g * a.g * tr_g * vw, Batch(0.0f));
+    sum_b += xsimd::select(ok, s_b * a.b * tr_b * vw, Batch(0.0f));
   }
-  return RGB(xsimd::hadd(sum_r), xsimd::hadd(sum_g), xsimd::hadd(sum_b)) * m.step;
+  return RGB(xsimd::hadd(sum_r), xsimd::hadd(sum_g), xsimd::hadd(sum_b));
 }
 
 }  // namespace caligo

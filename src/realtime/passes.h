@@ -20,6 +20,10 @@ struct AccumulationSettings {
   int tile_size = 8;                       // interleaved sampling tile side; 1 = no interleaving (midpoints)
   uint32_t frame_seed = 0;                 // randomises the offsets' order per tile and per frame
   float multiple_scattering_floor = 0.0f;  // shadow term never below this (faked multiple scattering)
+  // Point and spot lights: steps uniform in the angle seen from the light (equiangular,
+  // Kulla & Fajardo 2012) instead of the seed's uniform steps in distance. Resolves the
+  // 1/d^2 peak of rays passing near a light; costs a tangent per step.
+  bool equiangular = false;
   bool simd = true;
 };
 

@@ -55,6 +55,7 @@ RealtimeSettings realtime_settings(const SceneDesc& desc) {
   s.accumulation.samples = d.samples;
   s.accumulation.tile_size = d.tile_size;
   s.accumulation.multiple_scattering_floor = d.multiple_scattering_floor;
+  s.accumulation.equiangular = d.equiangular_steps;
   s.gather_radius = d.gather_radius;
   s.gather_depth_falloff = d.gather_depth_falloff;
   s.temporal = d.temporal;

@@ -66,6 +66,7 @@ struct RealtimeDefaults {
   bool temporal = true;       // temporal reprojection
   float temporal_blend = 0.1f;  // weight of the current frame in the history blend
   float multiple_scattering_floor = 0.0f;  // faked multiple scattering: min shadow term
+  bool equiangular_steps = false;          // "steps": "equiangular" (point and spot lights)
   float fps = 30.0f;          // frame i is at time i / fps
   int frames = 60;
 };

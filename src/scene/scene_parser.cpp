@@ -122,7 +122,7 @@ RenderDefaults parse_render(const JsonCursor& c) {
 RealtimeDefaults parse_realtime(const JsonCursor& c) {
   ObjectReader r(c, "the realtime settings");
   r.allow({"scale", "tile_size", "samples", "gather_radius", "gather_depth_falloff", "temporal",
-           "temporal_blend", "multiple_scattering_floor", "fps", "frames"});
+           "temporal_blend", "multiple_scattering_floor", "steps", "fps", "frames"});
   RealtimeDefaults d;
   if (r.has("scale")) {
     const std::string scale = r.choice("scale", {"full", "half", "quarter"});
@@ -136,6 +136,7 @@ RealtimeDefaults parse_realtime(const JsonCursor& c) {
   d.temporal_blend = r.number_or("temporal_blend", d.temporal_blend, Range::above_up_to(0, 1));
   d.multiple_scattering_floor =
       r.number_or("multiple_scattering_floor", d.multiple_scattering_floor, Range::closed(0, 1));
+  if (r.has("steps")) d.equiangular_steps = r.choice("steps", {"uniform", "equiangular"}) == "equiangular";
   d.fps = r.number_or("fps", d.fps, Range::positive());
   d.frames = int(r.integer_or("frames", d.frames, Range::closed(1, kMaxFrames)));
   r.finish();
