@@ -276,7 +276,8 @@ TEST_F(Cli, RealtimeRejectsBadOptionsBeforeRendering) {
   const fs::path scene = write("rt.json", kSmallRealtimeScene);
   for (const std::string& bad : {std::string("--scale eighth"), std::string("--frames 0"), std::string("--samples 0"),
                                  std::string("--ms-floor 2"), std::string("--method magic"),
-                                 std::string("--scene-buffers gpu"), std::string("--res 0x10")}) {
+                                 std::string("--scene-buffers gpu"), std::string("--res 0x10"),
+                                 std::string("--steps diagonal"), std::string("--time nan")}) {
     const RunResult r = run("realtime " + scene.string() + " " + bad);
     EXPECT_EQ(r.exit_code, 2) << bad;
     EXPECT_NE(r.err.find("caligo: error: command line"), std::string::npos) << bad << ": " << r.err;
