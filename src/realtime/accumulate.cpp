@@ -114,9 +114,18 @@ bool setup_pixel_march(const Light& light, const AccumulationRays::PixelRay& ray
 }
 
 const Vec3* equiangular_focus(const Light& light) {
-  if (const auto* p = std::get_if<PointLight>(&light)) return &p->position;
-  if (const auto* s = std::get_if<SpotLight>(&light)) return &s->position;
-  return nullptr;
+  // Exhaustive, so that a new light type has to say whether its steps crowd towards a point.
+  struct Focus {
+    const Vec3* operator()(const PointLight& l) const { return &l.position; }
+    const Vec3* operator()(const SpotLight& l) const { return &l.position; }
+    const Vec3* operator()(const BoxLight&) const { return nullptr; }  // parallel light: no 1/d^2
+    const Vec3* operator()(const DirectionalLight&) const { return nullptr; }
+    const Vec3* operator()(const SphereLight&) const { return nullptr; }  // not marched in real time
+    const Vec3* operator()(const QuadLight&) const { return nullptr; }
+    const Vec3* operator()(const TriangleLight&) const { return nullptr; }
+    const Vec3* operator()(const EnvironmentLight&) const { return nullptr; }
+  };
+  return std::visit(Focus{}, light);
 }
 
 bool setup_pixel_march(TInterval span, const AccumulationRays::PixelRay& ray,
