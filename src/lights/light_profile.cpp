@@ -50,23 +50,36 @@ float ies_factor(const IesAttachment& ies, Vec3 w_from_light) {
   return ies.profile->evaluate(vertical, horizontal);
 }
 
-std::optional<DeltaArrival> delta_arrival(const PointLight& light, Vec3 receiver) {
-  const Vec3 d = light.position - receiver;
+namespace {
+
+// Direction and distance from a receiver to a light at `position`; nullopt at the light itself.
+struct ToLight {
+  Vec3 wi;  // unit, towards the light
+  float dist, dist2;
+};
+std::optional<ToLight> to_light(Vec3 position, Vec3 receiver) {
+  const Vec3 d = position - receiver;
   const float dist2 = length_squared(d);
   if (!(dist2 > 0.0f)) return std::nullopt;
   const float dist = std::sqrt(dist2);
-  const Vec3 wi = d / dist;
+  return ToLight{d / dist, dist, dist2};
+}
+
+}  // namespace
+
+std::optional<DeltaArrival> delta_arrival(const PointLight& light, Vec3 receiver) {
+  const auto to = to_light(light.position, receiver);
+  if (!to) return std::nullopt;
+  const auto [wi, dist, dist2] = *to;
   const float scale = range_window(dist, light.range) * ies_factor(light.ies, -wi) / dist2;
   if (!(scale > 0.0f)) return std::nullopt;
   return DeltaArrival{light.intensity * scale, wi, dist};
 }
 
 std::optional<DeltaArrival> delta_arrival(const SpotLight& light, Vec3 receiver) {
-  const Vec3 d = light.position - receiver;
-  const float dist2 = length_squared(d);
-  if (!(dist2 > 0.0f)) return std::nullopt;
-  const float dist = std::sqrt(dist2);
-  const Vec3 wi = d / dist;
+  const auto to = to_light(light.position, receiver);
+  if (!to) return std::nullopt;
+  const auto [wi, dist, dist2] = *to;
   const Vec3 w_from_light = -wi;
   const float scale =
       spot_cone(light, w_from_light) * range_window(dist, light.range) * ies_factor(light.ies, w_from_light);

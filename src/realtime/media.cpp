@@ -3,40 +3,13 @@
 #include <cmath>
 
 namespace caligo {
-namespace {
-
-float field_density(const DensityField& field, const VolumeShape& shape, Vec3 p) {
-  struct Visit {
-    const VolumeShape& shape;
-    Vec3 p;
-    float operator()(const ConstantDensity&) const { return 1.0f; }
-    float operator()(const RadialFalloffDensity& falloff) const {
-      // The field lives in the primitive's object space, as in volumes/volume.cpp.
-      Vec3 local;
-      if (const auto* s = std::get_if<SphereVolumeShape>(&shape)) {
-        local = s->sphere.object_to_world.inverse_point(p);
-      } else {
-        const auto& b = std::get<BoxVolumeShape>(shape);
-        const Vec3 q = b.object_to_world.inverse_point(p);
-        const Vec3 half = (b.hi - b.lo) * 0.5f;
-        local = Vec3((q.x - b.lo.x) / half.x - 1.0f, (q.y - b.lo.y) / half.y - 1.0f,
-                     (q.z - b.lo.z) / half.z - 1.0f);
-      }
-      const float r2 = length_squared(local);
-      return r2 >= 1.0f ? 0.0f : std::pow(1.0f - r2, falloff.exponent);
-    }
-  };
-  return std::visit(Visit{shape, p}, field);
-}
-
-}  // namespace
 
 bool has_constant_field(const VolumeShader& shader) {
   return std::holds_alternative<ConstantDensity>(shader.field);
 }
 
 float mean_medium_density(const VolumePrimitive& primitive, Vec3 p) {
-  return primitive.shader.density * field_density(primitive.shader.field, primitive.shape, p);
+  return primitive.shader.density * field_density(primitive, p);
 }
 
 float medium_density(const VolumePrimitive& primitive, Vec3 p) {

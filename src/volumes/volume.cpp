@@ -82,9 +82,13 @@ bool is_homogeneous(const VolumeShader& shader) {
   return !shader.noise && std::visit(FieldIsConstant{}, shader.field);
 }
 
+float field_density(const VolumePrimitive& primitive, Vec3 p) {
+  return std::visit(FieldDensity{primitive.shape, p}, primitive.shader.field);
+}
+
 MediumSample shade_volume(const VolumePrimitive& primitive, Vec3 p) {
   const VolumeShader& s = primitive.shader;
-  float d = s.density * std::visit(FieldDensity{primitive.shape, p}, s.field);
+  float d = s.density * field_density(primitive, p);
   if (s.noise) d *= noise_density(*s.noise, p);
   return {s.sigma_a * d, s.sigma_s * d, s.emission * d, s.phase};
 }

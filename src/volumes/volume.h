@@ -54,6 +54,9 @@ struct VolumePrimitive {
 std::optional<std::pair<float, float>> volume_interval(const VolumeShape& shape, const Ray& ray);
 Bounds3 volume_bounds(const VolumeShape& shape);
 bool is_homogeneous(const VolumeShader& shader);
+// The density field's multiplier at a world point inside the primitive (1 for constant
+// fields; the shader's density and noise not included).
+float field_density(const VolumePrimitive& primitive, Vec3 p);
 // Coefficients of the primitive at a world-space point inside it.
 MediumSample shade_volume(const VolumePrimitive& primitive, Vec3 p);
 // Upper bound of sigma_t over the primitive (for delta tracking majorants).
