@@ -93,8 +93,6 @@ void RealtimePipeline::update_shadow_maps(const std::vector<Light>& lights, Real
   }
 }
 
-const Plane& RealtimePipeline::depth() const { return gbuffer_->depth; }
-
 const RealtimeFrame& RealtimePipeline::render(float time, uint32_t frame_index) {
   const auto frame_start = Clock::now();
   const SceneDesc now = desc_.at_time(time);

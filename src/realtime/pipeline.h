@@ -75,11 +75,6 @@ class RealtimePipeline {
   // Renders the scene at `time` seconds; frame_index seeds the interleaving pattern. The
   // previous call's frame is the temporal history.
   const RealtimeFrame& render(float time, uint32_t frame_index);
-  void reset_history() { has_history_ = false; }
-  // Full-resolution depth of the last frame.
-  const Plane& depth() const;
-  const Scene& scene() const { return *scene_; }
-  const RealtimeSettings& settings() const { return settings_; }
 
  private:
   struct CachedShadow;
