@@ -10,6 +10,13 @@ find_package(fmt CONFIG REQUIRED)
 find_package(tinyobjloader CONFIG REQUIRED)
 find_package(TinyGLTF CONFIG REQUIRED)
 find_package(Threads REQUIRED)
+# OpenVDB ships only a Find module, beside old FindTBB/FindOpenEXR modules that would shadow
+# the packages' own configs: TBB, OpenEXR and Imath are found above with CONFIG first.
+# NanoVDB (header-only) comes with it as a component.
+list(APPEND CMAKE_MODULE_PATH "/usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/cmake/OpenVDB")
+find_package(OpenVDB REQUIRED COMPONENTS openvdb nanovdb)
+# Mesh volumes read PLY through assimp (tinyobjloader and tinygltf cover OBJ and glTF).
+find_package(assimp CONFIG REQUIRED)
 # xsimd 8.1 (header-only) vectorises the real-time passes. Its exported target links an
 # `xtl` library that Debian's package does not need or ship: drop the link.
 find_package(xsimd CONFIG REQUIRED)

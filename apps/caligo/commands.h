@@ -59,6 +59,18 @@ struct RealtimeOptions {
   bool quiet = false;
 };
 
+struct GenerateOptions {
+  std::string kind;    // cloud, smoke, fire
+  std::string output;  // .vdb or .nvdb
+  int resolution = 128;
+  uint64_t seed = 1;
+  bool quiet = false;
+};
+
+struct InfoOptions {
+  std::string file;  // .vdb or .nvdb
+};
+
 inline const SourceLocation kCommandLine{"command line", ""};
 
 // A scene file or a built-in's name; InputError when it is neither.
@@ -72,5 +84,9 @@ int run_realtime(const RealtimeOptions& options);
 void add_compare_command(CLI::App& app, CompareOptions& options);
 int run_render(const RenderOptions& options);
 int run_compare(const CompareOptions& options);
+void add_generate_command(CLI::App& app, GenerateOptions& options);
+int run_generate(const GenerateOptions& options);
+void add_info_command(CLI::App& app, InfoOptions& options);
+int run_info(const InfoOptions& options);
 
 }  // namespace caligo

@@ -27,6 +27,10 @@ int main(int argc, char** argv) {
   caligo::add_render_command(app, render);
   caligo::add_realtime_command(app, realtime);
   caligo::add_compare_command(app, compare);
+  caligo::GenerateOptions generate;
+  caligo::InfoOptions info;
+  caligo::add_generate_command(app, generate);
+  caligo::add_info_command(app, info);
   // CLI11 would only say "a subcommand is required" for a misspelt one.
   const auto is_command = [&app](const std::string& name) {
     for (const CLI::App* sub : app.get_subcommands({}))
@@ -34,7 +38,9 @@ int main(int argc, char** argv) {
     return false;
   };
   if (argc > 1 && argv[1][0] != '-' && !is_command(argv[1])) {
-    std::fprintf(stderr, "caligo: error: unknown command \"%s\" (commands: render, realtime, compare)\n", argv[1]);
+    std::fprintf(stderr,
+                 "caligo: error: unknown command \"%s\" (commands: render, realtime, compare, generate, info)\n",
+                 argv[1]);
     return caligo::kExitInputError;
   }
   try {
@@ -54,6 +60,8 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("render")) return caligo::run_render(render);
     if (app.got_subcommand("compare")) return caligo::run_compare(compare);
     if (app.got_subcommand("realtime")) return caligo::run_realtime(realtime);
+    if (app.got_subcommand("generate")) return caligo::run_generate(generate);
+    if (app.got_subcommand("info")) return caligo::run_info(info);
   } catch (const caligo::InputError& e) {
     return print_error(e.what(), caligo::kExitInputError);
   } catch (const std::exception& e) {

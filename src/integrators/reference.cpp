@@ -9,6 +9,7 @@
 #include "core/parallel.h"
 #include "lights/light_sample.h"
 #include "materials/bsdf.h"
+#include "raymarch/spans.h"
 
 namespace caligo {
 namespace {
@@ -50,40 +51,57 @@ bool unoccluded(const Scene& scene, int light, Vec3 origin, const LightSample& l
   return !scene.surfaces().occluded(Ray{origin, ls.wi, 0.0f, tmax});
 }
 
-// One primitive's stretch [t0, t1] of a ray.
+// One majorant interval of a primitive along a ray, [t0, t1) (half-open, so a point on the
+// boundary of a grid primitive's touching intervals is shaded once).
 struct Stretch {
   float t0, t1;
   const VolumePrimitive* primitive;
 };
 
-// The media along one ray within [ray.tmin, t_max]: every primitive's stretch, their hull
-// [t_lo, t_hi], and (for tracking in one channel) a majorant constant over the hull.
+// A stretch of the ray with one majorant (the sum over the intervals covering it).
+struct MajorantPiece {
+  float t0, t1;
+  float majorant;
+};
+
+// The ladder's own per-thread volume state: one context for interval queries and grid lookups.
+VolumeContext& context() {
+  thread_local VolumeContext c;
+  return c;
+}
+
+// The media along one ray within [ray.tmin, t_max]: every primitive's majorant intervals,
+// their hull [t_lo, t_hi], and (for tracking in one channel) the piecewise-constant majorant
+// over the hull, from the intervals' own bounds (so a grid's empty blocks are skipped and its
+// dense ones get a tight bound).
 struct Segment {
   Ray ray;
   std::vector<Stretch> stretches;
+  std::vector<MajorantPiece> pieces;  // ordered along the ray, disjoint
   float t_lo = kInfinity, t_hi = -kInfinity;
-  float majorant = 0.0f;
 
   bool empty() const { return stretches.empty(); }
-  bool contains(const Stretch& s, float t) const { return t >= s.t0 && t <= s.t1; }
+  bool contains(const Stretch& s, float t) const { return t >= s.t0 && t < s.t1; }
 };
 
 Segment make_segment(const Scene& scene, const Ray& ray, float t_max, int channel = 0) {
   Segment seg{ray, {}};
   Ray clipped = ray;
   clipped.tmax = t_max;
-  for (const VolumePrimitive& p : scene.volumes().primitives()) {
-    const auto iv = volume_interval(p.shape, clipped);
-    if (!iv) continue;
-    seg.stretches.push_back({iv->first, iv->second, &p});
-    seg.t_lo = std::min(seg.t_lo, iv->first);
-    seg.t_hi = std::max(seg.t_hi, iv->second);
-    // Summing every crossed primitive's bound bounds sigma_t anywhere on the hull.
-    seg.majorant += max_sigma_t(p)[channel];
+  VolumeContext& ctx = context();
+  scene.volumes().intervals(clipped, ctx);
+  for (const VolumeInterval& iv : ctx.intervals) {
+    seg.stretches.push_back({iv.t0, iv.t1, &scene.volumes().primitive(iv.primitive)});
+    seg.t_lo = std::min(seg.t_lo, iv.t0);
+    seg.t_hi = std::max(seg.t_hi, iv.t1);
   }
+  // Majorants of overlapping intervals add (primitives add their coefficients).
+  thread_local std::vector<Span> spans;
+  thread_local std::vector<uint32_t> span_primitives;
+  build_spans(ctx.intervals, spans, span_primitives);
+  for (const Span& span : spans) seg.pieces.push_back({span.t0, span.t1, span.sigma_maj[channel]});
   return seg;
 }
-
 // Sum over the primitives at x(t) of sigma_s,i phase_i(wo, wi): the scattering coefficient
 // times the exact per-channel phase mixture.
 RGB scattering_times_phase(const Segment& seg, float t, Vec3 wo, Vec3 wi) {
@@ -91,7 +109,7 @@ RGB scattering_times_phase(const Segment& seg, float t, Vec3 wo, Vec3 wi) {
   RGB sum;
   for (const Stretch& s : seg.stretches) {
     if (!seg.contains(s, t)) continue;
-    const MediumSample m = shade_volume(*s.primitive, x);
+    const MediumSample m = shade_volume(*s.primitive, x, context());
     if (!m.sigma_s.is_black()) sum += m.sigma_s * phase_eval(m.phase, wo, wi);
   }
   return sum;
@@ -106,7 +124,7 @@ ChannelCoefficients coefficients(const Segment& seg, float t, int channel) {
   ChannelCoefficients c;
   for (const Stretch& s : seg.stretches) {
     if (!seg.contains(s, t)) continue;
-    const MediumSample m = shade_volume(*s.primitive, x);
+    const MediumSample m = shade_volume(*s.primitive, x, context());
     c.sigma_s += m.sigma_s[channel];
     c.sigma_t += m.sigma_t()[channel];
   }
@@ -140,25 +158,32 @@ RGB scattered_once(const Scene& scene, const Segment& seg, float t, Pcg32& rng) 
 
 // ---- delta tracking, one channel ----
 
-// The first real collision in the segment's hull (delta tracking), or none.
+// The first real collision in the segment (delta tracking with a piecewise-constant majorant:
+// the memoryless exponential restarts at each piece's start), or none.
 std::optional<float> sample_collision(const Segment& seg, int channel, Pcg32& rng) {
-  if (seg.empty() || !(seg.majorant > 0.0f)) return std::nullopt;
-  for (float t = seg.t_lo;;) {
-    t -= std::log(1.0f - rng.next_float()) / seg.majorant;
-    if (t >= seg.t_hi) return std::nullopt;
-    if (rng.next_float() * seg.majorant < coefficients(seg, t, channel).sigma_t) return t;
+  for (const MajorantPiece& piece : seg.pieces) {
+    if (!(piece.majorant > 0.0f)) continue;
+    for (float t = piece.t0;;) {
+      t -= std::log(1.0f - rng.next_float()) / piece.majorant;
+      if (t >= piece.t1) break;
+      if (rng.next_float() * piece.majorant < coefficients(seg, t, channel).sigma_t) return t;
+    }
   }
+  return std::nullopt;
 }
 
-// Unbiased transmittance estimate over the segment's hull (ratio tracking).
+// Unbiased transmittance estimate over the segment (ratio tracking, piece by piece).
 float ratio_tracking(const Segment& seg, int channel, Pcg32& rng) {
-  if (seg.empty() || !(seg.majorant > 0.0f)) return 1.0f;
   float tr = 1.0f;
-  for (float t = seg.t_lo;;) {
-    t -= std::log(1.0f - rng.next_float()) / seg.majorant;
-    if (t >= seg.t_hi) return tr;
-    tr *= 1.0f - coefficients(seg, t, channel).sigma_t / seg.majorant;
+  for (const MajorantPiece& piece : seg.pieces) {
+    if (!(piece.majorant > 0.0f)) continue;
+    for (float t = piece.t0;;) {
+      t -= std::log(1.0f - rng.next_float()) / piece.majorant;
+      if (t >= piece.t1) break;
+      tr *= 1.0f - coefficients(seg, t, channel).sigma_t / piece.majorant;
+    }
   }
+  return tr;
 }
 
 // Light arriving at `origin` from a light sample: surfaces block, media attenuate.
@@ -193,7 +218,7 @@ Vec3 sample_phase_mixture(const Segment& seg, float t, float sigma_s, int channe
   const PhaseFunction* chosen = nullptr;
   for (const Stretch& s : seg.stretches) {
     if (!seg.contains(s, t)) continue;
-    const MediumSample m = shade_volume(*s.primitive, x);
+    const MediumSample m = shade_volume(*s.primitive, x, context());
     if (!(m.sigma_s[channel] > 0.0f)) continue;
     chosen = &s.primitive->shader.phase;
     acc += m.sigma_s[channel];
@@ -217,6 +242,17 @@ float surface_direct_light(const Scene& scene, const SurfaceInteraction& si, Vec
   return sum;
 }
 
+// What the ladder does at each kind of surface: diffuse ones scatter, black ones absorb, null
+// ones never get here (nearest_opaque_hit crosses them), dielectrics are out of its scope.
+struct ScattersDiffusely {
+  bool operator()(const DiffuseBsdf&) const { return true; }
+  bool operator()(const BlackBsdf&) const { return false; }
+  bool operator()(const NullBsdf&) const { return false; }
+  bool operator()(const DielectricBsdf&) const {
+    throw std::invalid_argument("reference_delta_tracking: dielectrics are not supported");
+  }
+};
+
 RGB environment(const Scene& scene, Vec3 w) {
   RGB sum;
   for (int i : scene.infinite_lights()) sum += escaped_radiance(scene.lights()[size_t(i)], w);
@@ -234,14 +270,16 @@ RGB reference_transmittance(const Scene& scene, const Ray& ray, float t_max, int
   Ray clipped = ray;
   clipped.tmax = t_max;
   const float metres_per_t = length(ray.direction);
+  VolumeContext& ctx = context();
+  scene.volumes().intervals(clipped, ctx);
+  // Copied: shading below may not reuse the context's interval list, but it is cheap to keep.
+  const std::vector<VolumeInterval> intervals = ctx.intervals;
   RGB depth;
-  for (const VolumePrimitive& p : scene.volumes().primitives()) {
-    const auto iv = volume_interval(p.shape, clipped);
-    if (!iv) continue;
-    const float dt = (iv->second - iv->first) / float(steps);
+  for (const VolumeInterval& iv : intervals) {
+    const VolumePrimitive& p = scene.volumes().primitive(iv.primitive);
+    const float dt = (iv.t1 - iv.t0) / float(steps);
     RGB sum;
-    for (int i = 0; i < steps; ++i)
-      sum += shade_volume(p, ray.at(iv->first + (float(i) + 0.5f) * dt)).sigma_t();
+    for (int i = 0; i < steps; ++i) sum += shade_volume(p, ray.at(iv.t0 + (float(i) + 0.5f) * dt), ctx).sigma_t();
     depth += sum * (dt * metres_per_t);
   }
   return exp_negative(depth);
@@ -290,9 +328,7 @@ RGB reference_delta_tracking(const Scene& scene, const Ray& camera_ray, Referenc
     const SurfaceInteraction si = scene.interaction(ray, *hit);
     const Vec3 wo = -ray.direction;
     if (direct) radiance += throughput * surface_emission(si, wo)[channel];
-    if (std::holds_alternative<DielectricBsdf>(si.material->bsdf))
-      throw std::invalid_argument("reference_delta_tracking: dielectrics are not supported");
-    const bool diffuse = std::holds_alternative<DiffuseBsdf>(si.material->bsdf);
+    const bool diffuse = std::visit(ScattersDiffusely{}, si.material->bsdf);
     if (!diffuse || surface_bounces + volume_runs >= limits.max_surface_bounces) break;
     radiance += throughput * surface_direct_light(scene, si, wo, channel, rng);
     const float u_lobe = rng.next_float();

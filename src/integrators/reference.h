@@ -1,8 +1,10 @@
 // The reference ladder: deliberately simple, slow volume estimators that are easy to check
 // by reading, kept so tests can hold the production path tracer (path_tracer.h) against
-// them. They share nothing with its volume machinery (no march(), no TransmittanceRecord,
-// no equiangular or density-proportional distance sampling), only the scene queries, the
-// shaders (shade_volume, volume_interval, max_sigma_t), the lights, phase functions and BSDFs.
+// them. They share none of its estimators (no march(), no TransmittanceRecord, no
+// equiangular or density-proportional distance sampling, no MIS); they share its inputs:
+// the scene queries, the volume primitives' majorant intervals and spans (VolumeScene::
+// intervals, build_spans) and shaders (shade_volume), and the sampling routines of lights,
+// phase functions and BSDFs (sample_light, phase_sample, bsdf_sample).
 //
 // Rungs, each simpler to trust than the next:
 //   1. reference_transmittance: optical depth by the midpoint rule (exact for homogeneous media).
@@ -30,8 +32,8 @@
 namespace caligo {
 
 // exp(-optical depth) along `ray` over [ray.tmin, min(t_max, far end of the volume intervals)].
-// Each primitive's stretch of the ray is integrated separately with `steps` equal midpoint
-// steps (primitives add, so this equals integrating their sum; per-primitive stretches keep
+// Each majorant interval of the ray is integrated separately with `steps` equal midpoint
+// steps (primitives add, so this equals integrating their sum; per-interval stretches keep
 // a homogeneous primitive exact instead of blurring its boundary across a step).
 // Surfaces are ignored: visibility is the caller's business.
 RGB reference_transmittance(const Scene& scene, const Ray& ray, float t_max, int steps);
@@ -53,7 +55,8 @@ struct ReferenceLimits {
 };
 
 // Radiance along `ray` with all orders of scattering within `limits`, by delta tracking
-// with a per-ray constant majorant.
+// with the piecewise-constant majorant of the volume intervals (a grid's empty blocks are
+// skipped, each run of blocks tracked with its own bound).
 // One colour channel is traced per call, chosen uniformly: the result holds 3x the estimate
 // in that channel and zero in the others, so its expectation is the full RGB radiance and
 // chromatic media need no spectral MIS. Every light is reached by next-event estimation only

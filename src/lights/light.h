@@ -6,7 +6,12 @@
 // Scene loading converts powers (W) into these before a light is built.
 //
 // To add a light type: define its struct here, add it to `Light`, and give it an overload
-// of each free function in light_sample.h / light.cpp (sample_li, pdf_li, le, power).
+// in each visitor behind the free functions below (is_delta, is_infinite, power, in
+// light.cpp) and in light_sample.h (sample_light, light_pdf, escaped_radiance, in
+// light_sample.cpp); a delta light also gets a delta_arrival in light_profile.h. Every
+// visitor over `Light` has one overload per member and no `auto` catch-all, so the compiler
+// then names each remaining place that must handle the new type (scene building and
+// animation, the medium's light step, the real-time passes).
 #pragma once
 
 #include <cstdint>

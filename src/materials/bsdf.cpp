@@ -34,6 +34,8 @@ std::optional<Vec3> refract(Vec3 wo, Vec3 n, float eta) {
   return normalize(-wo / eta + n * (cos_i / eta - cos_t));
 }
 
+// Each visitor has one overload per Bsdf member and no `auto` catch-all, so adding a member
+// (material.h) is a compile error here until it is handled.
 struct Eval {
   Vec3 n, wo, wi;
   RGB operator()(const DiffuseBsdf& b) const {
@@ -41,7 +43,10 @@ struct Eval {
     if (dot(n, wo) * dot(n, wi) <= 0.0f) return RGB(0.0f);
     return b.reflectance * kInvPi;
   }
-  RGB operator()(const auto&) const { return RGB(0.0f); }
+  // Deltas (dielectric, null) have no finite value for any pair of directions.
+  RGB operator()(const DielectricBsdf&) const { return RGB(0.0f); }
+  RGB operator()(const BlackBsdf&) const { return RGB(0.0f); }
+  RGB operator()(const NullBsdf&) const { return RGB(0.0f); }
 };
 
 struct Pdf {
@@ -50,7 +55,9 @@ struct Pdf {
     if (dot(n, wo) * dot(n, wi) <= 0.0f) return 0.0f;
     return cosine_hemisphere_pdf(abs_dot(n, wi));
   }
-  float operator()(const auto&) const { return 0.0f; }
+  float operator()(const DielectricBsdf&) const { return 0.0f; }
+  float operator()(const BlackBsdf&) const { return 0.0f; }
+  float operator()(const NullBsdf&) const { return 0.0f; }
 };
 
 struct Sample {
@@ -86,13 +93,15 @@ struct Sample {
 struct IsSpecular {
   bool operator()(const DiffuseBsdf&) const { return false; }
   bool operator()(const BlackBsdf&) const { return false; }
-  bool operator()(const auto&) const { return true; }
+  bool operator()(const DielectricBsdf&) const { return true; }
+  bool operator()(const NullBsdf&) const { return true; }
 };
 
 struct Albedo {
   RGB operator()(const DiffuseBsdf& b) const { return b.reflectance; }
   RGB operator()(const DielectricBsdf&) const { return RGB(1.0f); }
-  RGB operator()(const auto&) const { return RGB(0.0f); }
+  RGB operator()(const BlackBsdf&) const { return RGB(0.0f); }
+  RGB operator()(const NullBsdf&) const { return RGB(0.0f); }
 };
 
 }  // namespace

@@ -12,11 +12,11 @@ struct StepCoefficients {
 };
 
 StepCoefficients shade_span(const VolumeScene& volumes, std::span<const uint32_t> primitives, Vec3 p,
-                            float scale, std::vector<PhaseLobe>* lobes) {
+                            float scale, VolumeContext& context, std::vector<PhaseLobe>* lobes) {
   StepCoefficients c;
   if (lobes) lobes->clear();
   for (uint32_t id : primitives) {
-    const MediumSample m = shade_volume(volumes.primitive(id), p);
+    const MediumSample m = shade_volume(volumes.primitive(id), p, context);
     c.sigma_t += m.sigma_t() * scale;
     c.sigma_s += m.sigma_s * scale;
     c.emission += m.emission * scale;
@@ -42,8 +42,9 @@ RGB integrate_emission(RGB t0, RGB sigma_t, RGB emission, float dt) {
   return {channel(0), channel(1), channel(2)};
 }
 
-int steps_for_span(const VolumeScene& volumes, std::span<const uint32_t> primitives, float length_m,
-                   const MarchSettings& settings) {
+int steps_for_span(const VolumeScene& volumes, const Span& span, std::span<const uint32_t> primitives,
+                   float length_m, const MarchSettings& settings) {
+  if (span.homogeneous) return 1;
   float h = kInfinity;
   for (uint32_t id : primitives) h = std::min(h, primitive_step_size(volumes.primitive(id), settings));
   if (!std::isfinite(h)) return 1;
@@ -55,18 +56,26 @@ int steps_for_span(const VolumeScene& volumes, std::span<const uint32_t> primiti
 template <typename StepFn>
 void for_each_step(const VolumeScene& volumes, const Ray& ray, float jitter, const MarchSettings& settings,
                    MarchScratch& scratch, StepFn&& step) {
-  volumes.intervals(ray, scratch.intervals);
-  const auto& intervals = scratch.intervals.intervals;
-  if (intervals.size() == 1) {  // the common case needs no sweep
-    scratch.spans.assign(1, Span{intervals[0].t0, intervals[0].t1, 0, 1});
-    scratch.span_primitives.assign(1, intervals[0].primitive);
+  scratch.volume.skip_empty_blocks = settings.skip_empty_blocks;
+  scratch.volume.constant_blocks_one_step = settings.constant_blocks_one_step;
+  volumes.intervals(ray, scratch.volume);
+  const auto& intervals = scratch.volume.intervals;
+  const bool one_primitive =
+      std::all_of(intervals.begin(), intervals.end(),
+                  [&](const VolumeInterval& iv) { return iv.primitive == intervals.front().primitive; });
+  if (!intervals.empty() && one_primitive) {
+    // The common case needs no sweep: one primitive's intervals are ordered and disjoint.
+    scratch.spans.clear();
+    for (const VolumeInterval& iv : intervals)
+      if (iv.t1 > iv.t0) scratch.spans.push_back({iv.t0, iv.t1, 0, 1, iv.sigma_maj, iv.homogeneous});
+    scratch.span_primitives.assign(1, intervals.front().primitive);
   } else {
     build_spans(intervals, scratch.span_scratch, scratch.spans, scratch.span_primitives);
   }
   const float dir_length = length(ray.direction);
   for (const Span& span : scratch.spans) {
     const std::span<const uint32_t> prims(scratch.span_primitives.data() + span.first, span.count);
-    const int n = steps_for_span(volumes, prims, (span.t1 - span.t0) * dir_length, settings);
+    const int n = steps_for_span(volumes, span, prims, (span.t1 - span.t0) * dir_length, settings);
     const float dt = (span.t1 - span.t0) / float(n);
     for (int i = 0; i < n; ++i) {
       // Both ends from the same expression, so consecutive steps meet exactly.
@@ -83,12 +92,16 @@ void for_each_step(const VolumeScene& volumes, const Ray& ray, float jitter, con
 }  // namespace
 
 float primitive_step_size(const VolumePrimitive& primitive, const MarchSettings& settings) {
-  if (is_homogeneous(primitive.shader)) return kInfinity;
-  if (primitive.shader.step_size > 0.0f) return primitive.shader.step_size;
-  const float automatic = settings.auto_step_fraction * length(volume_bounds(primitive.shape).diagonal());
+  const VolumeShader& s = primitive.shader;
+  if (is_homogeneous(s)) return kInfinity;
+  if (s.step_size > 0.0f) return s.step_size;
+  // A grid varies over one voxel; an analytic field over a fraction of its bounds.
+  const float voxel = field_voxel_size(primitive);
+  float automatic =
+      std::isfinite(voxel) ? voxel : settings.auto_step_fraction * length(volume_bounds(primitive.shape).diagonal());
   // Noise varies over one lattice cell (1 / scale metres) whatever the primitive's size.
-  if (primitive.shader.noise) return std::min(automatic, 0.25f / primitive.shader.noise->scale);
-  return automatic;
+  if (s.noise) automatic = std::min(automatic, 0.25f / s.noise->scale);
+  return automatic * s.step_scale;
 }
 
 void march(const VolumeScene& volumes, const Ray& ray, float jitter, const MarchSettings& settings,
@@ -98,7 +111,7 @@ void march(const VolumeScene& volumes, const Ray& ray, float jitter, const March
   for_each_step(volumes, ray, jitter, settings, scratch,
                 [&](float a, float b, float t_shade, std::span<const uint32_t> prims, float scale) {
                   const StepCoefficients c =
-                      shade_span(volumes, prims, ray.at(t_shade), scale, &scratch.lobes);
+                      shade_span(volumes, prims, ray.at(t_shade), scale, scratch.volume, &scratch.lobes);
                   const RGB t_start = out.transmittance_end();
                   if (!c.emission.is_black())
                     out.add_emission(integrate_emission(t_start, c.sigma_t, c.emission, b - a));
@@ -115,7 +128,8 @@ RGB march_transmittance(const VolumeScene& volumes, const Ray& ray, float jitter
   for_each_step(volumes, ray, jitter, settings, scratch,
                 [&](float a, float b, float t_shade, std::span<const uint32_t> prims, float scale) {
                   optical_depth +=
-                      shade_span(volumes, prims, ray.at(t_shade), scale, nullptr).sigma_t * (b - a);
+                      shade_span(volumes, prims, ray.at(t_shade), scale, scratch.volume, nullptr).sigma_t *
+                      (b - a);
                   opaque = std::min({optical_depth.r, optical_depth.g, optical_depth.b}) >
                            -std::log(settings.opacity_threshold);
                   return !opaque;

@@ -3,10 +3,11 @@
 // with a step size per primitive, and every step is stored in a TransmittanceRecord. No
 // lighting happens here: one record serves every light sample taken along the segment.
 //
-// Step rules: a span covered only by homogeneous primitives is one step; otherwise the
-// span is cut into equal steps no longer than the smallest step size among its
-// heterogeneous primitives, each shaded at a jittered position (the same jitter for the
-// whole ray, so the estimate stays smooth along it). Marching stops once every channel's
+// Step rules: a span whose intervals are all homogeneous (homogeneous primitives, constant
+// grid blocks) is one step; otherwise the span is cut into equal steps no longer than the
+// smallest step size among its heterogeneous primitives (about one voxel for grids), each
+// shaded at a jittered position (the same jitter for the whole ray, so the estimate stays
+// smooth along it). Empty grid blocks yield no interval, so they cost nothing. Marching stops once every channel's
 // transmittance is below the opacity threshold: what lies behind contributes at most
 // that fraction and is dropped (a documented bias).
 //
@@ -27,11 +28,14 @@ struct MarchSettings {
   // Step size of heterogeneous primitives that set none: this fraction of their bounds' diagonal.
   float auto_step_fraction = 1.0f / 64.0f;
   int max_steps_per_span = 4096;
+  // Grid traversal (on in rendering; benchmarks switch them off to measure what they save).
+  bool skip_empty_blocks = true;         // off: a grid is one interval over its bounds
+  bool constant_blocks_one_step = true;  // off: constant blocks are stepped voxel by voxel
 };
 
 // Per-thread buffers, reused from ray to ray.
 struct MarchScratch {
-  IntervalScratch intervals;
+  VolumeContext volume;  // intervals and grid accessors
   SpanScratch span_scratch;
   std::vector<Span> spans;
   std::vector<uint32_t> span_primitives;
@@ -48,7 +52,8 @@ void march(const VolumeScene& volumes, const Ray& ray, float jitter, const March
 RGB march_transmittance(const VolumeScene& volumes, const Ray& ray, float jitter,
                         const MarchSettings& settings, MarchScratch& scratch);
 
-// The step size used for a primitive (its own, or the automatic one; infinity if homogeneous).
+// The step size used for a primitive: its own, or the automatic one (a voxel for grids, a
+// fraction of the bounds otherwise) times its step_scale; infinity if homogeneous.
 float primitive_step_size(const VolumePrimitive& primitive, const MarchSettings& settings);
 
 }  // namespace caligo

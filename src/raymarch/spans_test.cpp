@@ -180,3 +180,44 @@ TEST(BuildSpans, MatchesBruteForceOnRandomIntervals) {
 
 }  // namespace
 }  // namespace caligo
+
+namespace caligo {
+namespace {
+
+// A grid primitive's touching intervals with different majorants stay apart (delta tracking
+// and step placement need each bound where it holds); equal ones merge.
+TEST(BuildSpans, TouchingIntervalsMergeOnlyWithEqualMajorants) {
+  std::vector<Span> spans;
+  std::vector<uint32_t> prims;
+  build_spans(std::vector<VolumeInterval>{{0, 1, 3, RGB(2.0f), false}, {1, 2, 3, RGB(5.0f), false},
+                                          {2, 3, 3, RGB(5.0f), false}},
+              spans, prims);
+  ASSERT_EQ(spans.size(), 2u);
+  EXPECT_EQ(spans[0].t1, 1.0f);
+  EXPECT_EQ(spans[0].sigma_maj.r, 2.0f);
+  EXPECT_EQ(spans[1].t0, 1.0f);
+  EXPECT_EQ(spans[1].t1, 3.0f);
+  EXPECT_EQ(spans[1].sigma_maj.g, 5.0f);
+}
+
+// Overlapping primitives add their majorants; a span is homogeneous only if all of its
+// intervals are.
+TEST(BuildSpans, OverlapsSumMajorantsAndAndHomogeneity) {
+  std::vector<Span> spans;
+  std::vector<uint32_t> prims;
+  build_spans(std::vector<VolumeInterval>{{0, 2, 0, RGB(1.0f, 2.0f, 3.0f), true},
+                                          {1, 3, 1, RGB(0.5f), false}},
+              spans, prims);
+  ASSERT_EQ(spans.size(), 3u);
+  EXPECT_TRUE(spans[0].homogeneous);
+  EXPECT_EQ(spans[0].sigma_maj.b, 3.0f);
+  EXPECT_FALSE(spans[1].homogeneous);
+  EXPECT_EQ(spans[1].sigma_maj.r, 1.5f);
+  EXPECT_EQ(spans[1].sigma_maj.b, 3.5f);
+  EXPECT_EQ(spans[1].count, 2u);
+  EXPECT_FALSE(spans[2].homogeneous);
+  EXPECT_EQ(spans[2].sigma_maj.g, 0.5f);
+}
+
+}  // namespace
+}  // namespace caligo

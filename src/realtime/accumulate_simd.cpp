@@ -24,7 +24,7 @@ constexpr int kLanes = int(Batch::size);
 namespace lanes {
 
 bool describe_primitive(const VolumePrimitive& prim, Primitive& out) {
-  if (!has_constant_field(prim.shader)) return false;
+  if (!has_constant_field(prim)) return false;
   static_cast<ObjectSpaceShape&>(out) = object_space_shape(prim.shape);
   out.sigma_t = (prim.shader.sigma_a + prim.shader.sigma_s) * prim.shader.density;
   out.sigma_s = prim.shader.sigma_s * prim.shader.density;

@@ -15,7 +15,7 @@ void AccumulationRays::build(const VolumeScene& volumes, const View& view, const
   for (std::vector<VolumeInterval>& row : rows_) row.clear();
   if (volumes.empty()) return;
   parallel_for(view.resolution.y, [&](int y) {
-    thread_local IntervalScratch scratch;
+    thread_local VolumeContext scratch;
     std::vector<VolumeInterval>& row = rows_[size_t(y)];
     const float* d = depth.row(y);
     // The tile key changes every tile_size pixels: one hash per tile and row, not per pixel.

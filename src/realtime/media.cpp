@@ -1,15 +1,28 @@
 #include "realtime/media.h"
 
+#include <algorithm>
 #include <cmath>
+
+#include "volumes/mesh_volume.h"
 
 namespace caligo {
 
-bool has_constant_field(const VolumeShader& shader) {
-  return std::holds_alternative<ConstantDensity>(shader.field);
+bool has_constant_field(const VolumePrimitive& primitive) {
+  // A mesh volume is constant inside but not over its box: the lanes' box test would overfill it.
+  return std::holds_alternative<ConstantDensity>(primitive.shader.field) &&
+         !std::holds_alternative<MeshVolumeShape>(primitive.shape);
 }
 
+namespace {
+// The real-time passes' own per-thread volume state (grid accessors, interval lists).
+VolumeContext& context() {
+  thread_local VolumeContext c;
+  return c;
+}
+}  // namespace
+
 float mean_medium_density(const VolumePrimitive& primitive, Vec3 p) {
-  return primitive.shader.density * field_density(primitive, p);
+  return primitive.shader.density * field_density(primitive, p, context());
 }
 
 float medium_density(const VolumePrimitive& primitive, Vec3 p) {
@@ -21,14 +34,31 @@ RGB primitive_optical_depth(const VolumePrimitive& primitive, const Ray& ray, fl
   const RGB sigma_t = primitive.shader.sigma_a + primitive.shader.sigma_s;
   const float len = t1 - t0;
   if (!(len > 0.0f)) return RGB(0.0f);
-  if (has_constant_field(primitive.shader)) return sigma_t * (primitive.shader.density * len);
-  // 4-point Gauss-Legendre on [t0, t1].
+  if (std::holds_alternative<ConstantDensity>(primitive.shader.field)) return sigma_t * (primitive.shader.density * len);
+  // 4-point Gauss-Legendre panels on [t0, t1]: one for an analytic field, one per few
+  // voxels for a grid (a trilinear field is piecewise cubic along a ray, between voxel faces).
   constexpr float kX[4] = {-0.8611363116f, -0.3399810436f, 0.3399810436f, 0.8611363116f};
   constexpr float kW[4] = {0.3478548451f, 0.6521451549f, 0.6521451549f, 0.3478548451f};
-  const float mid = 0.5f * (t0 + t1), half = 0.5f * len;
+  constexpr float kVoxelsPerPanel = 2.0f;
+  const float voxel = field_voxel_size(primitive);
+  const int panels =
+      std::isfinite(voxel) ? std::clamp(int(std::ceil(len / (kVoxelsPerPanel * voxel))), 1, 4096) : 1;
+  const float width = len / float(panels), half = 0.5f * width;
   float sum = 0.0f;
-  for (int i = 0; i < 4; ++i) sum += kW[i] * mean_medium_density(primitive, ray.at(mid + half * kX[i]));
+  for (int k = 0; k < panels; ++k) {
+    const float mid = t0 + (float(k) + 0.5f) * width;
+    for (int i = 0; i < 4; ++i) sum += kW[i] * mean_medium_density(primitive, ray.at(mid + half * kX[i]));
+  }
   return sigma_t * (sum * half);
+}
+
+RGB primitive_segment_optical_depth(const VolumePrimitive& primitive, const Ray& ray) {
+  VolumeContext& ctx = context();
+  ctx.intervals.clear();
+  append_intervals(primitive, 0, ray, ctx);
+  RGB tau;
+  for (const VolumeInterval& iv : ctx.intervals) tau += primitive_optical_depth(primitive, ray, iv.t0, iv.t1);
+  return tau;
 }
 
 RGB segment_optical_depth(const VolumeScene& volumes, Vec3 a, Vec3 b) {
@@ -38,10 +68,7 @@ RGB segment_optical_depth(const VolumeScene& volumes, Vec3 a, Vec3 b) {
   RGB tau;
   // A linear scan: real-time scenes hold a handful of primitives, and this is the scalar
   // reference path (the SIMD path has its own per-light form).
-  for (const VolumePrimitive& primitive : volumes.primitives()) {
-    const auto overlap = volume_interval(primitive.shape, ray);
-    if (overlap) tau += primitive_optical_depth(primitive, ray, overlap->first, overlap->second);
-  }
+  for (const VolumePrimitive& primitive : volumes.primitives()) tau += primitive_segment_optical_depth(primitive, ray);
   return tau;
 }
 
@@ -52,6 +79,11 @@ ObjectSpaceShape object_space_shape(const VolumeShape& shape) {
     }
     ObjectSpaceShape operator()(const BoxVolumeShape& b) const {
       return from(false, b.object_to_world.inverse_matrix(), b.lo, b.hi);
+    }
+    // The mesh's bounding box: only homogeneous lanes use this shape, and a mesh volume is
+    // never one (has_constant_field is false for it), so the box only culls.
+    ObjectSpaceShape operator()(const MeshVolumeShape& m) const {
+      return from(false, Mat4::identity(), m.mesh->bounds().lo, m.mesh->bounds().hi);
     }
     static ObjectSpaceShape from(bool sphere, const Mat4& world_to_object, Vec3 lo, Vec3 hi) {
       ObjectSpaceShape out;

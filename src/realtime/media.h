@@ -2,6 +2,9 @@
 // exactly (optical depth = sigma_t x overlap length, per interval), noise-modulated ones
 // with their mean density for transmittance and a noise lookup for in-scattering.
 //
+// Grid and mesh volumes take the scalar path: their majorant intervals (empty blocks and the
+// outside of a mesh skipped) integrated with Gauss-Legendre panels of two voxels.
+//
 // Approximations (documented in docs/techniques.md): the noise modulation multiplies
 // density by 1 + a fbm with fbm zero-mean, so transmittance uses its mean factor 1; the
 // in-scattering coefficient at a march sample uses the true noise lookup. Radial-falloff
@@ -17,9 +20,9 @@
 
 namespace caligo {
 
-// True when the density field is constant (noise aside): its mean density is then the
-// shader's density everywhere, and transmittance through it is analytic.
-bool has_constant_field(const VolumeShader& shader);
+// True when the density field is constant over the shape's convex hull (noise aside): its mean
+// density is then the shader's density everywhere, and transmittance through it is analytic.
+bool has_constant_field(const VolumePrimitive& primitive);
 
 // Density multiplier at a world point inside the primitive: shader density x field x noise.
 float medium_density(const VolumePrimitive& primitive, Vec3 p);
@@ -38,6 +41,10 @@ struct ObjectSpaceShape {
   Vec3 lo, hi;
 };
 ObjectSpaceShape object_space_shape(const VolumeShape& shape);
+
+// Optical depth (per channel, mean density) of one primitive along all of `ray`'s
+// [tmin, tmax] (unit direction), over its majorant intervals.
+RGB primitive_segment_optical_depth(const VolumePrimitive& primitive, const Ray& ray);
 
 // Optical depth (per channel) of the straight segment from a to b.
 RGB segment_optical_depth(const VolumeScene& volumes, Vec3 a, Vec3 b);

@@ -23,7 +23,7 @@ class SegmentMediaBatch {
 
   explicit SegmentMediaBatch(const VolumeScene& volumes) {
     for (const VolumePrimitive& prim : volumes.primitives()) {
-      if (!has_constant_field(prim.shader)) {
+      if (!has_constant_field(prim)) {
         scalar_.push_back({&prim, volume_bounds(prim.shape)});
         continue;
       }
@@ -174,10 +174,8 @@ class SegmentMediaBatch {
       const float len = distance(a, b);
       if (!(len > 0.0f)) continue;
       const Ray ray{a, (b - a) / len, 0.0f, len};
-      if (const auto overlap = volume_interval(prim.shape, ray)) {
-        const RGB tau = primitive_optical_depth(prim, ray, overlap->first, overlap->second);
-        add[0][i] = tau.r, add[1][i] = tau.g, add[2][i] = tau.b;
-      }
+      const RGB tau = primitive_segment_optical_depth(prim, ray);
+      add[0][i] = tau.r, add[1][i] = tau.g, add[2][i] = tau.b;
     }
     tr += B::load_aligned(add[0]), tg += B::load_aligned(add[1]), tb += B::load_aligned(add[2]);
   }

@@ -5,6 +5,7 @@
 
 #include "core/vec.h"
 #include "integrators/path_tracer.h"
+#include "raymarch/march.h"
 
 namespace caligo {
 
@@ -17,6 +18,7 @@ struct RenderSettings {
   uint64_t seed = 0;
   int threads = 0;  // 0: all hardware threads
   int tile_size = 16;
+  MarchSettings march;  // step rules of the decoupled ray marcher
 };
 
 }  // namespace caligo

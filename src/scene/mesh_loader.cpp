@@ -1,6 +1,9 @@
 #include "scene/mesh_loader.h"
 
-// Debian ships both libraries compiled: include the declarations only (no *_IMPLEMENTATION).
+// Debian ships the libraries compiled: include the declarations only (no *_IMPLEMENTATION).
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
 #include <tiny_gltf.h>
 #include <tiny_obj_loader.h>
 
@@ -514,15 +517,138 @@ TriangleMesh read_gltf(const std::string& data, const std::string& path) {
   return builder.finish();
 }
 
+// ---- Stanford PLY and COLLADA (through assimp) ---------------------------------------------
+
+// PLY declares its element counts up front, and a reader may reserve memory for them before
+// reading any data. Every vertex and face takes at least one byte (binary) or two characters
+// (a value and a separator), so a header claiming more elements than the file has bytes is
+// rejected before assimp sees it.
+void check_ply_header(const std::string& data) {
+  const size_t header_end = data.find("end_header");
+  if (data.compare(0, 3, "ply") != 0 || header_end == std::string::npos)
+    fail("cannot parse PLY: no header (\"ply\" first, up to \"end_header\")");
+  size_t declared = 0;
+  for (size_t start = 0; start < header_end;) {
+    const size_t newline = std::min(data.find('\n', start), header_end);
+    std::array<std::string_view, 3> words;
+    const size_t count = first_words(std::string_view(data).substr(start, newline - start), words);
+    start = newline + 1;
+    if (count < 3 || words[0] != "element") continue;
+    size_t n = 0;
+    const auto [end, ec] = std::from_chars(words[2].data(), words[2].data() + words[2].size(), n);
+    if (ec != std::errc() || end != words[2].data() + words[2].size())
+      fail("cannot parse PLY: element " + in_quotes(words[1]) + " has the count " + in_quotes(words[2]));
+    if (n > data.size() || declared + n > data.size())
+      fail("the PLY header declares " + std::string(words[2]) + " " + std::string(words[1]) +
+           " elements, more than the file's " + std::to_string(data.size()) + " bytes can hold");
+    declared += n;
+  }
+}
+
+// aiMatrix4x4 is row-major with points as column vectors, like Mat4.
+Mat4 to_mat4(const aiMatrix4x4& a) {
+  const float rows[4][4] = {
+      {a.a1, a.a2, a.a3, a.a4}, {a.b1, a.b2, a.b3, a.b4}, {a.c1, a.c2, a.c3, a.c4}, {a.d1, a.d2, a.d3, a.d4}};
+  Mat4 m;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) m.m[r][c] = rows[r][c];
+  return m;
+}
+
+// One assimp mesh in its own space; points and lines (which PLY may hold) are not surfaces
+// and are skipped, as is every mesh without triangles.
+TriangleMesh assimp_part(const aiMesh& mesh, unsigned mesh_index) {
+  TriangleMesh part;
+  part.positions.reserve(mesh.mNumVertices);
+  for (unsigned v = 0; v < mesh.mNumVertices; ++v)
+    part.positions.push_back({mesh.mVertices[v].x, mesh.mVertices[v].y, mesh.mVertices[v].z});
+  if (mesh.mNormals != nullptr)
+    for (unsigned v = 0; v < mesh.mNumVertices; ++v)
+      part.normals.push_back({mesh.mNormals[v].x, mesh.mNormals[v].y, mesh.mNormals[v].z});
+  for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+    const aiFace& face = mesh.mFaces[f];
+    if (face.mNumIndices < 3) continue;
+    if (face.mNumIndices != 3)
+      fail("mesh " + std::to_string(mesh_index) + ", face " + std::to_string(f) + " has " +
+           std::to_string(face.mNumIndices) + " vertices after triangulation");
+    for (unsigned k = 0; k < 3; ++k) {
+      if (face.mIndices[k] >= mesh.mNumVertices)
+        fail("mesh " + std::to_string(mesh_index) + ", face " + std::to_string(f) + " refers to vertex " +
+             std::to_string(face.mIndices[k]) + ", but it has " + std::to_string(mesh.mNumVertices));
+      part.indices.push_back(face.mIndices[k]);
+    }
+  }
+  return part;
+}
+
+// Every mesh instance under the root node, with the node transforms applied (as for glTF).
+TriangleMesh assimp_scene_mesh(const aiScene& scene) {
+  struct Pending {
+    const aiNode* node;
+    Mat4 parent;
+  };
+  std::vector<Pending> stack{{scene.mRootNode, Mat4::identity()}};
+  MeshBuilder builder;
+  size_t visited = 0;
+  while (!stack.empty()) {
+    const Pending pending = stack.back();
+    stack.pop_back();
+    if (pending.node == nullptr) continue;
+    // assimp builds the tree itself, but a malformed file must not make it loop.
+    if (++visited > 1'000'000) fail("the file's node hierarchy is too large");
+    const Mat4 node_to_model = pending.parent * to_mat4(pending.node->mTransformation);
+    if (!is_affine_and_finite(node_to_model)) fail("a node has a non-affine or non-finite transform");
+    const std::optional<Transform> transform = Transform::from_matrix(node_to_model);
+    for (unsigned i = 0; i < pending.node->mNumMeshes && transform; ++i) {
+      const unsigned index = pending.node->mMeshes[i];
+      if (index >= scene.mNumMeshes || scene.mMeshes[index] == nullptr)
+        fail("a node refers to a missing mesh");
+      TriangleMesh part = assimp_part(*scene.mMeshes[index], index);
+      if (part.indices.empty()) continue;  // points or lines only: nothing to add, not even normals
+      if (!transform->is_identity()) transform_mesh(part, *transform);
+      builder.append(part);
+    }
+    for (unsigned c = 0; c < pending.node->mNumChildren; ++c)
+      stack.push_back({pending.node->mChildren[c], node_to_model});
+  }
+  return builder.finish();
+}
+
+// Triangulate and weld only: the other post-processing steps would change the geometry. The
+// validation step comes first (assimp runs it before the others): without it, a face that
+// refers to a missing vertex crashes the triangulation. `format` is assimp's extension hint.
+TriangleMesh read_with_assimp(const std::string& data, const char* format, const char* name) {
+  Assimp::Importer importer;
+  const aiScene* scene = nullptr;
+  constexpr unsigned kSteps =
+      aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices;
+  try {
+    scene = importer.ReadFileFromMemory(data.data(), data.size(), kSteps, format);
+  } catch (const std::exception& e) {
+    fail(std::string("cannot parse ") + name + ": " + e.what());
+  }
+  if (scene == nullptr)
+    fail(std::string("cannot parse ") + name + ": " + tidy_library_message(importer.GetErrorString()));
+  if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0 || scene->mRootNode == nullptr)
+    fail(std::string("the ") + name + " file holds no mesh");
+  return assimp_scene_mesh(*scene);
+}
+
 // ---- Clean-up -------------------------------------------------------------------------------
 
 TriangleMesh read_mesh(const std::string& path, const SourceLocation& where) {
   const std::string extension = lowercase_extension(path);
-  const bool is_obj = extension == ".obj";
-  if (!is_obj && extension != ".gltf" && extension != ".glb")
-    fail("unsupported mesh format " + in_quotes(extension) + " (expected .obj, .gltf or .glb)");
+  if (extension != ".obj" && extension != ".gltf" && extension != ".glb" && extension != ".ply" &&
+      extension != ".dae")
+    fail("unsupported mesh format " + in_quotes(extension) + " (expected .obj, .gltf, .glb, .ply or .dae)");
   const std::string data = read_whole_file(path, where);
-  return is_obj ? read_obj(data) : read_gltf(data, path);
+  if (extension == ".obj") return read_obj(data);
+  if (extension == ".ply") {
+    check_ply_header(data);
+    return read_with_assimp(data, "ply", "PLY");
+  }
+  if (extension == ".dae") return read_with_assimp(data, "dae", "COLLADA");
+  return read_gltf(data, path);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
-// Mesh files (Wavefront OBJ, glTF 2.0 .gltf/.glb) -> one validated TriangleMesh. The parsing
-// libraries stay behind this header so only mesh_loader.cpp compiles against them.
+// Mesh files (Wavefront OBJ, glTF 2.0 .gltf/.glb, Stanford PLY, COLLADA .dae) -> one validated
+// TriangleMesh. The parsing libraries (tinyobjloader, tinygltf, assimp for PLY and COLLADA)
+// stay behind this header so only mesh_loader.cpp compiles against them.
 #pragma once
 
 #include <string>
@@ -10,8 +11,9 @@
 namespace caligo {
 
 // Loads every triangle of the file at `path` into one mesh in the file's model space: all OBJ
-// shapes, or every mesh instance of a glTF file's default scene with its node transforms
-// applied. Normals are kept only when every triangle has them. The result has passed
+// shapes, or every mesh instance of a glTF file's default scene (or of the scene assimp builds
+// from a PLY or COLLADA file) with its node transforms applied; polygons are triangulated, and
+// points and lines are skipped. Normals are kept only when every triangle has them. The result has passed
 // validate_mesh(). Any problem throws InputError at `where` (the shape's place in the scene
 // file) with a message naming `path`.
 //

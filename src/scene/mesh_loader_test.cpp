@@ -341,8 +341,109 @@ TEST_F(MeshLoaderTest, DirectoryIsNotAMeshFile) {
 
 TEST_F(MeshLoaderTest, UnsupportedExtensionIsRejected) {
   EXPECT_TRUE(contains(load_error(write("mesh.stl", "solid x\nendsolid x\n")),
-                       "unsupported mesh format \".stl\" (expected .obj, .gltf or .glb)"));
+                       "unsupported mesh format \".stl\" (expected .obj, .gltf, .glb, .ply or .dae)"));
   EXPECT_TRUE(contains(load_error(write("mesh", kObjQuad)), "unsupported mesh format"));
+}
+
+// ---- PLY (through assimp) -----------------------------------------------------------------
+
+// The unit cube as six quads in ASCII PLY, with one vertex per corner.
+constexpr const char* kPlyCube = R"(ply
+format ascii 1.0
+element vertex 8
+property float x
+property float y
+property float z
+element face 6
+property list uchar int vertex_indices
+end_header
+0 0 0
+0 0 1
+0 1 1
+0 1 0
+1 0 0
+1 0 1
+1 1 1
+1 1 0
+4 0 1 2 3
+4 7 6 5 4
+4 0 4 5 1
+4 1 5 6 2
+4 2 6 7 3
+4 3 7 4 0
+)";
+
+// One triangle in binary little-endian PLY, moved by `offset`.
+std::string binary_ply_triangle(Vec3 offset) {
+  std::string ply =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  for (Vec3 p : {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}) {
+    append_bytes(ply, p.x + offset.x);
+    append_bytes(ply, p.y + offset.y);
+    append_bytes(ply, p.z + offset.z);
+  }
+  append_bytes(ply, uint8_t(3));
+  for (int32_t i : {0, 1, 2}) append_bytes(ply, i);
+  return ply;
+}
+
+TEST_F(MeshLoaderTest, PlyQuadsAreTriangulatedAndKeepTheirCorners) {
+  const TriangleMesh mesh = load_mesh(write("cube.ply", kPlyCube), kWhere);
+  EXPECT_EQ(mesh.triangle_count(), 12u);
+  EXPECT_EQ(mesh.positions.size(), 8u);  // identical corners are welded, none added
+  Bounds3 bounds;
+  for (Vec3 p : mesh.positions) bounds.extend(p);
+  expect_near(bounds.lo, {0, 0, 0});
+  expect_near(bounds.hi, {1, 1, 1});
+  // Triangulation keeps each quad's winding: the face 0 1 2 3 lies in x = 0, normal -x.
+  expect_near(geometric_normal(mesh, 0), {-1, 0, 0});
+}
+
+TEST_F(MeshLoaderTest, PlyBinaryTriangle) {
+  const TriangleMesh mesh = load_mesh(write("tri.PLY", binary_ply_triangle({5, 6, 7})), kWhere);
+  ASSERT_EQ(mesh.triangle_count(), 1u);
+  expect_near(mesh.positions[mesh.indices[1]], {6, 6, 7});
+  expect_near(geometric_normal(mesh, 0), {0, 0, 1});
+}
+
+TEST_F(MeshLoaderTest, CorruptPlyFilesAreInputErrors) {
+  EXPECT_TRUE(contains(load_error(write("garbage.ply", std::string("\x7f\x01garbage\0\xff\xfe", 12))),
+                       "cannot parse PLY: no header"));
+  const std::string triangle = binary_ply_triangle({0, 0, 0});
+  EXPECT_TRUE(contains(load_error(write("truncated.ply", triangle.substr(0, triangle.size() - 10))),
+                       "cannot parse PLY"));
+  std::string cube = kPlyCube;
+  cube.replace(cube.find("4 7 6 5 4"), 9, "4 7 6 x 4");
+  EXPECT_FALSE(load_error(write("word.ply", cube)).empty());
+  cube = kPlyCube;
+  cube.replace(cube.find("4 7 6 5 4"), 9, "4 7 6 9 4");  // vertex 9 of 8
+  EXPECT_FALSE(load_error(write("index.ply", cube)).empty());
+  EXPECT_TRUE(contains(load_error(write("header_only.ply", "ply\nformat ascii 1.0\n")), "no header"));
+}
+
+TEST_F(MeshLoaderTest, PlyHeaderCannotClaimMoreElementsThanTheFileHolds) {
+  std::string ply = binary_ply_triangle({0, 0, 0});
+  ply.replace(ply.find("element vertex 3"), 16, "element vertex 4000000000");
+  EXPECT_TRUE(contains(load_error(write("huge.ply", ply)), "declares 4000000000 vertex elements"));
+  ply = binary_ply_triangle({0, 0, 0});
+  ply.replace(ply.find("element face 1"), 14, "element face -1");
+  EXPECT_TRUE(contains(load_error(write("negative.ply", ply)), "has the count \"-1\""));
+}
+
+TEST_F(MeshLoaderTest, PlyWithoutFacesHasNoTriangles) {
+  const std::string points =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "end_header\n0 0 0\n1 0 0\n0 1 0\n";
+  EXPECT_FALSE(load_error(write("points.ply", points)).empty());
+  EXPECT_TRUE(contains(load_error((dir_ / "missing.ply").string()), "cannot open mesh file"));
+}
+
+TEST_F(MeshLoaderTest, CorruptColladaIsAnInputError) {
+  EXPECT_TRUE(
+      contains(load_error(write("broken.dae", "<COLLADA><library_geometries>")), "cannot parse COLLADA"));
+  EXPECT_TRUE(contains(load_error(write("binary.dae", std::string("\0\x01\x02garbage", 10))),
+                       "cannot parse COLLADA"));
 }
 
 // ---- glTF ----------------------------------------------------------------------------------
@@ -577,6 +678,26 @@ TEST_F(RealMeshTest, GltfBoxes) {
     EXPECT_EQ(mesh.normals.size(), mesh.positions.size());
     expect_plausible(mesh);
   }
+}
+
+TEST_F(RealMeshTest, PlyFiles) {
+  // Wuson has 3732 triangles (with normals); the cubes are 6 quads in ASCII and binary.
+  const std::pair<const char*, size_t> cases[] = {
+      {"PLY/Wuson.ply", 3732}, {"PLY/cube.ply", 12}, {"PLY/cube_binary.ply", 12}};
+  for (const auto& [file, triangles] : cases) {
+    SCOPED_TRACE(file);
+    const TriangleMesh mesh = load_mesh(model(file), kWhere);
+    EXPECT_EQ(mesh.triangle_count(), triangles);
+    expect_plausible(mesh);
+  }
+  EXPECT_EQ(load_mesh(model("PLY/Wuson.ply"), kWhere).normals.size(),
+            load_mesh(model("PLY/Wuson.ply"), kWhere).positions.size());
+}
+
+TEST_F(RealMeshTest, ColladaDuck) {
+  const TriangleMesh mesh = load_mesh(model("Collada/duck.dae"), kWhere);
+  EXPECT_EQ(mesh.triangle_count(), 4212u);
+  expect_plausible(mesh);
 }
 
 TEST_F(RealMeshTest, BrokenGltfFilesAreInputErrors) {

@@ -262,7 +262,7 @@ SceneDesc parse_scene_text(const std::string& json_text, const std::string& file
   if (auto c = r.optional("media")) media = parse_media(*c);
   if (auto c = r.optional("volumes"))
     for (const JsonCursor& v : c->elements("an array of volumes"))
-      scene.volumes.push_back(parse_volume(v, media));
+      scene.volumes.push_back(parse_volume(v, media, base_dir));
   r.finish();
   return scene;
 }

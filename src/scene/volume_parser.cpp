@@ -4,7 +4,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "grids/generated_volume_grid.h"
+#include "grids/grid_io.h"
+#include "scene/mesh_loader.h"
+#include "scene/shared_readers.h"
 #include "scene/transform_parser.h"
+#include "volumes/mesh_volume.h"
 
 namespace caligo {
 namespace {
@@ -52,12 +57,44 @@ NoiseModulation parse_noise(const JsonCursor& c) {
   return n;
 }
 
+BlackbodyEmission parse_blackbody(const JsonCursor& c) {
+  ObjectReader r(c, "a blackbody emission");
+  r.allow({"intensity", "scale", "offset"});
+  BlackbodyEmission b;
+  b.intensity = r.number_or("intensity", b.intensity, Range::non_negative());
+  b.temperature_scale = r.number_or("scale", b.temperature_scale, Range::non_negative());
+  b.temperature_offset = r.number_or("offset", b.temperature_offset, Range::closed(-1e6, 1e6));
+  r.finish();
+  return b;
+}
+
+FlameEmission parse_flame(const JsonCursor& c) {
+  ObjectReader r(c, "a flame emission");
+  r.allow({"color", "intensity"});
+  FlameEmission f;
+  f.color = r.rgb_or("color", f.color);
+  f.intensity = r.number_or("intensity", f.intensity, Range::non_negative());
+  r.finish();
+  return f;
+}
+
 VolumeShader parse_medium(const JsonCursor& c) {
   ObjectReader r(c, "a medium");
-  r.allow({"sigma_a", "sigma_s", "emission", "density", "phase", "falloff", "noise", "step_size"});
+  r.allow({"sigma_a", "sigma_s", "albedo", "extinction", "emission", "density", "phase", "falloff", "noise",
+           "step_size", "step_scale", "blackbody", "flame", "color_tint"});
   VolumeShader s;
-  s.sigma_a = r.rgb_or("sigma_a", RGB(0.0f));
-  s.sigma_s = r.rgb_or("sigma_s", RGB(0.0f));
+  if (r.has("albedo") || r.has("extinction")) {
+    // The artist's form: how much light is lost per metre, and which fraction of it scatters.
+    if (r.has("sigma_a") || r.has("sigma_s"))
+      r.fail("give either sigma_a/sigma_s or albedo/extinction, not both");
+    const RGB albedo = r.rgb("albedo", Range::closed(0, 1));
+    const RGB extinction = r.rgb("extinction");
+    s.sigma_s = albedo * extinction;
+    s.sigma_a = (RGB(1.0f) - albedo) * extinction;
+  } else {
+    s.sigma_a = r.rgb_or("sigma_a", RGB(0.0f));
+    s.sigma_s = r.rgb_or("sigma_s", RGB(0.0f));
+  }
   s.emission = r.rgb_or("emission", RGB(0.0f));
   s.density = r.number_or("density", 1.0f, Range::non_negative());
   if (auto p = r.optional("phase")) s.phase = parse_phase(*p);
@@ -69,6 +106,10 @@ VolumeShader parse_medium(const JsonCursor& c) {
   }
   if (auto n = r.optional("noise")) s.noise = parse_noise(*n);
   s.step_size = r.number_or("step_size", 0.0f, Range::positive());
+  s.step_scale = r.number_or("step_scale", 1.0f, Range::closed(1e-3, 1e3));
+  if (auto b = r.optional("blackbody")) s.blackbody = parse_blackbody(*b);
+  if (auto f = r.optional("flame")) s.flame = parse_flame(*f);
+  s.tint_with_color_grid = r.boolean_or("color_tint", true);
   r.finish();
   return s;
 }
@@ -88,6 +129,88 @@ VolumeShape parse_volume_shape(ObjectReader& r, const std::string& type, const T
   return BoxVolumeShape{placement, box.min, box.max};
 }
 
+// A closed mesh filled with the medium: loaded, placed and checked for closure now, so a
+// broken mesh is an error at its place in the scene file.
+VolumeShape parse_mesh_volume(ObjectReader& r, const Transform& placement, const std::string& base_dir) {
+  const JsonCursor file = r.required("file");
+  const std::string path = resolve_path(file.string(), base_dir);
+  const bool skip = r.boolean_or("skip_degenerate", false);
+  TriangleMesh mesh =
+      load_mesh(path, file.where(), skip ? DegenerateTriangles::kRemove : DegenerateTriangles::kReject);
+  transform_mesh(mesh, placement);
+  return MeshVolumeShape{MeshVolume::build(std::move(mesh), r.cursor().where())};
+}
+
+GridFilter parse_filter(ObjectReader& r) {
+  if (!r.has("filter")) return GridFilter::kTrilinear;
+  return r.choice("filter", {"trilinear", "nearest"}) == "nearest" ? GridFilter::kNearest : GridFilter::kTrilinear;
+}
+
+GridChannels parse_channels(ObjectReader& volume) {
+  GridChannels channels;
+  const auto c = volume.optional("grids");
+  if (!c) return channels;
+  ObjectReader r(*c, "the grid names");
+  r.allow({"density", "temperature", "flame", "color"});
+  if (r.has("density")) channels.density = r.string("density");
+  if (r.has("temperature")) channels.temperature = r.string("temperature");
+  if (r.has("flame")) channels.flame = r.string("flame");
+  if (r.has("color")) channels.color = r.string("color");
+  r.finish();
+  return channels;
+}
+
+std::shared_ptr<const VolumeGrid> parse_generated_grid(const JsonCursor& c) {
+  ObjectReader r(c, "a generated grid");
+  r.allow({"kind", "resolution", "seed"});
+  const std::string kind = r.choice("kind", {"cloud", "smoke", "fire"});
+  const int res = int(r.integer_or("resolution", 128, Range::closed(8, 1024)));
+  const uint64_t seed = uint64_t(r.integer_or("seed", 1, Range::closed(0, 1e9)));
+  r.finish();
+  return generated_volume_grid({*parse_generated_volume(kind), res, seed});
+}
+
+// A grid volume: the grid from a VDB/NanoVDB file, a raw dense array or the generator, placed
+// by the transform; its shape is the box of its bounds.
+GridDensity parse_grid_field(ObjectReader& r, const std::string& type, const Transform& placement,
+                             const std::string& base_dir) {
+  GridDensity field{nullptr, placement, parse_filter(r)};
+  if (type == "vdb") {
+    const auto [which, c] = r.exactly_one("file", "generate");
+    if (which == 1) {
+      field.grid = parse_generated_grid(c);
+    } else {
+      const std::string path = resolve_path(c.string(), base_dir);
+      field.grid = load_grid_file(path, parse_channels(r), c.where());
+    }
+    return field;
+  }
+  const JsonCursor file = r.required("file");
+  const JsonCursor dims = r.required("dimensions");
+  const auto elements = dims.elements("an array of three voxel counts");
+  if (elements.size() != 3) dims.fail("expected an array of three voxel counts, got " + dims.describe());
+  DenseGridLayout layout;
+  for (int a = 0; a < 3; ++a) layout.dims[size_t(a)] = int(elements[size_t(a)].number(Range::closed(1, 1 << 16)));
+  layout.voxel_size = r.number("voxel_size", size_range());
+  layout.origin = r.optional_vec3("origin").value_or(Vec3(0.0f));
+  field.grid = load_dense_grid(resolve_path(file.string(), base_dir), layout, file.where());
+  return field;
+}
+
+// A medium's emission and tint must find the channels they read in the grid.
+void check_channels(const ObjectReader& r, const VolumeShader& shader) {
+  const auto* grid = std::get_if<GridDensity>(&shader.field);
+  if (!grid) {
+    if (shader.blackbody || shader.flame)
+      r.fail("the medium's blackbody or flame emission needs a grid volume (type vdb or dense)");
+    return;
+  }
+  if (shader.blackbody && !grid->grid->has_temperature())
+    r.fail("the medium has blackbody emission but the grid has no temperature channel");
+  if (shader.flame && !grid->grid->has_flame())
+    r.fail("the medium has flame emission but the grid has no flame channel");
+}
+
 }  // namespace
 
 std::vector<NamedMedium> parse_media(const JsonCursor& c) {
@@ -97,17 +220,39 @@ std::vector<NamedMedium> parse_media(const JsonCursor& c) {
   return media;
 }
 
-VolumePrimitive parse_volume(const JsonCursor& c, const std::vector<NamedMedium>& media) {
+VolumePrimitive parse_volume(const JsonCursor& c, const std::vector<NamedMedium>& media,
+                             const std::string& base_dir) {
   ObjectReader r(c, "a volume");
-  const std::string type = r.choice("type", {"sphere", "box"});
+  const std::string type = r.choice("type", {"sphere", "box", "mesh", "vdb", "dense"});
   r.set_what("a " + type + " volume");
   if (type == "sphere")
     r.allow({"type", "center", "radius", "medium", "transform"});
-  else
+  else if (type == "box")
     r.allow({"type", "min", "max", "medium", "transform"});
+  else if (type == "mesh")
+    r.allow({"type", "file", "skip_degenerate", "medium", "transform"});
+  else if (type == "vdb")
+    r.allow({"type", "file", "generate", "grids", "filter", "medium", "transform"});
+  else
+    r.allow({"type", "file", "dimensions", "voxel_size", "origin", "filter", "medium", "transform"});
   Transform placement;
   if (auto t = r.optional("transform")) placement = parse_transform(*t);
-  VolumePrimitive v{parse_volume_shape(r, type, placement), find_medium(r.required("medium"), media)};
+  const VolumeShader& medium = find_medium(r.required("medium"), media);
+  VolumePrimitive v;
+  v.shader = medium;
+  if (type == "mesh") {
+    v.shape = parse_mesh_volume(r, placement, base_dir);
+  } else if (type == "vdb" || type == "dense") {
+    if (!std::holds_alternative<ConstantDensity>(medium.field))
+      r.fail("a grid volume takes its density from the grid: its medium may not have a falloff");
+    GridDensity field = parse_grid_field(r, type, placement, base_dir);
+    const Bounds3 b = field.grid->world_bounds();
+    v.shape = BoxVolumeShape{placement, b.lo, b.hi};
+    v.shader.field = std::move(field);
+  } else {
+    v.shape = parse_volume_shape(r, type, placement);
+  }
+  check_channels(r, v.shader);
   r.finish();
   return v;
 }

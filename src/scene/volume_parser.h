@@ -16,7 +16,10 @@ struct NamedMedium {
 
 // "media": {"fog": {...}, ...}
 std::vector<NamedMedium> parse_media(const JsonCursor& c);
-// One element of "volumes": a convex shape filled with a named medium.
-VolumePrimitive parse_volume(const JsonCursor& c, const std::vector<NamedMedium>& media);
+// One element of "volumes": a sphere, box or closed mesh filled with a named medium, or a
+// grid (VDB/NanoVDB file, raw dense array or the generator) giving that medium's density.
+// Files are read now, relative to `base_dir`.
+VolumePrimitive parse_volume(const JsonCursor& c, const std::vector<NamedMedium>& media,
+                             const std::string& base_dir);
 
 }  // namespace caligo

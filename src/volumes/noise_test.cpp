@@ -116,10 +116,16 @@ TEST(VolumeShaderNoise, ModulatesDensityAndBoundsTheMajorant) {
   EXPECT_FALSE(is_homogeneous(v.shader));
   const RGB majorant = max_sigma_t(v);
   EXPECT_FLOAT_EQ(majorant.r, 0.5f * 2.0f * 1.7f);
+  // The interval's majorant is the same bound, and the interval is not homogeneous.
+  VolumeContext ctx;
+  append_intervals(v, 0, Ray{{-20, 0, 0}, {1, 0, 0}}, ctx);
+  ASSERT_EQ(ctx.intervals.size(), 1u);
+  EXPECT_FLOAT_EQ(ctx.intervals[0].sigma_maj.r, majorant.r);
+  EXPECT_FALSE(ctx.intervals[0].homogeneous);
   Pcg32 rng(5, 5);
   for (int i = 0; i < 1000; ++i) {
     const Vec3 p = random_point(rng, 9.0f);
-    const MediumSample m = shade_volume(v, p);
+    const MediumSample m = shade_volume(v, p, ctx);
     EXPECT_NEAR(m.sigma_s.g, 0.4f * 2.0f * noise_density(n, p), 1e-6f);
     EXPECT_LE(m.sigma_t().r, majorant.r + 1e-6f);
   }

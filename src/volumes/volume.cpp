@@ -3,77 +3,213 @@
 #include <algorithm>
 #include <cmath>
 
+#include "media/blackbody.h"
+#include "volumes/mesh_volume.h"
+
 namespace caligo {
 namespace {
 
-struct Interval {
-  const Ray& ray;
-  std::optional<std::pair<float, float>> clip(float t0, float t1) const {
-    t0 = std::max(t0, ray.tmin);
-    t1 = std::min(t1, ray.tmax);
-    if (!(t0 < t1)) return std::nullopt;
-    return std::make_pair(t0, t1);
+using Stretch = std::pair<float, float>;
+
+std::optional<Stretch> clip(const Ray& ray, float t0, float t1) {
+  t0 = std::max(t0, ray.tmin);
+  t1 = std::min(t1, ray.tmax);
+  if (!(t0 < t1)) return std::nullopt;
+  return Stretch{t0, t1};
+}
+
+// Slab test in object space; t is the same parameter in both spaces (affine map).
+std::optional<Stretch> box_interval(const Transform& object_to_world, Vec3 lo, Vec3 hi, const Ray& ray) {
+  const Vec3 o = object_to_world.inverse_point(ray.origin);
+  const Vec3 d = object_to_world.inverse_vector(ray.direction);
+  float t0 = -kInfinity, t1 = kInfinity;
+  for (int a = 0; a < 3; ++a) {
+    const float inv = 1.0f / d[a];
+    float tn = (lo[a] - o[a]) * inv, tf = (hi[a] - o[a]) * inv;
+    if (std::isnan(tn) || std::isnan(tf)) {  // parallel to the slab and on its plane
+      if (o[a] < lo[a] || o[a] > hi[a]) return std::nullopt;
+      continue;
+    }
+    if (tn > tf) std::swap(tn, tf);
+    t0 = std::max(t0, tn);
+    t1 = std::min(t1, tf);
   }
-  std::optional<std::pair<float, float>> operator()(const SphereVolumeShape& s) const {
+  return clip(ray, t0, t1);
+}
+
+struct HullInterval {
+  const Ray& ray;
+  std::optional<Stretch> operator()(const SphereVolumeShape& s) const {
     const auto roots = intersect_sphere(s.sphere, ray);
     if (!roots) return std::nullopt;
-    return clip(roots->t_near, roots->t_far);
+    return clip(ray, roots->t_near, roots->t_far);
   }
-  // Slab test in object space; t is the same parameter in both spaces (affine map).
-  std::optional<std::pair<float, float>> operator()(const BoxVolumeShape& b) const {
-    const Vec3 o = b.object_to_world.inverse_point(ray.origin);
-    const Vec3 d = b.object_to_world.inverse_vector(ray.direction);
-    float t0 = -kInfinity, t1 = kInfinity;
-    for (int a = 0; a < 3; ++a) {
-      const float inv = 1.0f / d[a];
-      float tn = (b.lo[a] - o[a]) * inv, tf = (b.hi[a] - o[a]) * inv;
-      if (std::isnan(tn) || std::isnan(tf)) {  // parallel to the slab and on its plane
-        if (o[a] < b.lo[a] || o[a] > b.hi[a]) return std::nullopt;
-        continue;
-      }
-      if (tn > tf) std::swap(tn, tf);
-      t0 = std::max(t0, tn);
-      t1 = std::min(t1, tf);
-    }
-    return clip(t0, t1);
+  std::optional<Stretch> operator()(const BoxVolumeShape& b) const {
+    return box_interval(b.object_to_world, b.lo, b.hi, ray);
+  }
+  std::optional<Stretch> operator()(const MeshVolumeShape& m) const {
+    const Bounds3 b = m.mesh->bounds();
+    return box_interval(Transform(), b.lo, b.hi, ray);
   }
 };
 
-// Maps a world point into the shape's unit-sphere coordinates (the box spans [-1, 1]^3).
+// The stretches of the ray inside the shape, into context.mesh_intervals (reused scratch).
+struct InsideStretches {
+  const Ray& ray;
+  VolumeContext& context;
+  void operator()(const SphereVolumeShape& s) const { one(HullInterval{ray}(s)); }
+  void operator()(const BoxVolumeShape& b) const { one(HullInterval{ray}(b)); }
+  void operator()(const MeshVolumeShape& m) const {
+    context.mesh_intervals.clear();
+    m.mesh->intervals(ray, context.mesh_hits, context.mesh_intervals);
+  }
+  void one(std::optional<Stretch> s) const {
+    context.mesh_intervals.clear();
+    if (s) context.mesh_intervals.push_back(*s);
+  }
+};
+
+// Maps a world point into the shape's unit-sphere coordinates (boxes and meshes map their
+// bounds to [-1, 1]^3).
+Vec3 box_unit(Vec3 q, Vec3 lo, Vec3 hi) {
+  const Vec3 half = (hi - lo) * 0.5f;
+  return {(q.x - lo.x) / half.x - 1.0f, (q.y - lo.y) / half.y - 1.0f, (q.z - lo.z) / half.z - 1.0f};
+}
 struct UnitCoordinates {
   Vec3 p;
   Vec3 operator()(const SphereVolumeShape& s) const { return s.sphere.object_to_world.inverse_point(p); }
-  Vec3 operator()(const BoxVolumeShape& b) const {
-    const Vec3 q = b.object_to_world.inverse_point(p);
-    const Vec3 half = (b.hi - b.lo) * 0.5f;
-    return {(q.x - b.lo.x) / half.x - 1.0f, (q.y - b.lo.y) / half.y - 1.0f, (q.z - b.lo.z) / half.z - 1.0f};
-  }
+  Vec3 operator()(const BoxVolumeShape& b) const { return box_unit(b.object_to_world.inverse_point(p), b.lo, b.hi); }
+  Vec3 operator()(const MeshVolumeShape& m) const { return box_unit(p, m.mesh->bounds().lo, m.mesh->bounds().hi); }
 };
 
 struct FieldDensity {
   const VolumeShape& shape;
   Vec3 p;
+  VolumeContext& context;
   float operator()(const ConstantDensity&) const { return 1.0f; }
   float operator()(const RadialFalloffDensity& falloff) const {
     const float r2 = length_squared(std::visit(UnitCoordinates{p}, shape));
     return r2 >= 1.0f ? 0.0f : std::pow(1.0f - r2, falloff.exponent);
+  }
+  float operator()(const GridDensity& g) const {
+    return g.grid->density(g.grid_to_world.inverse_point(p), g.filter, *context.grids);
   }
 };
 
 struct ShapeBounds {
   Bounds3 operator()(const SphereVolumeShape& s) const { return s.sphere.world_bounds(); }
   Bounds3 operator()(const BoxVolumeShape& b) const { return b.object_to_world.bounds({b.lo, b.hi}); }
+  Bounds3 operator()(const MeshVolumeShape& m) const { return m.mesh->bounds(); }
 };
 
 struct FieldIsConstant {
   bool operator()(const ConstantDensity&) const { return true; }
   bool operator()(const RadialFalloffDensity&) const { return false; }
+  bool operator()(const GridDensity&) const { return false; }
 };
+
+// The field's peak density multiplier over the whole primitive.
+struct FieldPeak {
+  float operator()(const ConstantDensity&) const { return 1.0f; }
+  float operator()(const RadialFalloffDensity&) const { return 1.0f; }
+  float operator()(const GridDensity& g) const { return g.grid->max_density(); }
+};
+
+// Splits one inside stretch by the field: analytic fields keep it whole, a grid cuts it into
+// its occupied block runs, each with its own majorant.
+struct FieldIntervals {
+  const VolumePrimitive& primitive;
+  uint32_t id;
+  const Ray& ray;
+  Stretch stretch;
+  VolumeContext& context;
+  RGB sigma_unit;    // sigma_t per unit field density (density and noise peak included)
+  bool noise_free;
+
+  void operator()(const ConstantDensity&) const {
+    context.intervals.push_back({stretch.first, stretch.second, id, sigma_unit, noise_free});
+  }
+  void operator()(const RadialFalloffDensity&) const {
+    context.intervals.push_back({stretch.first, stretch.second, id, sigma_unit, false});
+  }
+  void operator()(const GridDensity& g) const {
+    if (!context.skip_empty_blocks) {
+      context.intervals.push_back(
+          {stretch.first, stretch.second, id, sigma_unit * g.grid->max_density(), false});
+      return;
+    }
+    const Ray local{g.grid_to_world.inverse_point(ray.origin), g.grid_to_world.inverse_vector(ray.direction),
+                    ray.tmin, ray.tmax};
+    context.grid_intervals.clear();
+    g.grid->intervals(local, stretch.first, stretch.second, context.grid_intervals);
+    for (const GridInterval& gi : context.grid_intervals)
+      context.intervals.push_back({gi.t0, gi.t1, id, sigma_unit * gi.density_max,
+                                   gi.constant && noise_free && context.constant_blocks_one_step});
+  }
+};
+
+RGB blackbody_emission(const BlackbodyEmission& b, float raw_temperature) {
+  if (!(raw_temperature > 0.0f)) return RGB(0.0f);
+  const float kelvin = raw_temperature * b.temperature_scale + b.temperature_offset;
+  if (!(kelvin > 0.0f)) return RGB(0.0f);
+  return blackbody_color(kelvin) * (b.intensity * blackbody_exitance_radiance(kelvin));
+}
+
+RGB clamp01(RGB c) {
+  return {std::clamp(c.r, 0.0f, 1.0f), std::clamp(c.g, 0.0f, 1.0f), std::clamp(c.b, 0.0f, 1.0f)};
+}
+
+struct Shade {
+  const VolumePrimitive& primitive;
+  Vec3 p;
+  VolumeContext& context;
+  MediumSample with_density(float d) const {
+    const VolumeShader& s = primitive.shader;
+    if (s.noise) d *= noise_density(*s.noise, p);
+    return {s.sigma_a * d, s.sigma_s * d, s.emission * d, s.phase};
+  }
+  MediumSample operator()(const ConstantDensity&) const { return with_density(primitive.shader.density); }
+  MediumSample operator()(const RadialFalloffDensity& f) const {
+    return with_density(primitive.shader.density * FieldDensity{primitive.shape, p, context}(f));
+  }
+  MediumSample operator()(const GridDensity& g) const {
+    const VolumeShader& s = primitive.shader;
+    const GridValues v = g.grid->values(g.grid_to_world.inverse_point(p), g.filter, *context.grids);
+    MediumSample m = with_density(s.density * v.density);
+    if (s.tint_with_color_grid && g.grid->has_color()) m.sigma_s *= clamp01(v.color);
+    if (s.blackbody) m.emission += blackbody_emission(*s.blackbody, v.temperature);
+    if (s.flame && v.flame > 0.0f) m.emission += s.flame->color * (s.flame->intensity * v.flame);
+    return m;
+  }
+};
+
+struct FieldVoxelSize {
+  float operator()(const ConstantDensity&) const { return kInfinity; }
+  float operator()(const RadialFalloffDensity&) const { return kInfinity; }
+  float operator()(const GridDensity& g) const {
+    // The placement may scale: a voxel's world length is the grid's times the smallest axis scale.
+    float scale = kInfinity;
+    for (const Vec3 axis : {Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)})
+      scale = std::min(scale, length(g.grid_to_world.vector(axis)));
+    return g.grid->voxel_size() * scale;
+  }
+};
+
+float noise_peak(const VolumeShader& s) { return s.noise ? noise_density_max(*s.noise) : 1.0f; }
 
 }  // namespace
 
-std::optional<std::pair<float, float>> volume_interval(const VolumeShape& shape, const Ray& ray) {
-  return std::visit(Interval{ray}, shape);
+std::optional<std::pair<float, float>> volume_hull_interval(const VolumeShape& shape, const Ray& ray) {
+  return std::visit(HullInterval{ray}, shape);
+}
+
+void append_intervals(const VolumePrimitive& primitive, uint32_t id, const Ray& ray, VolumeContext& context) {
+  std::visit(InsideStretches{ray, context}, primitive.shape);
+  if (context.mesh_intervals.empty()) return;
+  const VolumeShader& s = primitive.shader;
+  const RGB sigma_unit = (s.sigma_a + s.sigma_s) * (s.density * noise_peak(s));
+  for (const Stretch& stretch : context.mesh_intervals)
+    std::visit(FieldIntervals{primitive, id, ray, stretch, context, sigma_unit, !s.noise}, s.field);
 }
 
 Bounds3 volume_bounds(const VolumeShape& shape) { return std::visit(ShapeBounds{}, shape); }
@@ -82,22 +218,21 @@ bool is_homogeneous(const VolumeShader& shader) {
   return !shader.noise && std::visit(FieldIsConstant{}, shader.field);
 }
 
-float field_density(const VolumePrimitive& primitive, Vec3 p) {
-  return std::visit(FieldDensity{primitive.shape, p}, primitive.shader.field);
+float field_density(const VolumePrimitive& primitive, Vec3 p, VolumeContext& context) {
+  return std::visit(FieldDensity{primitive.shape, p, context}, primitive.shader.field);
 }
 
-MediumSample shade_volume(const VolumePrimitive& primitive, Vec3 p) {
-  const VolumeShader& s = primitive.shader;
-  float d = s.density * field_density(primitive, p);
-  if (s.noise) d *= noise_density(*s.noise, p);
-  return {s.sigma_a * d, s.sigma_s * d, s.emission * d, s.phase};
+MediumSample shade_volume(const VolumePrimitive& primitive, Vec3 p, VolumeContext& context) {
+  return std::visit(Shade{primitive, p, context}, primitive.shader.field);
 }
 
 RGB max_sigma_t(const VolumePrimitive& primitive) {
-  // Every density field here peaks at 1; noise scales it by at most noise_density_max.
   const VolumeShader& s = primitive.shader;
-  const float peak = s.density * (s.noise ? noise_density_max(*s.noise) : 1.0f);
-  return (s.sigma_a + s.sigma_s) * peak;
+  return (s.sigma_a + s.sigma_s) * (s.density * noise_peak(s) * std::visit(FieldPeak{}, s.field));
+}
+
+float field_voxel_size(const VolumePrimitive& primitive) {
+  return std::visit(FieldVoxelSize{}, primitive.shader.field);
 }
 
 }  // namespace caligo

@@ -1,19 +1,26 @@
 // Volume primitives (the seed's "volume primitives": IOR 1, no boundary, additive overlap):
-// a convex shape that turns a ray into an interval, plus a shader giving the medium's
-// coefficients at a point. Closed sets are std::variants; add a shape or density field by
-// extending the variant and the visitors in volume.cpp.
+// a shape bounding the medium, a density field over it and a shader giving the medium's
+// coefficients at a point. A primitive turns a ray into majorant intervals
+// (append_intervals); marching and delta tracking take those, not the shape.
+// Closed sets are std::variants dispatched by exhaustive std::visit in volume.cpp: a new
+// shape or field does not compile until every visitor handles it.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <variant>
 
 #include "core/ray.h"
 #include "core/transform.h"
 #include "geometry/shapes.h"
+#include "grids/volume_grid.h"
 #include "media/medium.h"
 #include "volumes/noise.h"
+#include "volumes/volume_context.h"
 
 namespace caligo {
+
+class MeshVolume;
 
 // A transformed axis-aligned box [lo, hi] (object space).
 struct BoxVolumeShape {
@@ -23,16 +30,41 @@ struct BoxVolumeShape {
 struct SphereVolumeShape {
   Sphere sphere;
 };
-using VolumeShape = std::variant<SphereVolumeShape, BoxVolumeShape>;
+// The inside of a closed triangle mesh, found per ray by even/odd hit counting.
+struct MeshVolumeShape {
+  std::shared_ptr<const MeshVolume> mesh;
+};
+using VolumeShape = std::variant<SphereVolumeShape, BoxVolumeShape, MeshVolumeShape>;
 
-// Density multipliers over the primitive, evaluated in its object space.
+// Density multipliers over the primitive.
 struct ConstantDensity {};
-// 1 at the centre falling to 0 at the boundary of the unit sphere (object space):
-// (1 - r^2)^exponent. A soft spherical puff; exercises heterogeneous marching.
+// 1 at the centre falling to 0 at the boundary of the unit sphere (the shape's object space;
+// a box or mesh maps its bounds to [-1, 1]^3): (1 - r^2)^exponent. A soft spherical puff.
 struct RadialFalloffDensity {
   float exponent = 1.0f;
 };
-using DensityField = std::variant<ConstantDensity, RadialFalloffDensity>;
+// A sparse grid (VDB, NanoVDB or dense) placed by `grid_to_world`; its other channels
+// (temperature, flame, Cd) feed the shader's emission and tint.
+struct GridDensity {
+  std::shared_ptr<const VolumeGrid> grid;
+  Transform grid_to_world;
+  GridFilter filter = GridFilter::kTrilinear;
+};
+using DensityField = std::variant<ConstantDensity, RadialFalloffDensity, GridDensity>;
+
+// Emission from a grid's temperature channel: T = raw * scale + offset (Kelvin) emits
+// intensity * blackbody_color(T) * sigma_SB T^4 / pi (the colour normalised to luminance 1,
+// the magnitude a blackbody's radiance), where the raw temperature is positive.
+struct BlackbodyEmission {
+  float intensity = 1.0f;
+  float temperature_scale = 1.0f;
+  float temperature_offset = 0.0f;
+};
+// Emission from a grid's flame channel: flame * intensity * color.
+struct FlameEmission {
+  RGB color{1.0f};
+  float intensity = 1.0f;
+};
 
 struct VolumeShader {
   RGB sigma_a;   // 1/m at density 1
@@ -42,7 +74,11 @@ struct VolumeShader {
   PhaseFunction phase;
   DensityField field;
   std::optional<NoiseModulation> noise;  // multiplies the field's density
-  float step_size = 0.0f;  // metres; 0 = automatic (one step if homogeneous)
+  float step_size = 0.0f;   // metres; 0 = automatic (a voxel for grids, one step if homogeneous)
+  float step_scale = 1.0f;  // multiplies the automatic step (bias against speed: docs/techniques.md)
+  std::optional<BlackbodyEmission> blackbody;  // grid fields with a temperature channel
+  std::optional<FlameEmission> flame;          // grid fields with a flame channel
+  bool tint_with_color_grid = true;            // a grid's Cd (clamped to [0, 1]) tints sigma_s
 };
 
 struct VolumePrimitive {
@@ -50,16 +86,22 @@ struct VolumePrimitive {
   VolumeShader shader;
 };
 
-// The ray's parametric overlap with the shape, clipped to [ray.tmin, ray.tmax].
-std::optional<std::pair<float, float>> volume_interval(const VolumeShape& shape, const Ray& ray);
+// The ray's parametric overlap with the shape's convex hull (the mesh's bounding box for a
+// mesh), clipped to [ray.tmin, ray.tmax]: where the primitive may have medium.
+std::optional<std::pair<float, float>> volume_hull_interval(const VolumeShape& shape, const Ray& ray);
+// Appends the primitive's majorant intervals along the ray to context.intervals.
+void append_intervals(const VolumePrimitive& primitive, uint32_t id, const Ray& ray, VolumeContext& context);
 Bounds3 volume_bounds(const VolumeShape& shape);
+// True when the coefficients are the same everywhere inside the shape (no field, no noise).
 bool is_homogeneous(const VolumeShader& shader);
 // The density field's multiplier at a world point inside the primitive (1 for constant
 // fields; the shader's density and noise not included).
-float field_density(const VolumePrimitive& primitive, Vec3 p);
+float field_density(const VolumePrimitive& primitive, Vec3 p, VolumeContext& context);
 // Coefficients of the primitive at a world-space point inside it.
-MediumSample shade_volume(const VolumePrimitive& primitive, Vec3 p);
-// Upper bound of sigma_t over the primitive (for delta tracking majorants).
+MediumSample shade_volume(const VolumePrimitive& primitive, Vec3 p, VolumeContext& context);
+// Upper bound of sigma_t over the whole primitive (intervals give tighter local ones).
 RGB max_sigma_t(const VolumePrimitive& primitive);
+// World-space length of one voxel of a grid field (after its placement), else infinity.
+float field_voxel_size(const VolumePrimitive& primitive);
 
 }  // namespace caligo

@@ -14,18 +14,14 @@ VolumeScene::VolumeScene(std::vector<VolumePrimitive> primitives) : primitives_(
 // (a user-geometry traversal costs more than a few analytic interval tests).
 constexpr size_t kLinearScanLimit = 8;
 
-void VolumeScene::intervals(const Ray& ray, IntervalScratch& scratch) const {
-  scratch.intervals.clear();
+void VolumeScene::intervals(const Ray& ray, VolumeContext& context) const {
+  context.intervals.clear();
   if (primitives_.size() <= kLinearScanLimit) {
-    for (uint32_t id = 0; id < primitives_.size(); ++id)
-      if (const auto range = volume_interval(primitives_[id].shape, ray))
-        scratch.intervals.push_back({range->first, range->second, id});
+    for (uint32_t id = 0; id < primitives_.size(); ++id) append_intervals(primitives_[id], id, ray, context);
     return;
   }
-  index_.candidates(ray, scratch.candidates);
-  for (uint32_t id : scratch.candidates)
-    if (const auto range = volume_interval(primitives_[id].shape, ray))
-      scratch.intervals.push_back({range->first, range->second, id});
+  index_.candidates(ray, context.candidates);
+  for (uint32_t id : context.candidates) append_intervals(primitives_[id], id, ray, context);
 }
 
 }  // namespace caligo

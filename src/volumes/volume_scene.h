@@ -1,6 +1,6 @@
 // All volume primitives of a scene and the BVH over their bounds: medium tracking for
-// volume primitives. A ray's intervals come back in a caller-owned list (one per thread,
-// reused), so finding them does not allocate once the list has grown.
+// volume primitives. A ray's majorant intervals come back in the caller's per-thread
+// VolumeContext, so finding them does not allocate once its lists have grown.
 #pragma once
 
 #include <vector>
@@ -8,14 +8,9 @@
 #include "geometry/bounds_index.h"
 #include "volumes/interval.h"
 #include "volumes/volume.h"
+#include "volumes/volume_context.h"
 
 namespace caligo {
-
-// Per-thread scratch for interval queries.
-struct IntervalScratch {
-  std::vector<uint32_t> candidates;
-  std::vector<VolumeInterval> intervals;
-};
 
 class VolumeScene {
  public:
@@ -28,9 +23,10 @@ class VolumeScene {
   const std::vector<VolumePrimitive>& primitives() const { return primitives_; }
   const VolumePrimitive& primitive(uint32_t i) const { return primitives_[i]; }
 
-  // Intervals of every primitive the ray crosses within [tmin, tmax] (already pruned at
-  // tmax: pass the nearest opaque surface hit there), in no particular order.
-  void intervals(const Ray& ray, IntervalScratch& scratch) const;
+  // Replaces context.intervals with the majorant intervals of every primitive the ray crosses
+  // within [tmin, tmax] (already pruned at tmax: pass the nearest opaque surface hit there).
+  // Each primitive's intervals are in order along the ray; primitives in no particular order.
+  void intervals(const Ray& ray, VolumeContext& context) const;
 
  private:
   std::vector<VolumePrimitive> primitives_;

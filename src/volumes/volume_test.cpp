@@ -13,19 +13,19 @@ VolumePrimitive fog_sphere(Vec3 c, float r) {
 
 TEST(VolumeInterval, SphereFromOutsideAndInside) {
   const VolumeShape s = SphereVolumeShape{Sphere::make({0, 0, 5}, 1.0f, {})};
-  auto i = volume_interval(s, {{0, 0, 0}, {0, 0, 1}});
+  auto i = volume_hull_interval(s, {{0, 0, 0}, {0, 0, 1}});
   ASSERT_TRUE(i);
   EXPECT_NEAR(i->first, 4.0f, 1e-5f);
   EXPECT_NEAR(i->second, 6.0f, 1e-5f);
   // The camera inside: the interval starts at the ray's origin.
-  i = volume_interval(s, {{0, 0, 5}, {0, 0, 1}});
+  i = volume_hull_interval(s, {{0, 0, 5}, {0, 0, 1}});
   ASSERT_TRUE(i);
   EXPECT_FLOAT_EQ(i->first, 0.0f);
   EXPECT_NEAR(i->second, 1.0f, 1e-5f);
   // Pruned by a surface hit before the volume: nothing.
-  EXPECT_FALSE(volume_interval(s, {{0, 0, 0}, {0, 0, 1}, 0.0f, 3.0f}));
+  EXPECT_FALSE(volume_hull_interval(s, {{0, 0, 0}, {0, 0, 1}, 0.0f, 3.0f}));
   // Pruned inside: clipped.
-  i = volume_interval(s, {{0, 0, 0}, {0, 0, 1}, 0.0f, 4.5f});
+  i = volume_hull_interval(s, {{0, 0, 0}, {0, 0, 1}, 0.0f, 4.5f});
   ASSERT_TRUE(i);
   EXPECT_FLOAT_EQ(i->second, 4.5f);
 }
@@ -33,21 +33,21 @@ TEST(VolumeInterval, SphereFromOutsideAndInside) {
 TEST(VolumeInterval, TransformedBox) {
   const VolumeShape box = BoxVolumeShape{
       Transform::translate({0, 0, 10}) * Transform::rotate(kPi / 4, {0, 0, 1}), {-1, -1, -1}, {1, 1, 1}};
-  const auto i = volume_interval(box, {{0, 0, 0}, {0, 0, 1}});
+  const auto i = volume_hull_interval(box, {{0, 0, 0}, {0, 0, 1}});
   ASSERT_TRUE(i);
   EXPECT_NEAR(i->first, 9.0f, 1e-5f);
   EXPECT_NEAR(i->second, 11.0f, 1e-5f);
   // Rotated 45 degrees about z: along x the box reaches sqrt(2).
-  const auto across = volume_interval(box, {{-5, 0, 10}, {1, 0, 0}});
+  const auto across = volume_hull_interval(box, {{-5, 0, 10}, {1, 0, 0}});
   ASSERT_TRUE(across);
   EXPECT_NEAR(across->second - across->first, 2.0f * std::sqrt(2.0f), 1e-4f);
-  EXPECT_FALSE(volume_interval(box, {{-5, 1.5f, 10}, {1, 0, 0}}));
+  EXPECT_FALSE(volume_hull_interval(box, {{-5, 1.5f, 10}, {1, 0, 0}}));
 }
 
 TEST(VolumeScene, IntervalsOfOverlappingPrimitives) {
   const VolumeScene scene(
       {fog_sphere({0, 0, 5}, 1.0f), fog_sphere({0, 0, 5.5f}, 1.0f), fog_sphere({3, 0, 5}, 1.0f)});
-  IntervalScratch scratch;
+  VolumeContext scratch;
   scene.intervals({{0, 0, 0}, {0, 0, 1}}, scratch);
   auto v = scratch.intervals;
   std::sort(v.begin(), v.end(), [](auto a, auto b) { return a.primitive < b.primitive; });
@@ -61,14 +61,15 @@ TEST(VolumeScene, IntervalsOfOverlappingPrimitives) {
 TEST(VolumeShader, DensityScalesCoefficientsAndFalloffPeaksAtTheCentre) {
   VolumePrimitive p = fog_sphere({0, 0, 0}, 2.0f);
   p.shader.density = 3.0f;
-  EXPECT_FLOAT_EQ(shade_volume(p, {0.5f, 0, 0}).sigma_s.g, 1.5f);
+  VolumeContext ctx;
+  EXPECT_FLOAT_EQ(shade_volume(p, {0.5f, 0, 0}, ctx).sigma_s.g, 1.5f);
   EXPECT_TRUE(is_homogeneous(p.shader));
   p.shader.field = RadialFalloffDensity{2.0f};
   EXPECT_FALSE(is_homogeneous(p.shader));
-  EXPECT_FLOAT_EQ(shade_volume(p, {0, 0, 0}).sigma_s.g, 1.5f);
+  EXPECT_FLOAT_EQ(shade_volume(p, {0, 0, 0}, ctx).sigma_s.g, 1.5f);
   // r = 1 of radius 2: (1 - 0.25)^2.
-  EXPECT_NEAR(shade_volume(p, {1, 0, 0}).sigma_a.r, 0.3f * 0.5625f, 1e-6f);
-  EXPECT_FLOAT_EQ(shade_volume(p, {0, 2.1f, 0}).sigma_a.r, 0.0f);
+  EXPECT_NEAR(shade_volume(p, {1, 0, 0}, ctx).sigma_a.r, 0.3f * 0.5625f, 1e-6f);
+  EXPECT_FLOAT_EQ(shade_volume(p, {0, 2.1f, 0}, ctx).sigma_a.r, 0.0f);
   EXPECT_FLOAT_EQ(max_sigma_t(p).r, 1.8f);
 }
 
@@ -86,7 +87,7 @@ TEST(VolumeScene, BvhAndLinearScanAgree) {
         {SphereVolumeShape{Sphere::make({float(i % 7) - 3.0f, float(i / 7) - 3.0f, 5.0f}, 0.6f, {})},
          {RGB(0.1f), RGB(0.1f)}});
   const VolumeScene bvh(many);
-  IntervalScratch scratch;
+  VolumeContext scratch;
   for (int r = 0; r < 100; ++r) {
     const Ray ray{{0, 0, 0},
                   normalize(Vec3(float(r % 10) * 0.07f - 0.3f, float(r / 10) * 0.07f - 0.3f, 1.0f))};
@@ -95,8 +96,8 @@ TEST(VolumeScene, BvhAndLinearScanAgree) {
     std::sort(found.begin(), found.end(), [](auto a, auto b) { return a.primitive < b.primitive; });
     std::vector<VolumeInterval> expected;
     for (uint32_t i = 0; i < many.size(); ++i)
-      if (const auto range = volume_interval(many[i].shape, ray))
-        expected.push_back({range->first, range->second, i});
+      if (const auto range = volume_hull_interval(many[i].shape, ray))
+        expected.push_back({range->first, range->second, i, max_sigma_t(many[i]), true});
     ASSERT_EQ(found.size(), expected.size()) << "ray " << r;
     for (size_t k = 0; k < found.size(); ++k) {
       EXPECT_EQ(found[k].primitive, expected[k].primitive);

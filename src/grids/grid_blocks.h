@@ -1,0 +1,75 @@
+// The two-level block structure over a grid set (the seed's "two level structure to minimize
+// marching through empty space"): level 1 is 8^3-voxel blocks (NanoVDB leaves), level 2 their
+// parents of 8^3 blocks (64^3 voxels). Parents are a dense array over the occupied bounding
+// box; each occupied parent owns a dense 8^3 array of block records.
+//
+// Index-space convention (voxel centres at integer coordinates): block b covers the region
+// [8b, 8b + 8) on each axis. Trilinear and nearest lookups at any point of that region read only
+// voxels 8b .. 8b + 8 inclusive (the block's own 8^3 voxels plus the first voxel layer of its
+// +x/+y/+z neighbours): that closed 9^3 set is the block's *footprint*. A block's record is
+// computed over its footprint, so
+//   - majorant >= every filtered density at any point of the region (a convex combination of
+//     footprint voxels), including the background where the footprint leaves the tree;
+//   - constant means every channel's footprint voxels are equal, so the filtered value of every
+//     channel is exactly constant over the region;
+//   - occupied means some footprint voxel of density, temperature or flame is non-zero.
+// A consequence used by the traversal: two blocks whose regions touch (face, edge or corner)
+// have overlapping footprints, so two touching constant blocks hold the same values.
+// Immutable after build; thread-safe to read.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace caligo {
+
+inline constexpr int kBlockVoxels = 8;   // voxels per block edge (a NanoVDB leaf)
+inline constexpr int kParentBlocks = 8;  // blocks per parent edge
+inline constexpr int kParentVoxels = kBlockVoxels * kParentBlocks;
+
+struct BlockRecord {
+  bool occupied = false;
+  bool constant = false;
+  float majorant = 0.0f;  // of the filtered density over the block's region; 0 when empty
+};
+
+// The 512 block records of one occupied parent. A negative majorant marks an empty block.
+struct ParentCell {
+  std::array<float, 512> majorant;
+  std::array<uint64_t, 8> constant_bits;
+
+  static int local_index(int bx, int by, int bz) { return (bx & 7) | ((by & 7) << 3) | ((bz & 7) << 6); }
+  bool occupied(int i) const { return majorant[i] >= 0.0f; }
+  bool constant(int i) const { return (constant_bits[i >> 6] >> (i & 63)) & 1u; }
+};
+
+struct GridBlocks {
+  // Occupied blocks' bounding box in block coordinates, inclusive; empty when lo > hi.
+  std::array<int32_t, 3> block_lo{0, 0, 0}, block_hi{-1, -1, -1};
+  // The dense parent array: parent p (in parent coordinates) is at index
+  // (p - parent_lo) flattened x-fastest; entries are indices into `parents` or -1.
+  std::array<int32_t, 3> parent_lo{0, 0, 0}, parent_dims{0, 0, 0};
+  std::vector<int32_t> parent_index;
+  std::vector<ParentCell> parents;
+
+  uint64_t occupied_blocks = 0;
+  uint64_t constant_blocks = 0;
+  float max_majorant = 0.0f;
+
+  bool empty() const { return occupied_blocks == 0; }
+  size_t memory_bytes() const {
+    return sizeof(GridBlocks) + parent_index.capacity() * sizeof(int32_t) +
+           parents.capacity() * sizeof(ParentCell);
+  }
+  // The parent cell at parent coordinates (px, py, pz), or nullptr when it is empty or outside.
+  const ParentCell* parent(int32_t px, int32_t py, int32_t pz) const;
+  // The record of block (bx, by, bz) in block coordinates (an empty record outside).
+  BlockRecord block(int32_t bx, int32_t by, int32_t bz) const;
+};
+
+// Floor division by a power of two that is also right for negative coordinates.
+inline int32_t floor_div(int32_t v, int32_t d) { return v >= 0 ? v / d : -((-v + d - 1) / d); }
+
+}  // namespace caligo

@@ -1,0 +1,125 @@
+#include "grids/grid_traversal.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace caligo {
+namespace {
+
+// Visits the unit cells [0, n)^3 crossed by x(t) = o + t d over [ta, tb], in order, with the
+// t range inside each; the ranges tile [ta, tb] exactly (the last cell ends at tb even when
+// rounding puts the final crossing a hair early). `visit(cell, t_enter, t_exit)`.
+template <class Visit>
+void dda(Vec3 o, Vec3 d, float ta, float tb, const int n[3], Visit&& visit) {
+  int cell[3], step[3];
+  float next[3], inv[3];
+  for (int a = 0; a < 3; ++a) {
+    const float p = o[a] + d[a] * ta;
+    cell[a] = int(std::floor(std::clamp(p, 0.0f, float(n[a]) - 0.5f)));
+    step[a] = d[a] > 0.0f ? 1 : (d[a] < 0.0f ? -1 : 0);
+    inv[a] = step[a] != 0 ? 1.0f / d[a] : 0.0f;
+    next[a] = step[a] != 0 ? (float(cell[a] + (step[a] > 0)) - o[a]) * inv[a] : kInfinity;
+  }
+  float t = ta;
+  for (;;) {
+    const int axis = next[0] < next[1] ? (next[0] < next[2] ? 0 : 2) : (next[1] < next[2] ? 1 : 2);
+    const int moved = cell[axis] + step[axis];
+    const bool last = !(next[axis] < tb) || moved < 0 || moved >= n[axis];
+    const float t_exit = last ? tb : std::max(next[axis], t);
+    visit(cell, t, t_exit);
+    if (last) return;
+    cell[axis] = moved;
+    next[axis] = (float(moved + (step[axis] > 0)) - o[axis]) * inv[axis];
+    t = t_exit;
+  }
+}
+
+// Builds the merged interval list of one call.
+class IntervalMerger {
+ public:
+  IntervalMerger(std::vector<GridInterval>& out, float tolerance) : out_(out), scale_(1.0f + tolerance) {}
+
+  void add(float t0, float t1, float majorant, bool constant) {
+    if (!(t1 > t0)) return;  // zero-length crossings (grazed edges and corners) add nothing
+    if (open_ && out_.back().t1 == t0) {
+      GridInterval& last = out_.back();
+      if (constant && last.constant && majorant == last.density_max) {
+        last.t1 = t1;
+        return;
+      }
+      const float hi = std::max(last.density_max, majorant), lo = std::min(open_min_, majorant);
+      if (!constant && !last.constant && hi <= lo * scale_) {
+        last.t1 = t1;
+        last.density_max = hi;
+        open_min_ = lo;
+        return;
+      }
+    }
+    out_.push_back({t0, t1, majorant, constant});
+    open_ = true;
+    open_min_ = majorant;
+  }
+
+ private:
+  std::vector<GridInterval>& out_;
+  float scale_;
+  bool open_ = false;  // whether out_.back() was made by this merger
+  float open_min_ = 0.0f;
+};
+
+}  // namespace
+
+bool clip_to_box(Vec3 origin, Vec3 direction, Vec3 lo, Vec3 hi, float& t0, float& t1) {
+  for (int a = 0; a < 3; ++a) {
+    if (direction[a] == 0.0f) {
+      if (!(origin[a] >= lo[a] && origin[a] <= hi[a])) return false;
+      continue;
+    }
+    const float inv = 1.0f / direction[a];
+    float tn = (lo[a] - origin[a]) * inv, tf = (hi[a] - origin[a]) * inv;
+    if (tn > tf) std::swap(tn, tf);
+    t0 = std::max(t0, tn);
+    t1 = std::min(t1, tf);
+  }
+  return t0 < t1;
+}
+
+void block_intervals(const GridBlocks& blocks, Vec3 origin, Vec3 direction, float t0, float t1,
+                     float merge_tolerance, std::vector<GridInterval>& out) {
+  if (blocks.empty() || !is_finite(origin) || !is_finite(direction) || length_squared(direction) == 0.0f)
+    return;
+  if (!(t0 < t1)) return;  // also rejects NaN bounds
+  const Vec3 box_lo(float(blocks.block_lo[0] * kBlockVoxels), float(blocks.block_lo[1] * kBlockVoxels),
+                    float(blocks.block_lo[2] * kBlockVoxels));
+  const Vec3 box_hi(float((blocks.block_hi[0] + 1) * kBlockVoxels),
+                    float((blocks.block_hi[1] + 1) * kBlockVoxels),
+                    float((blocks.block_hi[2] + 1) * kBlockVoxels));
+  if (!clip_to_box(origin, direction, box_lo, box_hi, t0, t1)) return;
+
+  IntervalMerger merger(out, merge_tolerance);
+  const Vec3 parent_origin(float(blocks.parent_lo[0] * kParentVoxels),
+                           float(blocks.parent_lo[1] * kParentVoxels),
+                           float(blocks.parent_lo[2] * kParentVoxels));
+  // Parent-level coordinates: one unit per parent, relative to the parent array's corner.
+  const Vec3 po = (origin - parent_origin) / float(kParentVoxels);
+  const Vec3 pd = direction / float(kParentVoxels);
+  const Vec3 bd = direction / float(kBlockVoxels);
+  const int parent_n[3] = {blocks.parent_dims[0], blocks.parent_dims[1], blocks.parent_dims[2]};
+  const int block_n[3] = {kParentBlocks, kParentBlocks, kParentBlocks};
+  dda(po, pd, t0, t1, parent_n, [&](const int* p, float ta, float tb) {
+    if (!(tb > ta)) return;
+    const size_t flat = size_t(p[0] + int64_t(parent_n[0]) * (p[1] + int64_t(parent_n[1]) * p[2]));
+    const int32_t index = blocks.parent_index[flat];
+    if (index < 0) return;  // an empty parent: 64^3 voxels skipped in one step
+    const ParentCell& cell = blocks.parents[size_t(index)];
+    // Block-level coordinates local to this parent: one unit per block.
+    const Vec3 corner = parent_origin + Vec3(float(p[0]), float(p[1]), float(p[2])) * float(kParentVoxels);
+    const Vec3 bo = (origin - corner) / float(kBlockVoxels);
+    dda(bo, bd, ta, tb, block_n, [&](const int* b, float tc, float td) {
+      const int i = ParentCell::local_index(b[0], b[1], b[2]);
+      if (cell.occupied(i)) merger.add(tc, td, cell.majorant[i], cell.constant(i));
+    });
+  });
+}
+
+}  // namespace caligo

@@ -1,0 +1,125 @@
+// Sparse-grid volumes through the whole spine: majorant intervals, marching with constant
+// blocks in one step, the reference ladder's delta tracking with interval majorants.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <nanovdb/util/GridBuilder.h>
+
+#include "grids/volume_grid_build.h"
+#include "integrators/reference.h"
+#include "raymarch/march.h"
+#include "render/render.h"
+
+namespace caligo {
+namespace {
+
+// A float grid named "density" with voxel centres at origin + voxel * (i, j, k).
+template <typename Fn>
+std::shared_ptr<const VolumeGrid> make_grid(Fn&& density, int n, float voxel, Vec3 origin) {
+  nanovdb::GridBuilder<float> builder(0.0f);
+  builder([&](const nanovdb::Coord& ijk) { return density(ijk[0], ijk[1], ijk[2]); },
+          nanovdb::CoordBBox(nanovdb::Coord(0), nanovdb::Coord(n - 1)));
+  NanoGrids grids{builder.getHandle<>(voxel, nanovdb::Vec3d(origin.x, origin.y, origin.z), "density"), {}, {}, {}};
+  return make_volume_grid(std::move(grids), {"test", ""});
+}
+
+VolumePrimitive grid_primitive(std::shared_ptr<const VolumeGrid> grid, RGB sigma_a, RGB sigma_s,
+                               GridFilter filter = GridFilter::kTrilinear) {
+  const Bounds3 b = grid->world_bounds();
+  VolumePrimitive v{BoxVolumeShape{Transform(), b.lo, b.hi}, {sigma_a, sigma_s}};
+  v.shader.field = GridDensity{std::move(grid), Transform(), filter};
+  return v;
+}
+
+// A 32^3 block of density 0.5 (voxel 0.1 m): along a line through its middle the trilinear
+// field ramps up over one voxel, is flat for 31 and ramps down over one, so the optical depth
+// is sigma_t * 0.1 * (0.5 * 31 + 2 * 0.25) = sigma_t * 1.6 (nearest: 0.5 over 32 voxels, the
+// same). The marcher takes the constant blocks in one step each and must reproduce it.
+TEST(GridVolume, TransmittanceThroughAConstantGridIsAnalytic) {
+  const auto grid = make_grid([](int, int, int) { return 0.5f; }, 32, 0.1f, Vec3(0.0f));
+  const RGB sigma_a(0.4f, 0.8f, 1.2f), sigma_s(0.6f);
+  for (const GridFilter filter : {GridFilter::kTrilinear, GridFilter::kNearest}) {
+    const VolumeScene volumes({grid_primitive(grid, sigma_a, sigma_s, filter)});
+    const Ray ray{{-1.0f, 1.55f, 1.45f}, {1, 0, 0}, 0.0f, kInfinity};
+    MarchScratch scratch;
+    // The ramps are marched with a jitter: their optical depth is exact in the mean over it.
+    double depth = 0;
+    const int jitters = 64;
+    for (int j = 0; j < jitters; ++j)
+      depth -= std::log(march_transmittance(volumes, ray, (float(j) + 0.5f) / jitters, {}, scratch).g);
+    EXPECT_NEAR(depth / jitters, 1.4 * 1.6, 1e-3) << "filter " << int(filter);
+    // The three constant blocks in the middle are one step: the record has the 8 + 8 voxel
+    // steps of the two end blocks (the footprint of the first reaches into the empty block
+    // before it) and one more, not a step per voxel crossed (34).
+    TransmittanceRecord record;
+    march(volumes, ray, 0.5f, {}, scratch, record);
+    EXPECT_LE(record.steps().size(), 17u);
+    // The record and the shadow-ray transmittance march the same steps.
+    EXPECT_NEAR(record.transmittance_end().b, march_transmittance(volumes, ray, 0.5f, {}, scratch).b, 1e-6f);
+  }
+}
+
+// The reference ladder's transmittance uses the intervals too: exact for the same grid
+// (midpoint steps over each interval; the trilinear ramps are linear, so midpoints are exact
+// once the steps are aligned with the ramp, which the interval ends ensure).
+TEST(GridVolume, ReferenceTransmittanceThroughAConstantGrid) {
+  const auto grid = make_grid([](int, int, int) { return 0.5f; }, 32, 0.1f, Vec3(0.0f));
+  SceneDesc desc;
+  desc.file = "test";
+  desc.camera = {{0, 0, 5}, {0, 0, 0}, {0, 1, 0}, 40.0f, {4, 4}};
+  desc.volumes.push_back(grid_primitive(grid, RGB(0.4f), RGB(0.6f), GridFilter::kNearest));
+  const auto scene = Scene::build(desc);
+  const RGB t = reference_transmittance(*scene, Ray{{-1.0f, 1.55f, 1.45f}, {1, 0, 0}}, kInfinity, 64);
+  EXPECT_NEAR(-std::log(t.r), 1.6, 1e-3);
+}
+
+// A cloud-like grid rendered by the production path tracer (decoupled marching, one voxel
+// steps, equiangular + density MIS) and by the ladder's delta tracking with the intervals'
+// majorants: all orders of scattering, both unbiased up to the march's jitter-averaged
+// quadrature, so their image means agree within the 1 %. Standard deviations of the
+// two means over seeds, measured at these sample counts: 0.07 % (production) and 0.19 %
+// (delta tracking) of the mean, so a 1 % difference is a bias, not noise.
+TEST(GridVolume, ProductionMarcherAgreesWithDeltaTrackingOnAGridCloud) {
+  const int n = 24;
+  const auto cloud = make_grid(
+      [&](int i, int j, int k) {
+        const float x = (float(i) - 11.5f) / 10.0f, y = (float(j) - 11.5f) / 8.0f, z = (float(k) - 11.5f) / 10.0f;
+        const float r2 = x * x + y * y + z * z;
+        // A lumpy ball: density from 0 to 1 with a ripple, exactly zero outside.
+        if (r2 >= 1.0f) return 0.0f;
+        return (1.0f - r2) * (0.75f + 0.25f * std::sin(3.0f * float(i)) * std::cos(2.0f * float(k)));
+      },
+      n, 0.1f, Vec3(-1.15f, -1.15f, -1.15f));
+  SceneDesc desc;
+  desc.file = "test";
+  desc.camera = {{0, 0.3f, 5}, {0, 0, 0}, {0, 1, 0}, 30.0f, {8, 8}};
+  desc.render.max_depth = 16;
+  desc.volumes.push_back(grid_primitive(cloud, RGB(0.4f), RGB(3.6f)));
+  desc.volumes.back().shader.phase = HenyeyGreensteinPhase{0.5f};
+  desc.lights.push_back(DirectionalLight{normalize(Vec3(-0.5f, -0.7f, -0.4f)), RGB(3.0f)});
+  desc.lights.push_back(EnvironmentLight{RGB(0.2f, 0.3f, 0.5f)});
+  const auto scene = Scene::build(desc);
+
+  RenderSettings s = default_settings(desc);
+  s.spp = 2048;
+  s.max_depth = 16;
+  s.max_volume_bounces = 16;
+  const Image production = render(*scene, s).image;
+  double produced = 0;
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) produced += production.rgb(x, y, 0).average();
+  produced /= 64.0;
+
+  ReferenceOptions options;
+  options.samples_per_pixel = 2048;
+  options.max_bounces = 16;
+  options.max_surface_bounces = 16;
+  options.seed = 11;
+  const RGB reference = reference_mean_radiance(*scene, {8, 8}, options);
+  EXPECT_GT(reference.average(), 0.05f);
+  EXPECT_NEAR(produced, reference.average(), 0.01 * reference.average());
+}
+
+}  // namespace
+}  // namespace caligo
