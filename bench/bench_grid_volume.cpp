@@ -35,6 +35,7 @@ void BM_CloudSkipping(benchmark::State& state) {
   s.march.constant_blocks_one_step = state.range(1) != 0;
   RenderStats stats;
   for (auto _ : state) stats = render(scene, s).stats;
+  state.counters["camera_evals/path"] = double(stats.camera_march_steps) / double(stats.paths);
   state.counters["shader_evals/path"] = double(stats.shader_evaluations) / double(stats.paths);
   state.counters["steps/path"] = double(stats.march_steps) / double(stats.paths);
 }

@@ -145,7 +145,7 @@ constexpr const char* kOverlap = R"json({
 // (albedo 0.99, optical depth ~30 through the middle) whose look is multiple scattering, so
 // paths may scatter hundreds of times. The grid is generated when the scene is loaded.
 constexpr const char* kCloud = R"json({
-  "camera": {"position": [0, 1.2, 9.5], "look_at": [0, 1.9, 0], "fov": 40, "resolution": [480, 270]},
+  "camera": {"position": [0, 1.0, 5.2], "look_at": [0, 1.35, 0], "fov": 40, "resolution": [480, 270]},
   "render": {"spp": 64, "max_depth": 64, "max_volume_bounces": 512},
   "media": {"cloud": {"albedo": 0.99, "extinction": 12, "phase": {"type": "hg", "g": 0.7}}},
   "volumes": [{"type": "vdb", "generate": {"kind": "cloud", "resolution": 128, "seed": 7}, "medium": "cloud"}],

@@ -88,7 +88,7 @@ struct BoxShape {
 struct RectangleShape {
   Vec3 corner, edge1, edge2;  // normal = normalize(cross(edge1, edge2))
 };
-// A triangle mesh from a file: OBJ (tinyobjloader) or glTF 2.0 (.gltf/.glb, tinygltf).
+// A triangle mesh from a file: OBJ (tinyobjloader), glTF 2.0 (.gltf/.glb, tinygltf), PLY or COLLADA (assimp).
 struct MeshFileShape {
   std::string path;              // absolute, or relative to the working directory
   bool skip_degenerate = false;  // remove zero-area triangles instead of rejecting the file

@@ -194,8 +194,8 @@ MeshFileShape read_mesh(ObjectReader& r, const std::string& base_dir) {
   std::string ext = fs::path(file).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char ch) { return char(std::tolower(ch)); });
-  if (ext != ".obj" && ext != ".gltf" && ext != ".glb")
-    c.fail("expected a mesh file ending in .obj, .gltf or .glb, got " + c.describe());
+  if (ext != ".obj" && ext != ".gltf" && ext != ".glb" && ext != ".ply" && ext != ".dae")
+    c.fail("expected a mesh file ending in .obj, .gltf, .glb, .ply or .dae, got " + c.describe());
   return {resolve_path(file, base_dir), r.boolean_or("skip_degenerate", false)};
 }
 

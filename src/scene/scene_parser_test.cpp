@@ -450,9 +450,9 @@ const BadCase kBadCases[] = {
      "/shapes/0/transform/0/rotate", R"(missing required key "axis" in a rotation)"},
     {"MeshExtension",
      [](OJson& s) {
-       s["shapes"][0] = {{"type", "mesh"}, {"file", "bunny.ply"}, {"material", "white"}};
+       s["shapes"][0] = {{"type", "mesh"}, {"file", "bunny.stl"}, {"material", "white"}};
      },
-     "/shapes/0/file", R"(expected a mesh file ending in .obj, .gltf or .glb, got "bunny.ply")"},
+     "/shapes/0/file", R"(expected a mesh file ending in .obj, .gltf, .glb, .ply or .dae, got "bunny.stl")"},
     {"SceneNotObject", [](OJson& s) { s = OJson::array(); }, "", "expected a scene (a JSON object), got []"},
 };
 
