@@ -12,7 +12,14 @@
 //     footprint voxels), including the background where the footprint leaves the tree;
 //   - constant means every channel's footprint voxels are equal, so the filtered value of every
 //     channel is exactly constant over the region;
-//   - occupied means some footprint voxel of density, temperature or flame is non-zero.
+//   - occupied means some footprint voxel of density, temperature or flame is non-zero;
+//   - the *tight box* bounds the part of the region where any of those channels' filtered
+//     values can be non-zero: if the non-zero footprint voxels span offsets [a_lo, a_hi] from the
+//     block origin on an axis (0..8), a trilinear lookup at x reads voxels floor(x) and
+//     floor(x) + 1, so it is non-zero only on (a_lo - 1, a_hi + 1) (nearest reads a subset),
+//     clamped to the region: [max(0, a_lo - 1), min(8, a_hi + 1)). It lets the traversal skip the
+//     empty part of the "shell" of blocks around data, which the footprint makes occupied
+//     although only their last voxel layer can be non-zero. Constant blocks have the full box.
 // A consequence used by the traversal: two blocks whose regions touch (face, edge or corner)
 // have overlapping footprints, so two touching constant blocks hold the same values.
 // Immutable after build; thread-safe to read.
@@ -25,20 +32,45 @@
 
 namespace caligo {
 
-inline constexpr int kBlockVoxels = 8;   // voxels per block edge (a NanoVDB leaf)
+inline constexpr int kBlockEdge = 8;     // voxels per block edge (a NanoVDB leaf)
 inline constexpr int kParentBlocks = 8;  // blocks per parent edge
-inline constexpr int kParentVoxels = kBlockVoxels * kParentBlocks;
+inline constexpr int kParentVoxels = kBlockEdge * kParentBlocks;
+
+// A block's tight box in voxel offsets from the block origin: [lo[a], hi[a]) with
+// 0 <= lo < hi <= 8. Packed into 18 bits (3 per bound: lo, hi - 1), x fastest, so a parent's
+// boxes cost 2 KiB rather than 3.
+struct TightBox {
+  std::array<uint8_t, 3> lo{0, 0, 0}, hi{kBlockEdge, kBlockEdge, kBlockEdge};
+
+  bool full() const { return pack() == TightBox{}.pack(); }
+  uint32_t pack() const {
+    uint32_t p = 0;
+    for (int a = 0; a < 3; ++a) p |= uint32_t(lo[a]) << (3 * a) | uint32_t(hi[a] - 1) << (9 + 3 * a);
+    return p;
+  }
+  static TightBox unpack(uint32_t p) {
+    TightBox b;
+    for (int a = 0; a < 3; ++a) {
+      b.lo[a] = uint8_t((p >> (3 * a)) & 7u);
+      b.hi[a] = uint8_t(((p >> (9 + 3 * a)) & 7u) + 1);
+    }
+    return b;
+  }
+};
+inline constexpr uint32_t kFullTightBox = 0777u << 9;  // lo = 0, hi - 1 = 7 on every axis
 
 struct BlockRecord {
   bool occupied = false;
   bool constant = false;
   float majorant = 0.0f;  // of the filtered density over the block's region; 0 when empty
+  TightBox box;           // the full region when empty or constant
 };
 
 // The 512 block records of one occupied parent. A negative majorant marks an empty block.
 struct ParentCell {
   std::array<float, 512> majorant;
   std::array<uint64_t, 8> constant_bits;
+  std::array<uint32_t, 512> tight_box;  // TightBox::pack(); kFullTightBox for empty blocks
 
   static int local_index(int bx, int by, int bz) { return (bx & 7) | ((by & 7) << 3) | ((bz & 7) << 6); }
   bool occupied(int i) const { return majorant[i] >= 0.0f; }

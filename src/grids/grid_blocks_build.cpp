@@ -45,24 +45,59 @@ void add(Range<T>& r, const T& v) {
   }
 }
 
-// The range of a channel over the footprint of the block with voxel origin `o`.
+// Per axis, the offsets from the block origin (0..8) spanned by the footprint's non-zero voxels.
+struct Span {
+  int lo[3] = {kBlockEdge + 1, kBlockEdge + 1, kBlockEdge + 1}, hi[3] = {-1, -1, -1};
+
+  void add(int x0, int x1, int y0, int y1, int z0, int z1) {
+    const int l[3] = {x0, y0, z0}, h[3] = {x1, y1, z1};
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], l[a]);
+      hi[a] = std::max(hi[a], h[a]);
+    }
+  }
+  bool any() const { return hi[0] >= 0; }
+  // The tight box (grids/grid_blocks.h): a trilinear lookup is non-zero only within one voxel of
+  // a non-zero voxel.
+  TightBox box() const {
+    TightBox b;
+    for (int a = 0; a < 3; ++a) {
+      b.lo[a] = uint8_t(std::max(0, lo[a] - 1));
+      b.hi[a] = uint8_t(std::min(kBlockEdge, hi[a] + 1));
+    }
+    return b;
+  }
+};
+
+inline bool is_nonzero(float v) { return v != 0.0f; }
+inline bool is_nonzero(const nanovdb::Vec3f&) { return false; }  // colour does not occupy blocks
+
+// The range of a channel over the footprint of the block with voxel origin `o`; when `span` is
+// given, also the extent of its non-zero voxels.
 template <class T>
-Range<T> footprint_range(const nanovdb::DefaultReadAccessor<T>& acc, Coord o) {
+Range<T> footprint_range(const nanovdb::DefaultReadAccessor<T>& acc, Coord o, Span* span = nullptr) {
   Range<T> r;
   for (int dz = 0; dz < 2; ++dz) {
     for (int dy = 0; dy < 2; ++dy) {
       for (int dx = 0; dx < 2; ++dx) {
-        const Coord q = o.offsetBy(dx * kBlockVoxels, dy * kBlockVoxels, dz * kBlockVoxels);
+        const Coord q = o.offsetBy(dx * kBlockEdge, dy * kBlockEdge, dz * kBlockEdge);
+        // Only the neighbour's first layer lies in the footprint along each axis we stepped.
+        const int nx = dx ? 1 : kBlockEdge, ny = dy ? 1 : kBlockEdge, nz = dz ? 1 : kBlockEdge;
+        const int ox = dx * kBlockEdge, oy = dy * kBlockEdge, oz = dz * kBlockEdge;
         const auto* leaf = acc.probeLeaf(q);
         if (!leaf) {
-          add(r, acc.getValue(q));  // a tile or the background: constant over the whole block
+          const T v = acc.getValue(q);  // a tile or the background: constant over the whole block
+          add(r, v);
+          if (span && is_nonzero(v)) span->add(ox, ox + nx - 1, oy, oy + ny - 1, oz, oz + nz - 1);
           continue;
         }
-        // Only the neighbour's first layer lies in the footprint along each axis we stepped.
-        const int nx = dx ? 1 : kBlockVoxels, ny = dy ? 1 : kBlockVoxels, nz = dz ? 1 : kBlockVoxels;
         for (int x = 0; x < nx; ++x)
           for (int y = 0; y < ny; ++y)
-            for (int z = 0; z < nz; ++z) add(r, leaf->getValue(uint32_t((x << 6) | (y << 3) | z)));
+            for (int z = 0; z < nz; ++z) {
+              const T v = leaf->getValue(uint32_t((x << 6) | (y << 3) | z));
+              add(r, v);
+              if (span && is_nonzero(v)) span->add(ox + x, ox + x, oy + y, oy + y, oz + z, oz + z);
+            }
       }
     }
   }
@@ -81,7 +116,7 @@ struct BlockRange {
 void add_source(std::vector<BlockRange>& out, const Coord& voxel_origin, int64_t size_blocks) {
   BlockRange r;
   for (int a = 0; a < 3; ++a) {
-    const int64_t b = floor_div(voxel_origin[a], kBlockVoxels);
+    const int64_t b = floor_div(voxel_origin[a], kBlockEdge);
     r.lo[a] = b - 1;
     r.hi[a] = b + size_blocks - 1;
   }
@@ -93,7 +128,7 @@ void collect_sources(const nanovdb::FloatGrid& grid, std::vector<BlockRange>& ou
   walk_tree(
       grid, [&](const auto&, Coord origin) { add_source(out, origin, 1); },
       [&](float value, bool, Coord origin, uint32_t dim) {
-        if (value != 0.0f) add_source(out, origin, dim / kBlockVoxels);
+        if (value != 0.0f) add_source(out, origin, dim / kBlockEdge);
       });
 }
 
@@ -149,17 +184,19 @@ struct Accessors {
 bool fill_parent(const ParentKey& p, Accessors& acc, ParentCell& cell) {
   cell.majorant.fill(-1.0f);
   cell.constant_bits.fill(0);
+  cell.tight_box.fill(kFullTightBox);
   bool any = false;
   for (int bz = 0; bz < kParentBlocks; ++bz) {
     for (int by = 0; by < kParentBlocks; ++by) {
       for (int bx = 0; bx < kParentBlocks; ++bx) {
-        const Coord o((p[0] * kParentBlocks + bx) * kBlockVoxels, (p[1] * kParentBlocks + by) * kBlockVoxels,
-                      (p[2] * kParentBlocks + bz) * kBlockVoxels);
-        const Range<float> density = footprint_range(acc.density, o);
+        const Coord o((p[0] * kParentBlocks + bx) * kBlockEdge, (p[1] * kParentBlocks + by) * kBlockEdge,
+                      (p[2] * kParentBlocks + bz) * kBlockEdge);
+        Span span;
+        const Range<float> density = footprint_range(acc.density, o, &span);
         bool occupied = nonzero(density), constant = density.lo == density.hi;
         for (auto* channel : {&acc.temperature, &acc.flame}) {
           if (!*channel) continue;
-          const Range<float> r = footprint_range(**channel, o);
+          const Range<float> r = footprint_range(**channel, o, &span);
           occupied = occupied || nonzero(r);
           constant = constant && r.lo == r.hi;
         }
@@ -170,7 +207,9 @@ bool fill_parent(const ParentKey& p, Accessors& acc, ParentCell& cell) {
         }
         const int i = ParentCell::local_index(bx, by, bz);
         cell.majorant[i] = density.hi;
+        // A constant occupied block has a non-zero channel everywhere: its span is full.
         if (constant) cell.constant_bits[i >> 6] |= uint64_t(1) << (i & 63);
+        cell.tight_box[i] = span.box().pack();
         any = true;
       }
     }

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <vector>
 
 #include "grids/grid_accessor_cache.h"
@@ -106,12 +107,35 @@ TEST(GridBlocks, EmissionAloneOccupiesBlocks) {
   std::vector<GridInterval> iv;
   grid->intervals({Vec3(0.0f, 4.0f, 4.0f), Vec3(1.0f, 0.0f, 0.0f)}, 0.0f, 100.0f, iv);
   ASSERT_EQ(iv.size(), 1u);
-  EXPECT_EQ(iv[0].t0, 32.0f);
+  EXPECT_EQ(iv[0].t0, 39.0f);  // block 4 clipped to its tight box, x in [39, 40)
   EXPECT_EQ(iv[0].t1, 48.0f);
   EXPECT_EQ(iv[0].density_max, 0.0f);
   GridAccessorCache cache;
   EXPECT_EQ(grid->values(Vec3(44.0f, 4.0f, 4.0f), GridFilter::kNearest, cache).flame, 3.0f);
   EXPECT_FLOAT_EQ(grid->values(Vec3(39.5f, 4.0f, 4.0f), GridFilter::kTrilinear, cache).flame, 1.5f);
+}
+
+// The shell of blocks around the cube reads it only through its last voxel layer on the axes
+// where it lies outside; other blocks keep the full region.
+TEST(GridBlocks, ShellBlocksHaveOneLayerTightBoxes) {
+  const auto grid = make_volume_grid({cube_grid()}, {});
+  const GridBlocks& blocks = grid->data().blocks;
+  using A = std::array<uint8_t, 3>;
+  EXPECT_EQ(blocks.block(-1, 0, 1).box.lo, (A{7, 0, 0}));
+  EXPECT_EQ(blocks.block(-1, 0, 1).box.hi, (A{8, 8, 8}));
+  EXPECT_EQ(blocks.block(-1, -1, -1).box.lo, (A{7, 7, 7}));
+  EXPECT_EQ(blocks.block(-1, -1, -1).box.hi, (A{8, 8, 8}));
+  EXPECT_EQ(blocks.block(2, -1, 0).box.lo, (A{0, 7, 0}));  // voxels 16..23 of x: offsets 0..7
+  EXPECT_EQ(blocks.block(2, -1, 0).box.hi, (A{8, 8, 8}));
+  EXPECT_TRUE(blocks.block(2, 0, 0).box.full());  // non-constant, but data reaches every voxel
+  EXPECT_TRUE(blocks.block(1, 1, 1).box.full());  // constant
+  // A ray through the corner shell block (-1, -1, -1) along its diagonal crosses the tight box
+  // [-1, 0)^3 only: t in [7, 8) for x = t - 8.
+  std::vector<GridInterval> iv;
+  grid->intervals({Vec3(-8.0f), Vec3(1.0f)}, 0.0f, 7.5f, iv);
+  ASSERT_EQ(iv.size(), 1u);
+  EXPECT_EQ(iv[0].t0, 7.0f);
+  EXPECT_EQ(iv[0].t1, 7.5f);
 }
 
 TEST(GridBlocks, AxisRayThroughConstantRegionGivesAnalyticIntervals) {
@@ -120,7 +144,7 @@ TEST(GridBlocks, AxisRayThroughConstantRegionGivesAnalyticIntervals) {
   // Index = world here (unit voxels at the origin); t = x + 10.
   grid->intervals({Vec3(-10.0f, 4.5f, 4.5f), Vec3(1.0f, 0.0f, 0.0f)}, 0.0f, 100.0f, iv, 0.25f);
   ASSERT_EQ(iv.size(), 3u);
-  EXPECT_EQ(iv[0].t0, 2.0f);  // block -1 reads voxel 0: [-8, 0)
+  EXPECT_EQ(iv[0].t0, 9.0f);  // block -1 reads voxel 0 only, in its last layer: [-1, 0)
   EXPECT_EQ(iv[0].t1, 10.0f);
   EXPECT_FALSE(iv[0].constant);
   EXPECT_EQ(iv[1].t0, 10.0f);  // blocks 0 and 1, constant, merged: [0, 16)

@@ -30,6 +30,9 @@ float smooth_min(float a, float b, float k) {
 
 // |noise| <= 1.04; displacement bounds use this margin.
 constexpr float kNoiseBound = 1.1f;
+// Smaller values are set to 0 (inactive): far below anything visible, and they would only
+// enlarge the active set.
+constexpr float kDensityCutoff = 1e-3f;
 
 class CloudField {
  public:
@@ -56,6 +59,7 @@ class CloudField {
 
   static Bounds3 bounds() { return {Vec3(-2.0f, 0.0f, -2.0f), Vec3(2.0f, 2.5f, 2.0f)}; }
   static std::vector<std::string> names() { return {"density"}; }
+  static Values cutoffs() { return {kDensityCutoff, 0.0f, 0.0f}; }
 
   bool may_touch(Vec3 centre, float radius) const {
     return distance_bound(centre) <= radius + kDisplace * kNoiseBound;
@@ -103,6 +107,7 @@ class SmokeField {
 
   static Bounds3 bounds() { return {Vec3(-1.25f, 0.0f, -1.25f), Vec3(1.25f, 4.0f, 1.25f)}; }
   static std::vector<std::string> names() { return {"density"}; }
+  static Values cutoffs() { return {kDensityCutoff, 0.0f, 0.0f}; }
 
   bool may_touch(Vec3 centre, float radius) const {
     const float top = std::min(centre.y + radius, 4.0f);
@@ -143,6 +148,8 @@ class FireField {
 
   static Bounds3 bounds() { return {Vec3(-1.5f, 0.0f, -1.5f), Vec3(1.5f, 3.0f, 1.5f)}; }
   static std::vector<std::string> names() { return {"density", "temperature", "flame"}; }
+  // Below 300 K nothing glows visibly; the cut keeps such voxels out of the active set.
+  static Values cutoffs() { return {kDensityCutoff, 300.0f, kDensityCutoff}; }
 
   bool may_touch(Vec3 centre, float radius) const {
     // The upward stretch shortens distances by at most kStretch.
@@ -189,6 +196,7 @@ template <typename F>
 std::vector<SparseFloatGrid> sample_field(const F& field, int resolution) {
   const Bounds3 box = F::bounds();
   const std::vector<std::string> names = F::names();
+  const Values cutoffs = F::cutoffs();
   const Vec3 extent = box.diagonal();
   const float voxel = max_component(extent) / float(resolution);
   std::array<int, 3> dims{}, blocks{};
@@ -216,6 +224,7 @@ std::vector<SparseFloatGrid> sample_field(const F& field, int resolution) {
           const Vec3 p = origin + voxel * Vec3(float(o[0] + x), float(o[1] + y), float(o[2] + z));
           const Values v = field.evaluate(p);
           for (size_t c = 0; c < channels; ++c) {
+            if (v[c] < cutoffs[c]) continue;
             out[c].values[size_t(block_offset(x, y, z))] = v[c];
             any[c] = any[c] || v[c] != 0.0f;
           }

@@ -117,9 +117,11 @@ TEST_F(GridIo, DescribesVdbAndNvdbAlike) {
   for (const SparseBlock& b : cloud[0].blocks)
     for (float v : b.values)
       if (v != 0.0f) lo = std::min(lo, v), hi = std::max(hi, v);
+  std::vector<GridFileInfo> infos;
   for (const char* name : {"cloud.vdb", "cloud.nvdb"}) {
     write_grid_file(path(name), cloud);
     const GridFileInfo info = describe_grid_file(path(name));
+    infos.push_back(info);
     EXPECT_EQ(info.file_bytes, fs::file_size(path(name)));
     ASSERT_EQ(info.grids.size(), 1u) << name;
     const GridInfo& g = info.grids[0];
@@ -139,6 +141,13 @@ TEST_F(GridIo, DescribesVdbAndNvdbAlike) {
     const std::string table = format_grid_file_info(info);
     EXPECT_NE(table.find("density"), std::string::npos);
     EXPECT_NE(table.find(std::to_string(g.active_voxels)), std::string::npos);
+  }
+  // Both formats describe the same cells.
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_NEAR(infos[0].grids[0].world_bounds.lo[a], infos[1].grids[0].world_bounds.lo[a], 1e-5f);
+    EXPECT_NEAR(infos[0].grids[0].world_bounds.hi[a], infos[1].grids[0].world_bounds.hi[a], 1e-5f);
+    EXPECT_EQ(infos[0].grids[0].index_min[a], infos[1].grids[0].index_min[a]);
+    EXPECT_EQ(infos[0].grids[0].index_max[a], infos[1].grids[0].index_max[a]);
   }
   EXPECT_EQ(describe_grid_file(path("cloud.vdb")).format, "OpenVDB");
   EXPECT_EQ(describe_grid_file(path("cloud.nvdb")).format, "NanoVDB");

@@ -198,9 +198,11 @@ GridFileInfo describe_nvdb_file(const std::string& path) {
         g.index_min[a] = r.meta.indexBBox.min()[a];
         g.index_max[a] = r.meta.indexBBox.max()[a];
       }
+      // NanoVDB's world box spans voxel centres min..max + 1; OpenVDB's convention (and
+      // ours) is the voxels' cells, min - 1/2..max + 1/2 (exact for axis-aligned maps).
       for (int a = 0; a < 3; ++a) {
-        g.world_bounds.lo[a] = float(r.meta.worldBBox.min()[a]);
-        g.world_bounds.hi[a] = float(r.meta.worldBBox.max()[a]);
+        g.world_bounds.lo[a] = float(r.meta.worldBBox.min()[a] - 0.5 * r.meta.voxelSize[a]);
+        g.world_bounds.hi[a] = float(r.meta.worldBBox.max()[a] - 0.5 * r.meta.voxelSize[a]);
       }
     }
     if (r.meta.gridType == nanovdb::GridType::Float) {

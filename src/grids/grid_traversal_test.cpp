@@ -69,29 +69,42 @@ TEST(GridBlocks, RecordsMatchBruteForceFootprintScan) {
   const auto grid = random_sparse_grid(1);
   const VolumeGridData& data = grid->data();
   auto acc = data.density->getAccessor();
-  int occupied = 0, constant = 0;
+  int occupied = 0, constant = 0, tight = 0;
   for (int bz = -17; bz < 18; ++bz)
     for (int by = -17; by < 18; ++by)
       for (int bx = -17; bx < 18; ++bx) {
         float lo = kInfinity, hi = -kInfinity;
+        int span_lo[3] = {9, 9, 9}, span_hi[3] = {-1, -1, -1};  // of the non-zero voxels
         for (int i = 0; i <= 8; ++i)
           for (int j = 0; j <= 8; ++j)
             for (int k = 0; k <= 8; ++k) {
               const float v = acc.getValue(Coord(bx * 8 + i, by * 8 + j, bz * 8 + k));
               lo = std::min(lo, v);
               hi = std::max(hi, v);
+              if (v == 0.0f) continue;
+              const int offset[3] = {i, j, k};
+              for (int a = 0; a < 3; ++a) {
+                span_lo[a] = std::min(span_lo[a], offset[a]);
+                span_hi[a] = std::max(span_hi[a], offset[a]);
+              }
             }
         const BlockRecord r = data.blocks.block(bx, by, bz);
         ASSERT_EQ(r.occupied, hi > 0.0f) << bx << " " << by << " " << bz;
         if (!r.occupied) continue;
         EXPECT_EQ(r.majorant, hi);
         EXPECT_EQ(r.constant, lo == hi);
+        for (int a = 0; a < 3; ++a) {
+          ASSERT_EQ(r.box.lo[a], std::max(0, span_lo[a] - 1)) << bx << " " << by << " " << bz;
+          ASSERT_EQ(r.box.hi[a], std::min(8, span_hi[a] + 1)) << bx << " " << by << " " << bz;
+        }
+        tight += !r.box.full();
         occupied += 1;
         constant += r.constant;
       }
   EXPECT_EQ(uint64_t(occupied), grid->statistics().blocks);
   EXPECT_EQ(uint64_t(constant), grid->statistics().constant_blocks);
-  EXPECT_GE(constant, 8);  // the 3^3-block region alone has 8 constant blocks
+  EXPECT_GE(constant, 8);          // the 3^3-block region alone has 8 constant blocks
+  EXPECT_GE(tight, occupied / 4);  // the shells around the data at least
 }
 
 void expect_ordered(const std::vector<GridInterval>& iv, float t0, float t1) {
@@ -106,10 +119,11 @@ void expect_ordered(const std::vector<GridInterval>& iv, float t0, float t1) {
   }
 }
 
-// Samples the ray every 1/20 voxel and checks each sample against the intervals: occupied blocks
-// are covered by an interval whose majorant bounds the block's and the sampled density; empty
-// blocks are not covered and read zero; constant intervals read one value; merged majorants stay
-// within the tolerance.
+// Samples the ray every 1/20 voxel and checks each sample against the intervals: the tight boxes
+// of occupied blocks are covered by an interval whose majorant bounds the block's and the
+// sampled density; all else (empty blocks, occupied blocks outside their tight boxes) is not
+// covered and reads zero; constant intervals read one value; merged majorants stay within the
+// tolerance.
 void check_against_samples(const VolumeGrid& grid, const Ray& ray, float t0, float t1, float tolerance,
                            GridAccessorCache& cache) {
   std::vector<GridInterval> iv;
@@ -136,10 +150,18 @@ void check_against_samples(const VolumeGrid& grid, const Ray& ray, float t0, flo
     while (cursor < iv.size() && iv[cursor].t1 < t) ++cursor;
     const bool inside = cursor < iv.size() && iv[cursor].t0 <= t && t <= iv[cursor].t1;
     if (to_plane < 2e-3f) continue;  // a sample on a block face may round into either block
-    const BlockRecord r = grid.data().blocks.block(int(std::floor(x.x / 8)), int(std::floor(x.y / 8)),
-                                                   int(std::floor(x.z / 8)));
+    const int b[3] = {int(std::floor(x.x / 8)), int(std::floor(x.y / 8)), int(std::floor(x.z / 8))};
+    const BlockRecord r = grid.data().blocks.block(b[0], b[1], b[2]);
+    bool in_box = r.occupied, near_box_face = false;
+    for (int a = 0; a < 3; ++a) {
+      const float local = x[a] - 8.0f * float(b[a]);
+      in_box = in_box && local >= float(r.box.lo[a]) && local < float(r.box.hi[a]);
+      near_box_face = near_box_face || std::abs(local - float(r.box.lo[a])) < 2e-3f ||
+                      std::abs(local - float(r.box.hi[a])) < 2e-3f;
+    }
+    if (near_box_face) continue;  // likewise for a face of a tight box
     const float d = grid.density(ray.at(t), GridFilter::kTrilinear, cache);
-    ASSERT_EQ(inside, r.occupied) << "t " << t << " x " << x.x << " " << x.y << " " << x.z;
+    ASSERT_EQ(inside, in_box) << "t " << t << " x " << x.x << " " << x.y << " " << x.z;
     if (!inside) {
       ASSERT_EQ(d, 0.0f);
       continue;
@@ -251,6 +273,65 @@ TEST(GridTraversal, AppendsWithoutMergingIntoEarlierIntervals) {
   EXPECT_EQ(iv[0].t1, alone[0].t0);
   EXPECT_EQ(iv[0].density_max, 1e6f);
   EXPECT_EQ(iv[1].t0, alone[0].t0);
+}
+
+// One non-zero voxel at (16, 8, 3), on the shared layers of blocks x 1..2, y 0..1: the
+// trilinear density is non-zero only in the open box (15, 17) x (7, 9) x (2, 4), so the intervals
+// of any ray must lie within its chord of that box (whole blocks would give ~8 voxels or more).
+TEST(GridTraversal, SingleVoxelGivesIntervalsOfItsTrilinearSupport) {
+  const auto grid = make_volume_grid(
+      {testing::make_nano_grid<float>([](auto& acc) { acc.setValue(Coord(16, 8, 3), 1.0f); })}, {});
+  const GridBlocks& blocks = grid->data().blocks;
+  EXPECT_EQ(grid->statistics().blocks, 4u);
+  const BlockRecord low = blocks.block(1, 0, 0), high = blocks.block(2, 1, 0);
+  EXPECT_EQ(low.box.lo, (std::array<uint8_t, 3>{7, 7, 2}));
+  EXPECT_EQ(low.box.hi, (std::array<uint8_t, 3>{8, 8, 4}));
+  EXPECT_EQ(high.box.lo, (std::array<uint8_t, 3>{0, 0, 2}));
+  EXPECT_EQ(high.box.hi, (std::array<uint8_t, 3>{1, 1, 4}));
+
+  // Index = world here. Along x at y = 8.3, z = 3.2: blocks (1, 1, 0) and (2, 1, 0) clipped to
+  // x in [15, 16) and [16, 17), merged at the blocks' shared face.
+  std::vector<GridInterval> iv;
+  grid->intervals({Vec3(-10.0f, 8.3f, 3.2f), Vec3(1.0f, 0.0f, 0.0f)}, 0.0f, 100.0f, iv);
+  ASSERT_EQ(iv.size(), 1u);
+  EXPECT_EQ(iv[0].t0, 25.0f);
+  EXPECT_EQ(iv[0].t1, 27.0f);
+  EXPECT_EQ(iv[0].density_max, 1.0f);
+  // Along z at x = 15.5, y = 7.5 (block (1, 0, 0) only): z in [2, 4).
+  iv.clear();
+  grid->intervals({Vec3(15.5f, 7.5f, 10.0f), Vec3(0.0f, 0.0f, -2.0f)}, 0.0f, 100.0f, iv);
+  ASSERT_EQ(iv.size(), 1u);
+  EXPECT_EQ(iv[0].t0, 3.0f);
+  EXPECT_EQ(iv[0].t1, 4.0f);
+  // Outside the support on one axis (y = 9.5 is in block (2, 1, 0) but past its tight box).
+  iv.clear();
+  grid->intervals({Vec3(-10.0f, 9.5f, 3.2f), Vec3(1.0f, 0.0f, 0.0f)}, 0.0f, 100.0f, iv);
+  EXPECT_TRUE(iv.empty());
+
+  Pcg32 rng(9, 1);
+  GridAccessorCache cache;
+  const float chord_bound = 2.0f * std::sqrt(3.0f) + 1e-4f;
+  for (int n = 0; n < 2000; ++n) {
+    const Vec3 target(15.0f + 2.0f * rng.next_float(), 7.0f + 2.0f * rng.next_float(),
+                      2.0f + 2.0f * rng.next_float());
+    const Vec3 d = random_direction(rng);
+    const Ray ray{target - d * 50.0f, d};
+    iv.clear();
+    grid->intervals(ray, 0.0f, 100.0f, iv, 1e30f);
+    ASSERT_FALSE(iv.empty()) << n;  // the target itself reads a non-zero density
+    expect_ordered(iv, 0.0f, 100.0f);
+    float total = 0.0f;
+    for (const GridInterval& g : iv) total += g.t1 - g.t0;
+    ASSERT_LE(total, chord_bound) << n;
+    // Each endpoint lies on the support's closed box (up to rounding).
+    for (const GridInterval& g : iv)
+      for (float t : {g.t0, g.t1}) {
+        const Vec3 x = ray.at(t);
+        ASSERT_TRUE(x.x > 15.0f - 1e-3f && x.x < 17.0f + 1e-3f && x.y > 7.0f - 1e-3f && x.y < 9.0f + 1e-3f &&
+                    x.z > 2.0f - 1e-3f && x.z < 4.0f + 1e-3f)
+            << n;
+      }
+  }
 }
 
 }  // namespace

@@ -7,10 +7,13 @@
 
 #include <nanovdb/util/OpenToNanoVDB.h>
 
+#include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <mutex>
 #include <type_traits>
 
+#include "grids/crash_probe.h"
 #include "grids/grid_io_internal.h"
 #include "grids/openvdb_bridge.h"
 
@@ -35,6 +38,29 @@ auto guarded(const std::string& path, const SourceLocation& where, Body body) ->
   } catch (...) {
     throw_grid_file_error(path, where, "cannot read the OpenVDB file (corrupt or truncated?)");
   }
+}
+
+// OpenVDB has no checksums and corrupts memory on some corrupt files (see crash_probe.h), so
+// the grids are first read in a throw-away child process; a crash there is a located error
+// here. The probe costs a second read of the grids (the child's copy is never converted).
+void probe_vdb_read(const std::string& path, const SourceLocation& where, const std::vector<std::string>& names) {
+  std::error_code ec;
+  const auto megabytes = std::filesystem::file_size(path, ec) >> 20;
+  const auto timeout = std::chrono::milliseconds(30000 + 50 * int64_t(megabytes));
+  const ProbeResult result = probe_in_child(
+      [&] {
+        openvdb::io::File file(path);
+        file.open(/*delayLoad=*/false);
+        // Kept alive: the child exits without destructors (freeing a tree runs TBB).
+        static std::vector<openvdb::GridBase::Ptr> grids;
+        if (names.empty())
+          grids = *file.getGrids();
+        else
+          for (const std::string& name : names) grids.push_back(file.readGrid(name));
+      },
+      timeout);
+  if (result == ProbeResult::kCrashed)
+    throw_grid_file_error(path, where, "corrupt OpenVDB file (reading it crashes OpenVDB)");
 }
 
 struct OpenFile {
@@ -170,6 +196,10 @@ std::vector<NanoGridHandle> read_vdb_grids(const std::string& path, const std::v
                                            const SourceLocation& where) {
   initialize_openvdb();
   return guarded(path, where, [&] {
+    check_vdb_layout(path, where);
+    std::vector<std::string> names;
+    for (const GridRequest& r : requests) names.push_back(r.name);
+    probe_vdb_read(path, where, names);
     OpenFile f(path, where);
     std::vector<NanoGridHandle> handles;
     for (const GridRequest& r : requests) handles.push_back(read_one(f.file, r, path, where));
@@ -180,6 +210,8 @@ std::vector<NanoGridHandle> read_vdb_grids(const std::string& path, const std::v
 GridFileInfo describe_vdb_file(const std::string& path) {
   initialize_openvdb();
   return guarded(path, {}, [&] {
+    check_vdb_layout(path, {});
+    probe_vdb_read(path, {}, {});
     OpenFile f(path, {});
     GridFileInfo info;
     info.format = "OpenVDB";

@@ -132,7 +132,7 @@ Bounds3 index_box_to_world(const nanovdb::GridData& grid, const GridBlocks& bloc
   for (int corner = 0; corner < 8; ++corner) {
     nanovdb::Vec3d x;
     for (int a = 0; a < 3; ++a)
-      x[a] = double((corner >> a) & 1 ? (blocks.block_hi[a] + 1) : blocks.block_lo[a]) * kBlockVoxels;
+      x[a] = double((corner >> a) & 1 ? (blocks.block_hi[a] + 1) : blocks.block_lo[a]) * kBlockEdge;
     const nanovdb::Vec3d w = grid.applyMap(x);
     bounds.extend(Vec3(float(w[0]), float(w[1]), float(w[2])));
   }

@@ -81,7 +81,9 @@ void for_each_step(const VolumeScene& volumes, const Ray& ray, float jitter, con
       // Both ends from the same expression, so consecutive steps meet exactly.
       const float a = span.t0 + dt * float(i);
       const float b = i + 1 == n ? span.t1 : span.t0 + dt * float(i + 1);
-      const float t_shade = n == 1 ? 0.5f * (a + b) : a + jitter * (b - a);
+      // Jittered even when a span is one step (a block clipped to a voxel-thin tight box): a
+      // fixed midpoint would bias its optical depth; a homogeneous span reads one value anyway.
+      const float t_shade = span.homogeneous ? 0.5f * (a + b) : a + jitter * (b - a);
       ++scratch.steps;
       scratch.shader_evaluations += prims.size();
       if (!step(a, b, t_shade, prims, dir_length)) return;
