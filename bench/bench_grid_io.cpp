@@ -44,7 +44,8 @@ void BM_GenerateGrids(benchmark::State& state) {
   state.counters["density_active_voxels"] = double(active);
 }
 BENCHMARK(BM_GenerateGrids)
-    ->ArgsProduct({{int(GeneratedVolume::kCloud), int(GeneratedVolume::kSmoke), int(GeneratedVolume::kFire)}, {128}})
+    ->ArgsProduct({{int(GeneratedVolume::kCloud), int(GeneratedVolume::kSmoke), int(GeneratedVolume::kFire)},
+                   {128}})
     ->ArgNames({"kind", "res"})
     ->Unit(benchmark::kMillisecond);
 

@@ -3,6 +3,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -323,4 +324,63 @@ TEST_F(Cli, RealtimeReferencePerLight) {
   const RunResult e = run("realtime " + emissive.string() + " --frames 1 --reference-per-light --compare-reference");
   EXPECT_EQ(e.exit_code, 2);
   EXPECT_NE(e.err.find("--reference-per-light"), std::string::npos) << e.err;
+}
+
+// Files in the test directory whose names contain `part` (temporary files included).
+int count_files_containing(const fs::path& dir, const std::string& part) {
+  int n = 0;
+  for (const auto& e : fs::directory_iterator(dir)) n += e.path().filename().string().find(part) != std::string::npos;
+  return n;
+}
+
+TEST_F(Cli, GeneratesACloudAndDescribesIt) {
+  const fs::path vdb = dir_ / "cloud.vdb";
+  const RunResult g = run("generate cloud -o " + vdb.string() + " --res 32 --seed 3");
+  ASSERT_EQ(g.exit_code, 0) << g.err;
+  ASSERT_TRUE(fs::exists(vdb));
+  EXPECT_EQ(count_files_containing(dir_, "tmp"), 0);
+  // The generator's summary and `info` agree on the active voxel count.
+  const size_t at = g.out.find("density");
+  ASSERT_NE(at, std::string::npos) << g.out;
+  const std::string active = g.out.substr(at + 7, g.out.find("active", at) - at - 7);
+  const std::string count = active.substr(active.find_first_not_of(' '), active.find_last_not_of(' ') -
+                                                                              active.find_first_not_of(' ') + 1);
+  EXPECT_GT(std::stoll(count), 1000) << g.out;
+  const RunResult i = run("info " + vdb.string());
+  ASSERT_EQ(i.exit_code, 0) << i.err;
+  EXPECT_NE(i.out.find("OpenVDB"), std::string::npos) << i.out;
+  EXPECT_NE(i.out.find("density"), std::string::npos) << i.out;
+  EXPECT_NE(i.out.find(" " + count + " "), std::string::npos) << i.out << "\nexpected " << count;
+
+  const fs::path nvdb = dir_ / "fire.nvdb";
+  ASSERT_EQ(run("generate fire -q -o " + nvdb.string() + " --res 16").exit_code, 0);
+  const RunResult n = run("info " + nvdb.string());
+  ASSERT_EQ(n.exit_code, 0) << n.err;
+  EXPECT_NE(n.out.find("NanoVDB"), std::string::npos) << n.out;
+  EXPECT_NE(n.out.find("temperature"), std::string::npos) << n.out;
+  EXPECT_NE(n.out.find("flame"), std::string::npos) << n.out;
+}
+
+TEST_F(Cli, GridCommandsRejectBadInputAndWriteNothing) {
+  const RunResult missing = run("info " + (dir_ / "missing.vdb").string());
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("missing.vdb"), std::string::npos) << missing.err;
+  EXPECT_TRUE(missing.out.empty()) << missing.out;
+
+  const fs::path corrupt = write("corrupt.vdb", "this is not a grid file, only words");
+  const RunResult c = run("info " + corrupt.string());
+  EXPECT_EQ(c.exit_code, 2);
+  EXPECT_NE(c.err.find("corrupt.vdb"), std::string::npos) << c.err;
+  EXPECT_EQ(std::count(c.err.begin(), c.err.end(), '\n'), 1) << c.err;  // one line
+
+  for (const std::string args : {"generate cloud --res 7 -o ", "generate cloud --res 5000 -o ",
+                                 "generate cloud --res many -o ", "generate tornado -o "}) {
+    const RunResult r = run(args + (dir_ / "out.vdb").string());
+    EXPECT_EQ(r.exit_code, 2) << args;
+    EXPECT_FALSE(r.err.empty()) << args;
+  }
+  const RunResult ext = run("generate smoke -o " + (dir_ / "out.exr").string());
+  EXPECT_EQ(ext.exit_code, 2);
+  EXPECT_NE(ext.err.find("out.exr"), std::string::npos) << ext.err;
+  EXPECT_EQ(count_files_containing(dir_, "out.vdb") + count_files_containing(dir_, "out.exr"), 0);
 }

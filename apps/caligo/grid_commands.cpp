@@ -15,7 +15,8 @@
 namespace caligo {
 
 void add_generate_command(CLI::App& app, GenerateOptions& o) {
-  CLI::App* cmd = app.add_subcommand("generate", "Write a procedural volume (cloud, smoke, fire) as a grid file");
+  CLI::App* cmd =
+      app.add_subcommand("generate", "Write a procedural volume (cloud, smoke, fire) as a grid file");
   cmd->add_option("kind", o.kind, "cloud, smoke or fire")->required();
   cmd->add_option("-o,--output", o.output, "Output grid file (.vdb or .nvdb)")->required();
   cmd->add_option("--res", o.resolution, "Voxels along the longest edge (8..1024, default 128)");
@@ -26,7 +27,8 @@ void add_generate_command(CLI::App& app, GenerateOptions& o) {
 int run_generate(const GenerateOptions& o) {
   // Everything is checked before any work, so bad input writes nothing.
   const std::optional<GeneratedVolume> kind = parse_generated_volume(o.kind);
-  if (!kind) throw InputError(kCommandLine, "unknown volume \"" + o.kind + "\" (choose cloud, smoke or fire)");
+  if (!kind)
+    throw InputError(kCommandLine, "unknown volume \"" + o.kind + "\" (choose cloud, smoke or fire)");
   if (o.resolution < kMinGenerateResolution || o.resolution > kMaxGenerateResolution)
     throw InputError(kCommandLine, "--res must be in [" + std::to_string(kMinGenerateResolution) + ", " +
                                        std::to_string(kMaxGenerateResolution) + "], got " +
@@ -51,7 +53,8 @@ int run_generate(const GenerateOptions& o) {
     for (const SparseFloatGrid& g : grids)
       std::printf("  %-12s %10llu active voxels in %6zu blocks\n", g.name.c_str(),
                   static_cast<unsigned long long>(g.active_voxels()), g.blocks.size());
-    std::printf("generated in %.0f ms, written in %.0f ms (%llu bytes)\n", ms(start, generated), ms(generated, written),
+    std::printf("generated in %.0f ms, written in %.0f ms (%llu bytes)\n", ms(start, generated),
+                ms(generated, written),
                 static_cast<unsigned long long>(std::filesystem::file_size(o.output)));
   }
   return 0;

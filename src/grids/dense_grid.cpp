@@ -22,7 +22,8 @@ int blocks_along(int n) { return (n + kBlockDim - 1) / kBlockDim; }
 
 }  // namespace
 
-SparseFloatGrid dense_to_sparse(const std::vector<float>& values, const DenseGridLayout& layout, float zero_tolerance) {
+SparseFloatGrid dense_to_sparse(const std::vector<float>& values, const DenseGridLayout& layout,
+                                float zero_tolerance) {
   const std::array<int, 3>& d = layout.dims;
   const int bx = blocks_along(d[0]), by = blocks_along(d[1]), bz = blocks_along(d[2]);
   std::vector<std::optional<SparseBlock>> slots(size_t(bx) * by * bz);
@@ -51,7 +52,8 @@ SparseFloatGrid dense_to_sparse(const std::vector<float>& values, const DenseGri
   return grid;
 }
 
-SparseFloatGrid read_dense_file(const std::string& path, const DenseGridLayout& layout, const SourceLocation& where) {
+SparseFloatGrid read_dense_file(const std::string& path, const DenseGridLayout& layout,
+                                const SourceLocation& where) {
   const std::array<int, 3>& d = layout.dims;
   if (d[0] <= 0 || d[1] <= 0 || d[2] <= 0)
     throw_grid_file_error(path, where, "dense grid dimensions must be positive");
@@ -60,14 +62,15 @@ SparseFloatGrid read_dense_file(const std::string& path, const DenseGridLayout& 
   if (!(layout.voxel_size > 0.0f) || !std::isfinite(layout.voxel_size))
     throw_grid_file_error(path, where, "dense grid voxel size must be positive");
   std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw_grid_file_error(path, where, "no such dense grid file");
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw_grid_file_error(path, where, "no such dense grid file");
   const uint64_t expected = voxel_count(d) * sizeof(float);
   const uint64_t size = std::filesystem::file_size(path, ec);
   if (ec || size != expected)
     throw_grid_file_error(path, where,
-                          "dense grid file holds " + std::to_string(size) + " bytes; " + std::to_string(d[0]) + "x" +
-                              std::to_string(d[1]) + "x" + std::to_string(d[2]) + " float32 values need " +
-                              std::to_string(expected));
+                          "dense grid file holds " + std::to_string(size) + " bytes; " +
+                              std::to_string(d[0]) + "x" + std::to_string(d[1]) + "x" + std::to_string(d[2]) +
+                              " float32 values need " + std::to_string(expected));
   std::vector<float> values(voxel_count(d));
   std::ifstream in(path, std::ios::binary);
   if (!in.read(reinterpret_cast<char*>(values.data()), std::streamsize(expected)))
@@ -76,14 +79,16 @@ SparseFloatGrid read_dense_file(const std::string& path, const DenseGridLayout& 
   for (size_t n = 0; n < values.size(); ++n)
     if (!std::isfinite(values[n]))
       throw_grid_file_error(path, where,
-                            "dense grid holds a non-finite value at voxel (" + std::to_string(n % d[0]) + ", " +
-                                std::to_string(n / d[0] % d[1]) + ", " + std::to_string(n / (size_t(d[0]) * d[1])) + ")");
+                            "dense grid holds a non-finite value at voxel (" + std::to_string(n % d[0]) +
+                                ", " + std::to_string(n / d[0] % d[1]) + ", " +
+                                std::to_string(n / (size_t(d[0]) * d[1])) + ")");
   return dense_to_sparse(values, layout);
 }
 
 std::shared_ptr<const VolumeGrid> load_dense_grid(const std::string& path, const DenseGridLayout& layout,
                                                   const SourceLocation& where) {
-  NanoGrids grids{sparse_to_nanovdb(read_dense_file(path, layout, where)), std::nullopt, std::nullopt, std::nullopt};
+  NanoGrids grids{sparse_to_nanovdb(read_dense_file(path, layout, where)), std::nullopt, std::nullopt,
+                  std::nullopt};
   return make_volume_grid(std::move(grids), where);
 }
 

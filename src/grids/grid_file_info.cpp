@@ -46,14 +46,16 @@ std::string range(const GridInfo& g) {
 }  // namespace
 
 std::string format_grid_file_info(const GridFileInfo& info) {
-  std::string out = format("%s: %s, %zu grid%s, %s on disk\n", info.path.c_str(), info.format.c_str(),
-                           info.grids.size(), info.grids.size() == 1 ? "" : "s", bytes(info.file_bytes).c_str());
+  std::string out =
+      format("%s: %s, %zu grid%s, %s on disk\n", info.path.c_str(), info.format.c_str(), info.grids.size(),
+             info.grids.size() == 1 ? "" : "s", bytes(info.file_bytes).c_str());
   out += format("%-14s %-7s %-30s %-44s %-10s %13s %9s %7s %-22s %s\n", "name", "type", "index bounds",
                 "world bounds", "voxel", "active voxels", "blocks", "tiles", "value range", "memory");
   for (const GridInfo& g : info.grids)
     out += format("%-14s %-7s %-30s %-44s %-10s %13" PRIu64 " %9" PRIu64 " %7" PRIu64 " %-22s %s\n",
-                  g.name.c_str(), g.type.c_str(), index_box(g).c_str(), world_box(g).c_str(), voxel(g).c_str(),
-                  g.active_voxels, g.active_leaves, g.active_tiles, range(g).c_str(), bytes(g.memory_bytes).c_str());
+                  g.name.c_str(), g.type.c_str(), index_box(g).c_str(), world_box(g).c_str(),
+                  voxel(g).c_str(), g.active_voxels, g.active_leaves, g.active_tiles, range(g).c_str(),
+                  bytes(g.memory_bytes).c_str());
   return out;
 }
 

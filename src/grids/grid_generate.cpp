@@ -44,10 +44,12 @@ class CloudField {
     for (int i = 0; i < 5; ++i) {
       const float angle = phase + 2.0f * kPi * (float(i) + uniform(-0.2f, 0.2f)) / 5.0f;
       const float dist = uniform(0.6f, 0.95f);
-      balls_.push_back({Vec3(dist * std::cos(angle), uniform(0.8f, 1.05f), dist * std::sin(angle)), uniform(0.5f, 0.7f)});
+      balls_.push_back(
+          {Vec3(dist * std::cos(angle), uniform(0.8f, 1.05f), dist * std::sin(angle)), uniform(0.5f, 0.7f)});
     }
     for (int i = 0; i < 2; ++i)
-      balls_.push_back({Vec3(uniform(-0.4f, 0.4f), uniform(1.5f, 1.7f), uniform(-0.4f, 0.4f)), uniform(0.4f, 0.52f)});
+      balls_.push_back(
+          {Vec3(uniform(-0.4f, 0.4f), uniform(1.5f, 1.7f), uniform(-0.4f, 0.4f)), uniform(0.4f, 0.52f)});
     // Keep every ball, displaced, inside the box.
     const float margin = kDisplace * kNoiseBound + 0.05f;
     for (Ball& b : balls_) {
@@ -121,12 +123,14 @@ class SmokeField {
     const Vec3 w = p + kWarp * r * Vec3(warp_[0](q), warp_[1](q), warp_[2](q));
     const float rw = plume_radius(w.y);
     const float sway = kSway * std::min(1.0f, w.y / 2.0f);
-    const float ax = sway * sway_(Vec3(0.0f, w.y * 0.45f, 0.0f)), az = sway * sway_(Vec3(5.1f, w.y * 0.45f, 0.0f));
+    const float ax = sway * sway_(Vec3(0.0f, w.y * 0.45f, 0.0f)),
+                az = sway * sway_(Vec3(5.1f, w.y * 0.45f, 0.0f));
     const float radial = std::hypot(w.x - ax, w.z - az) / rw;
     if (radial >= 1.0f) return {};
     const float profile = sqr(1.0f - radial * radial);
     const float turbulence = 0.55f + 0.45f * turbulence_.fbm(p * 3.0f, 4);
-    const float height = smoothstep(0.0f, 0.25f, p.y) * (1.0f - smoothstep(2.6f, 3.9f, p.y)) * (1.0f - 0.4f * p.y / 4.0f);
+    const float height =
+        smoothstep(0.0f, 0.25f, p.y) * (1.0f - smoothstep(2.6f, 3.9f, p.y)) * (1.0f - 0.4f * p.y / 4.0f);
     return {saturate(1.2f * profile * turbulence * height), 0.0f, 0.0f};
   }
 
@@ -143,7 +147,9 @@ class SmokeField {
 class FireField {
  public:
   explicit FireField(uint64_t seed)
-      : shape_(hash_values(seed, 21)), heat_(hash_values(seed, 22)), burn_(hash_values(seed, 23)),
+      : shape_(hash_values(seed, 21)),
+        heat_(hash_values(seed, 22)),
+        burn_(hash_values(seed, 23)),
         soot_(hash_values(seed, 24)) {}
 
   static Bounds3 bounds() { return {Vec3(-1.5f, 0.0f, -1.5f), Vec3(1.5f, 3.0f, 1.5f)}; }
@@ -153,7 +159,8 @@ class FireField {
 
   bool may_touch(Vec3 centre, float radius) const {
     // The upward stretch shortens distances by at most kStretch.
-    const float s_lower = (kStretch * (distance(centre, kCentre) - radius) - kDisplace * kNoiseBound) / kRadius;
+    const float s_lower =
+        (kStretch * (distance(centre, kCentre) - radius) - kDisplace * kNoiseBound) / kRadius;
     return s_lower <= kOuter;
   }
 
@@ -163,8 +170,10 @@ class FireField {
     const float s = (length(v) - kDisplace * shape_.fbm(p * 1.8f, 4)) / kRadius;  // 1 at the surface
     if (s > kOuter) return {};
     const float hot = 0.85f + 0.15f * heat_.fbm(p * 4.0f, 3);
-    const float kelvin = s < 1.0f ? 900.0f + 2100.0f * std::pow(1.0f - s, 0.7f) : 900.0f * saturate((1.1f - s) / 0.1f);
-    const float flame = saturate(1.0f - std::abs(s - 0.7f) / 0.3f) * saturate(0.55f + 0.45f * burn_.fbm(p * 5.0f, 3));
+    const float kelvin =
+        s < 1.0f ? 900.0f + 2100.0f * std::pow(1.0f - s, 0.7f) : 900.0f * saturate((1.1f - s) / 0.1f);
+    const float flame =
+        saturate(1.0f - std::abs(s - 0.7f) / 0.3f) * saturate(0.55f + 0.45f * burn_.fbm(p * 5.0f, 3));
     const float shell = smoothstep(0.7f, 0.95f, s) * (1.0f - smoothstep(1.15f, kOuter, s));
     const float soot = shell * (0.45f + 0.55f * (0.5f + 0.5f * soot_.fbm(p * 3.5f, 4)));
     const float inner = 0.06f * saturate((1.0f - s) / 0.2f);
@@ -185,9 +194,12 @@ using Field = std::variant<CloudField, SmokeField, FireField>;
 
 Field make_field(const GenerateSettings& s) {
   switch (s.kind) {
-    case GeneratedVolume::kCloud: return CloudField(s.seed);
-    case GeneratedVolume::kSmoke: return SmokeField(s.seed);
-    case GeneratedVolume::kFire: return FireField(s.seed);
+    case GeneratedVolume::kCloud:
+      return CloudField(s.seed);
+    case GeneratedVolume::kSmoke:
+      return SmokeField(s.seed);
+    case GeneratedVolume::kFire:
+      return FireField(s.seed);
   }
   throw std::logic_error("unknown generated volume");
 }
@@ -254,9 +266,12 @@ std::optional<GeneratedVolume> parse_generated_volume(const std::string& name) {
 
 Bounds3 generated_bounds(GeneratedVolume kind) {
   switch (kind) {
-    case GeneratedVolume::kCloud: return CloudField::bounds();
-    case GeneratedVolume::kSmoke: return SmokeField::bounds();
-    case GeneratedVolume::kFire: return FireField::bounds();
+    case GeneratedVolume::kCloud:
+      return CloudField::bounds();
+    case GeneratedVolume::kSmoke:
+      return SmokeField::bounds();
+    case GeneratedVolume::kFire:
+      return FireField::bounds();
   }
   return {};
 }
@@ -264,8 +279,10 @@ Bounds3 generated_bounds(GeneratedVolume kind) {
 std::vector<SparseFloatGrid> generate_grids(const GenerateSettings& settings) {
   if (settings.resolution < kMinGenerateResolution || settings.resolution > kMaxGenerateResolution)
     throw InputError("--res must be in [" + std::to_string(kMinGenerateResolution) + ", " +
-                     std::to_string(kMaxGenerateResolution) + "], got " + std::to_string(settings.resolution));
-  return std::visit([&](const auto& field) { return sample_field(field, settings.resolution); }, make_field(settings));
+                     std::to_string(kMaxGenerateResolution) + "], got " +
+                     std::to_string(settings.resolution));
+  return std::visit([&](const auto& field) { return sample_field(field, settings.resolution); },
+                    make_field(settings));
 }
 
 }  // namespace caligo

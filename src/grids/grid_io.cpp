@@ -62,14 +62,16 @@ struct ChannelQuery {
 };
 
 std::optional<GridRequest> resolve(const ChannelQuery& q, const std::vector<GridEntry>& entries,
-                                   GridFileFormat format, const std::string& path, const SourceLocation& where) {
+                                   GridFileFormat format, const std::string& path,
+                                   const SourceLocation& where) {
   for (const std::string& name : q.names) {
-    const auto it = std::find_if(entries.begin(), entries.end(), [&](const GridEntry& e) { return e.name == name; });
+    const auto it =
+        std::find_if(entries.begin(), entries.end(), [&](const GridEntry& e) { return e.name == name; });
     if (it == entries.end()) continue;
     if (!accepts(q.kind, it->type, format))
       throw_grid_file_error(path, where,
-                            std::string("the ") + q.channel + " grid \"" + name + "\" is a " + it->type +
-                                " grid; expected " + kind_name(q.kind));
+                            std::string("the ") + q.channel + " grid \"" + name + "\" holds " + it->type +
+                                " values; expected " + kind_name(q.kind));
     return GridRequest{name, q.kind};
   }
   if (q.required)
@@ -101,14 +103,17 @@ GridFileFormat grid_file_format(const std::string& path, const SourceLocation& w
   const bool is_vdb = std::memcmp(magic, kOpenVdbMagic, 8) == 0;
   const bool is_nvdb = std::memcmp(magic, kNanoVdbMagic, 8) == 0;
   const std::string ext = lower_extension(path);
-  if (ext == ".vdb" && !is_vdb) throw_grid_file_error(path, where, "not an OpenVDB file (wrong magic number)");
-  if (ext == ".nvdb" && !is_nvdb) throw_grid_file_error(path, where, "not a NanoVDB file (wrong magic number)");
+  if (ext == ".vdb" && !is_vdb)
+    throw_grid_file_error(path, where, "not an OpenVDB file (wrong magic number)");
+  if (ext == ".nvdb" && !is_nvdb)
+    throw_grid_file_error(path, where, "not a NanoVDB file (wrong magic number)");
   if (is_vdb) return GridFileFormat::kOpenVdb;
   if (is_nvdb) return GridFileFormat::kNanoVdb;
   throw_grid_file_error(path, where, "neither an OpenVDB (.vdb) nor a NanoVDB (.nvdb) file");
 }
 
-NanoGrids read_grid_channels(const std::string& path, const GridChannels& channels, const SourceLocation& where) {
+NanoGrids read_grid_channels(const std::string& path, const GridChannels& channels,
+                             const SourceLocation& where) {
   const GridFileFormat format = grid_file_format(path, where);
   const std::vector<GridEntry> entries =
       format == GridFileFormat::kOpenVdb ? list_vdb_grids(path, where) : list_nvdb_grids(path, where);
@@ -131,20 +136,12 @@ NanoGrids read_grid_channels(const std::string& path, const GridChannels& channe
                                             : read_nvdb_grids(path, requests, where);
   NanoGrids grids;
   for (size_t i = 0; i < handles.size(); ++i) {
-    switch (slot_of_request[i]) {
-      case 0:
-        grids.density = std::move(handles[i]);
-        break;
-      case 1:
-        grids.temperature = std::move(handles[i]);
-        break;
-      case 2:
-        grids.flame = std::move(handles[i]);
-        break;
-      default:
-        grids.color = std::move(handles[i]);
-        break;
-    }
+    // In the order of `queries`: density, then the optional channels.
+    std::optional<NanoGridHandle>* const optional_slots[] = {&grids.temperature, &grids.flame, &grids.color};
+    if (slot_of_request[i] == 0)
+      grids.density = std::move(handles[i]);
+    else
+      *optional_slots[slot_of_request[i] - 1] = std::move(handles[i]);
   }
   return grids;
 }

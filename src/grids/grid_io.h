@@ -55,7 +55,8 @@ inline constexpr float kDenseZeroTolerance = 1e-6f;  // |value| at or below this
 std::shared_ptr<const VolumeGrid> load_dense_grid(const std::string& path, const DenseGridLayout& layout,
                                                   const SourceLocation& where);
 // The sparse form of a dense file (validated as above; non-finite values are errors).
-SparseFloatGrid read_dense_file(const std::string& path, const DenseGridLayout& layout, const SourceLocation& where);
+SparseFloatGrid read_dense_file(const std::string& path, const DenseGridLayout& layout,
+                                const SourceLocation& where);
 // `values` holds layout's dims product values, x fastest.
 SparseFloatGrid dense_to_sparse(const std::vector<float>& values, const DenseGridLayout& layout,
                                 float zero_tolerance = kDenseZeroTolerance);
@@ -68,13 +69,13 @@ void write_grid_file(const std::string& path, const std::vector<SparseFloatGrid>
 // One grid of a file, in the spirit of OpenVDB's vdb_print.
 struct GridInfo {
   std::string name;
-  std::string type;                    // value type: "float", "double", "vec3s", "int32", ...
+  std::string type;  // value type: "float", "double", "vec3s", "int32", ...
   std::array<int, 3> index_min{0, 0, 0}, index_max{-1, -1, -1};  // active voxels, inclusive
-  Bounds3 world_bounds;                // of the active voxels' cells
-  Vec3 voxel_size;                     // world units per voxel along each axis
+  Bounds3 world_bounds;                                          // of the active voxels' cells
+  Vec3 voxel_size;                                               // world units per voxel along each axis
   uint64_t active_voxels = 0;
-  uint64_t active_leaves = 0;          // 8^3 blocks holding active voxels
-  uint64_t active_tiles = 0;           // constant active tiles above the leaf level
+  uint64_t active_leaves = 0;                  // 8^3 blocks holding active voxels
+  uint64_t active_tiles = 0;                   // constant active tiles above the leaf level
   std::optional<double> min_value, max_value;  // of active values (vectors: their length)
   uint64_t memory_bytes = 0;  // OpenVDB: the grid's memory once read; NanoVDB: its buffer size
 };

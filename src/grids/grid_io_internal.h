@@ -38,7 +38,8 @@ struct GridRequest {
 
 // The grids the channels ask for, resolved against the file's list (missing or mistyped
 // grids are InputErrors listing what the file has), then read.
-NanoGrids read_grid_channels(const std::string& path, const GridChannels& channels, const SourceLocation& where);
+NanoGrids read_grid_channels(const std::string& path, const GridChannels& channels,
+                             const SourceLocation& where);
 
 // OpenVDB files (grid_vdb_read.cpp, grid_vdb_write.cpp). Reading converts double grids to
 // float and vec3d to vec3s, then each grid to NanoVDB.

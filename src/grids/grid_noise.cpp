@@ -21,18 +21,30 @@ uint32_t hash_lattice(uint32_t seed, int i, int j, int k) {
 // Dot product of the offset with one of the 12 edge directions (Perlin 2002), picked by hash.
 float gradient_dot(uint32_t h, float x, float y, float z) {
   switch (h % 12u) {
-    case 0: return x + y;
-    case 1: return -x + y;
-    case 2: return x - y;
-    case 3: return -x - y;
-    case 4: return x + z;
-    case 5: return -x + z;
-    case 6: return x - z;
-    case 7: return -x - z;
-    case 8: return y + z;
-    case 9: return -y + z;
-    case 10: return y - z;
-    default: return -y - z;
+    case 0:
+      return x + y;
+    case 1:
+      return -x + y;
+    case 2:
+      return x - y;
+    case 3:
+      return -x - y;
+    case 4:
+      return x + z;
+    case 5:
+      return -x + z;
+    case 6:
+      return x - z;
+    case 7:
+      return -x - z;
+    case 8:
+      return y + z;
+    case 9:
+      return -y + z;
+    case 10:
+      return y - z;
+    default:
+      return -y - z;
   }
 }
 
@@ -49,7 +61,8 @@ float GradientNoise::operator()(Vec3 p) const {
   const float x = p.x - fx, y = p.y - fy, z = p.z - fz;
   const float u = fade(x), v = fade(y), w = fade(z);
   const auto g = [&](int di, int dj, int dk) {
-    return gradient_dot(hash_lattice(seed_, i + di, j + dj, k + dk), x - float(di), y - float(dj), z - float(dk));
+    return gradient_dot(hash_lattice(seed_, i + di, j + dj, k + dk), x - float(di), y - float(dj),
+                        z - float(dk));
   };
   const float x00 = mix(g(0, 0, 0), g(1, 0, 0), u), x10 = mix(g(0, 1, 0), g(1, 1, 0), u);
   const float x01 = mix(g(0, 0, 1), g(1, 0, 1), u), x11 = mix(g(0, 1, 1), g(1, 1, 1), u);

@@ -29,15 +29,24 @@ struct NvdbRecord {
 
 const char* type_name(nanovdb::GridType type) {
   switch (type) {
-    case nanovdb::GridType::Float: return "float";
-    case nanovdb::GridType::Double: return "double";
-    case nanovdb::GridType::Int32: return "int32";
-    case nanovdb::GridType::Int64: return "int64";
-    case nanovdb::GridType::Vec3f: return "vec3s";
-    case nanovdb::GridType::Vec3d: return "vec3d";
-    case nanovdb::GridType::Boolean: return "bool";
-    case nanovdb::GridType::Mask: return "mask";
-    default: return nanovdb::toStr(type < nanovdb::GridType::End ? type : nanovdb::GridType::Unknown);
+    case nanovdb::GridType::Float:
+      return "float";
+    case nanovdb::GridType::Double:
+      return "double";
+    case nanovdb::GridType::Int32:
+      return "int32";
+    case nanovdb::GridType::Int64:
+      return "int64";
+    case nanovdb::GridType::Vec3f:
+      return "vec3s";
+    case nanovdb::GridType::Vec3d:
+      return "vec3d";
+    case nanovdb::GridType::Boolean:
+      return "bool";
+    case nanovdb::GridType::Mask:
+      return "mask";
+    default:
+      return nanovdb::toStr(type < nanovdb::GridType::End ? type : nanovdb::GridType::Unknown);
   }
 }
 
@@ -67,13 +76,15 @@ class NvdbReader {
       if (header.codec != nanovdb::io::Codec::NONE)
         fail(std::string("compressed NanoVDB files (") + nanovdb::io::toStr(header.codec) +
              ") are not supported; write it uncompressed");
-      if (header.gridCount == 0 || header.gridCount > kMaxGridsPerSegment) fail("corrupt NanoVDB file (grid count)");
+      if (header.gridCount == 0 || header.gridCount > kMaxGridsPerSegment)
+        fail("corrupt NanoVDB file (grid count)");
       const size_t first = records.size();
       for (int i = 0; i < header.gridCount; ++i) {
         NvdbRecord r;
         read_at(pos, &r.meta, sizeof(r.meta), "grid header");
         pos += sizeof(r.meta);
-        if (r.meta.nameSize == 0 || r.meta.nameSize > kMaxNameBytes) fail("corrupt NanoVDB file (grid name size)");
+        if (r.meta.nameSize == 0 || r.meta.nameSize > kMaxNameBytes)
+          fail("corrupt NanoVDB file (grid name size)");
         std::string name(r.meta.nameSize, '\0');
         read_at(pos, name.data(), name.size(), "grid name");
         pos += r.meta.nameSize;
@@ -125,7 +136,8 @@ std::string check_layout(const nanovdb::NanoGrid<T>& grid, uint64_t buffer_size)
   const uint8_t* hi = lo + buffer_size;
   const auto inside = [&](const void* p, size_t n) {
     const uint8_t* b = static_cast<const uint8_t*>(p);
-    return b >= lo && b <= hi && size_t(hi - b) >= n && (reinterpret_cast<uintptr_t>(b) % NANOVDB_DATA_ALIGNMENT) == 0;
+    return b >= lo && b <= hi && size_t(hi - b) >= n &&
+           (reinterpret_cast<uintptr_t>(b) % NANOVDB_DATA_ALIGNMENT) == 0;
   };
   if (!inside(&grid.tree(), sizeof(grid.tree()))) return "tree outside the buffer";
   const auto& root = grid.tree().root();
@@ -164,7 +176,8 @@ std::vector<NanoGridHandle> read_nvdb_grids(const std::string& path, const std::
   const std::vector<NvdbRecord> records = reader.scan();
   std::vector<NanoGridHandle> handles;
   for (const GridRequest& request : requests) {
-    const auto it = std::find_if(records.begin(), records.end(), [&](const NvdbRecord& r) { return r.name == request.name; });
+    const auto it = std::find_if(records.begin(), records.end(),
+                                 [&](const NvdbRecord& r) { return r.name == request.name; });
     if (it == records.end()) reader.fail("has no grid named \"" + request.name + "\"");
     NanoGridHandle handle = reader.read_grid(*it);
     switch (request.kind) {

@@ -11,6 +11,8 @@
 #include <cmath>
 #include <filesystem>
 #include <mutex>
+#include <set>
+#include <tuple>
 #include <type_traits>
 
 #include "grids/crash_probe.h"
@@ -32,40 +34,61 @@ auto guarded(const std::string& path, const SourceLocation& where, Body body) ->
   } catch (const InputError&) {
     throw;
   } catch (const std::bad_alloc&) {
-    throw_grid_file_error(path, where, "cannot read the OpenVDB file: it asks for more memory than is available");
+    throw_grid_file_error(path, where,
+                          "cannot read the OpenVDB file: it asks for more memory than is available");
   } catch (const std::exception& e) {
-    throw_grid_file_error(path, where, std::string("cannot read the OpenVDB file (corrupt or truncated?): ") + e.what());
+    throw_grid_file_error(path, where,
+                          std::string("cannot read the OpenVDB file (corrupt or truncated?): ") + e.what());
   } catch (...) {
     throw_grid_file_error(path, where, "cannot read the OpenVDB file (corrupt or truncated?)");
   }
 }
 
 // OpenVDB has no checksums and corrupts memory on some corrupt files (see crash_probe.h), so
-// the grids are first read in a throw-away child process; a crash there is a located error
-// here. The probe costs a second read of the grids (the child's copy is never converted).
-void probe_vdb_read(const std::string& path, const SourceLocation& where, const std::vector<std::string>& names) {
+// a file is first read whole in a throw-away child process, once per version of the file
+// (path, size, modification time); a crash or exception there is a located error here. The
+// child may use 1 GiB plus 256 times the file's size (more than any compression ratio
+// OpenVDB reaches), so corrupt lengths that ask for gigabytes fail fast.
+void probe_vdb_file(const std::string& path, const SourceLocation& where) {
+  static std::mutex mutex;
+  static std::set<std::tuple<std::string, uintmax_t, int64_t>> verified;
   std::error_code ec;
-  const auto megabytes = std::filesystem::file_size(path, ec) >> 20;
-  const auto timeout = std::chrono::milliseconds(30000 + 50 * int64_t(megabytes));
-  const ProbeResult result = probe_in_child(
+  const uintmax_t size = std::filesystem::file_size(path, ec);
+  const int64_t mtime = std::filesystem::last_write_time(path, ec).time_since_epoch().count();
+  const auto key = std::make_tuple(path, size, mtime);
+  {
+    const std::lock_guard lock(mutex);
+    if (verified.count(key)) return;
+  }
+  const auto timeout = std::chrono::milliseconds(30000 + 50 * int64_t(size >> 20));
+  const ProbeOutcome outcome = probe_in_child(
       [&] {
         openvdb::io::File file(path);
         file.open(/*delayLoad=*/false);
         // Kept alive: the child exits without destructors (freeing a tree runs TBB).
-        static std::vector<openvdb::GridBase::Ptr> grids;
-        if (names.empty())
-          grids = *file.getGrids();
-        else
-          for (const std::string& name : names) grids.push_back(file.readGrid(name));
+        static openvdb::GridPtrVecPtr grids;
+        grids = file.getGrids();
       },
-      timeout);
-  if (result == ProbeResult::kCrashed)
-    throw_grid_file_error(path, where, "corrupt OpenVDB file (reading it crashes OpenVDB)");
+      timeout, (uint64_t(1) << 30) + 256 * uint64_t(size));
+  switch (outcome.result) {
+    case ProbeResult::kSurvived:
+      break;
+    case ProbeResult::kUnknown:  // no verdict (fork failed, or timed out): read as usual
+      return;
+    case ProbeResult::kThrew:  // never retried here: the failed read may have overrun a buffer
+      throw_grid_file_error(path, where,
+                            "cannot read the OpenVDB file (corrupt or truncated?): " + outcome.message);
+    case ProbeResult::kCrashed:
+      throw_grid_file_error(path, where, "corrupt OpenVDB file (reading it crashes OpenVDB)");
+  }
+  const std::lock_guard lock(mutex);
+  verified.insert(key);
 }
 
 struct OpenFile {
   OpenFile(const std::string& path, const SourceLocation& where) : file(path) {
     check_vdb_layout(path, where);
+    probe_vdb_file(path, where);
     file.open(/*delayLoad=*/false);
   }
   ~OpenFile() {
@@ -95,7 +118,7 @@ NanoGridHandle read_one(openvdb::io::File& file, const GridRequest& request, con
     throw_grid_file_error(path, where,
                           "grid \"" + request.name + "\" has " + std::to_string(base->activeVoxelCount()) +
                               " active voxels (more than 2^32)");
-  const std::string wrong = "grid \"" + request.name + "\" is a " + base->valueType() + " grid; expected ";
+  const std::string wrong = "grid \"" + request.name + "\" holds " + base->valueType() + " values; expected ";
   switch (request.kind) {
     case GridValueKind::kFloat:
       if (auto g = openvdb::gridPtrCast<openvdb::FloatGrid>(base)) return to_nanovdb(*g, false);
@@ -186,8 +209,7 @@ std::vector<GridEntry> list_vdb_grids(const std::string& path, const SourceLocat
     std::vector<GridEntry> entries;
     // Held by name: a range-for over *temporary_ptr would destroy the vector before the loop.
     const openvdb::GridPtrVecPtr grids = f.file.readAllGridMetadata();
-    for (const openvdb::GridBase::Ptr& g : *grids)
-      entries.push_back({g->getName(), g->valueType()});
+    for (const openvdb::GridBase::Ptr& g : *grids) entries.push_back({g->getName(), g->valueType()});
     return entries;
   });
 }
@@ -196,10 +218,6 @@ std::vector<NanoGridHandle> read_vdb_grids(const std::string& path, const std::v
                                            const SourceLocation& where) {
   initialize_openvdb();
   return guarded(path, where, [&] {
-    check_vdb_layout(path, where);
-    std::vector<std::string> names;
-    for (const GridRequest& r : requests) names.push_back(r.name);
-    probe_vdb_read(path, where, names);
     OpenFile f(path, where);
     std::vector<NanoGridHandle> handles;
     for (const GridRequest& r : requests) handles.push_back(read_one(f.file, r, path, where));
@@ -210,8 +228,6 @@ std::vector<NanoGridHandle> read_vdb_grids(const std::string& path, const std::v
 GridFileInfo describe_vdb_file(const std::string& path) {
   initialize_openvdb();
   return guarded(path, {}, [&] {
-    check_vdb_layout(path, {});
-    probe_vdb_read(path, {}, {});
     OpenFile f(path, {});
     GridFileInfo info;
     info.format = "OpenVDB";

@@ -31,8 +31,8 @@ struct SparseBlock {
 
 struct SparseFloatGrid {
   std::string name;
-  float voxel_size = 1.0f;  // metres
-  Vec3 origin;              // world position of the centre of voxel (0, 0, 0)
+  float voxel_size = 1.0f;          // metres
+  Vec3 origin;                      // world position of the centre of voxel (0, 0, 0)
   std::vector<SparseBlock> blocks;  // distinct origins, none all-zero
 
   uint64_t active_voxels() const {

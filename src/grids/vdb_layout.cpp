@@ -8,7 +8,10 @@
 //   char has-grid-offsets, 36-char UUID, file metadata (int32 count, then per entry:
 //   string name, string type, uint32 size, bytes), int32 grid count, then per grid:
 //   string unique name, string type, string instance parent, int64 grid/block/end
-//   positions, the grid's bytes up to its end position. Strings are uint32 length + chars.
+//   positions, the grid's bytes up to its end position. A grid's bytes start with uint32
+//   compression flags and the grid's metadata (as the file's). Strings are uint32 length +
+//   chars. Metadata lengths are bounded here too: OpenVDB allocates and zero-fills whatever
+//   length a corrupt file states (gigabytes) before noticing anything is wrong.
 #include <openvdb/version.h>
 
 #include <cstring>
@@ -25,7 +28,8 @@ constexpr int32_t kMaxEntries = 1 << 16;
 
 class LayoutReader {
  public:
-  LayoutReader(const std::string& path, const SourceLocation& where) : path_(path), where_(where), in_(path, std::ios::binary) {
+  LayoutReader(const std::string& path, const SourceLocation& where)
+      : path_(path), where_(where), in_(path, std::ios::binary) {
     std::error_code ec;
     size_ = std::filesystem::file_size(path, ec);
     if (ec || !in_) fail("cannot read the OpenVDB file");
@@ -48,7 +52,8 @@ class LayoutReader {
 
   std::string string(const char* what) {
     const uint32_t n = read<uint32_t>(what);
-    if (n > kMaxStringBytes) fail(std::string("corrupt OpenVDB file (") + what + " of " + std::to_string(n) + " bytes)");
+    if (n > kMaxStringBytes)
+      fail(std::string("corrupt OpenVDB file (") + what + " of " + std::to_string(n) + " bytes)");
     std::string s(n, '\0');
     bytes(s.data(), n, what);
     return s;
@@ -63,6 +68,20 @@ class LayoutReader {
   void seek(uint64_t pos) {
     pos_ = pos;
     in_.seekg(std::streamoff(pos));
+  }
+
+  // A metadata table (int32 count, then name, type, uint32 size and value each) that must
+  // end by `end`.
+  void metadata(uint64_t end, const char* what) {
+    const int32_t count = read<int32_t>(what);
+    if (count < 0 || count > kMaxEntries) fail(std::string("corrupt OpenVDB file (") + what + " count)");
+    for (int32_t i = 0; i < count; ++i) {
+      string(what);
+      string(what);
+      const uint32_t bytes = read<uint32_t>(what);
+      if (bytes > end - std::min(end, pos_)) fail(std::string("corrupt OpenVDB file (") + what + " size)");
+      skip(bytes, what);
+    }
   }
 
   uint64_t size() const { return size_; }
@@ -89,13 +108,7 @@ void check_vdb_layout(const std::string& path, const SourceLocation& where) {
   r.skip(8, "header");  // library version
   const bool has_offsets = r.read<char>("header") != 0;
   r.skip(36, "header");  // UUID
-  const int32_t metadata = r.read<int32_t>("file metadata");
-  if (metadata < 0 || metadata > kMaxEntries) r.fail("corrupt OpenVDB file (metadata count)");
-  for (int32_t i = 0; i < metadata; ++i) {
-    r.string("metadata name");
-    r.string("metadata type");
-    r.skip(r.read<uint32_t>("metadata"), "metadata");
-  }
+  r.metadata(r.size(), "file metadata");
   // Files written as streams have no descriptors to check; OpenVDB reads them sequentially.
   if (!has_offsets) return;
   const int32_t grids = r.read<int32_t>("grid count");
@@ -112,6 +125,9 @@ void check_vdb_layout(const std::string& path, const SourceLocation& where) {
     if (uint64_t(end_pos) > r.size())
       r.fail("truncated OpenVDB file (grid \"" + name + "\" ends at byte " + std::to_string(end_pos) +
              ", the file has " + std::to_string(r.size()) + ")");
+    r.seek(uint64_t(grid_pos));
+    r.read<uint32_t>("grid compression flags");
+    r.metadata(uint64_t(block_pos), "grid metadata");
     r.seek(uint64_t(end_pos));
   }
 }

@@ -35,7 +35,8 @@ struct GridValues {
 
 struct GridStatistics {
   uint64_t active_voxels = 0;
-  uint64_t blocks = 0;           // occupied 8^3 blocks (NanoVDB leaves)
+  uint64_t blocks = 0;           // occupied 8^3 block regions (the filter footprint included: a voxel
+                                 // on a block corner makes up to 8 of them)
   uint64_t constant_blocks = 0;  // of which every voxel is equal
   float min_value = 0.0f, max_value = 0.0f;  // of the density grid's active voxels
 };
