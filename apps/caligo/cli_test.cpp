@@ -384,3 +384,55 @@ TEST_F(Cli, GridCommandsRejectBadInputAndWriteNothing) {
   EXPECT_NE(ext.err.find("out.exr"), std::string::npos) << ext.err;
   EXPECT_EQ(count_files_containing(dir_, "out.vdb") + count_files_containing(dir_, "out.exr"), 0);
 }
+
+// Grid and mesh volumes in a scene: a bad file stops `render` with a one-line error naming the
+// volume's JSON pointer and the file, exit 2, and nothing written.
+TEST_F(Cli, BadVolumeFilesInAScene) {
+  const auto scene_with_volume = [&](const std::string& volume) {
+    return write("vol.json", R"({"camera": {"position": [0, 1, 6], "look_at": [0, 1, 0], "resolution": [8, 8]},
+      "media": {"m": {"sigma_s": 1, "blackbody": {}}, "plain": {"sigma_s": 1}},
+      "volumes": [)" + volume + "]}");
+  };
+  write("junk.vdb", "OpenVDB? no: just some words in a file");
+  // Half of a real grid file: truncated.
+  ASSERT_EQ(run("generate cloud -q -o " + (dir_ / "whole.vdb").string() + " --res 16").exit_code, 0);
+  {
+    std::ifstream in(dir_ / "whole.vdb", std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::ofstream(dir_ / "half.vdb", std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  }
+  write("open.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\n");
+  struct Case {
+    std::string volume, expect1, expect2;
+  };
+  const std::vector<Case> cases = {
+      {R"({"type": "vdb", "file": "missing.vdb", "medium": "plain"})", "/volumes/0/file", "missing.vdb"},
+      {R"({"type": "vdb", "file": "junk.vdb", "medium": "plain"})", "/volumes/0/file", "junk.vdb"},
+      {R"({"type": "vdb", "file": "half.vdb", "medium": "plain"})", "/volumes/0/file", "half.vdb"},
+      {R"({"type": "vdb", "file": "whole.vdb", "grids": {"density": "smoke"}, "medium": "plain"})",
+       "/volumes/0", "smoke"},
+      {R"({"type": "vdb", "file": "whole.vdb", "medium": "m"})", "/volumes/0", "temperature"},
+      {R"({"type": "dense", "file": "junk.vdb", "dimensions": [4, 4, 4], "voxel_size": 0.1, "medium": "plain"})",
+       "/volumes/0/file", "junk.vdb"},
+      {R"({"type": "dense", "file": "junk.vdb", "dimensions": [100000, 4, 4], "voxel_size": 0.1, "medium": "plain"})",
+       "/volumes/0/dimensions", ""},
+      {R"({"type": "mesh", "file": "open.obj", "medium": "plain"})", "/volumes/0", "cannot bound a volume"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.volume);
+    const fs::path scene = scene_with_volume(c.volume);
+    const RunResult r = run("render " + scene.string() + " -q -o " + (dir_ / "out.exr").string());
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("vol.json"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(c.expect1), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(c.expect2), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "out.exr"));
+    EXPECT_FALSE(fs::exists(dir_ / "out.png"));
+  }
+  // The same scene with a good grid renders.
+  const fs::path good = scene_with_volume(R"({"type": "vdb", "file": "whole.vdb", "medium": "plain"})");
+  const RunResult ok = run("render " + good.string() + " -q --spp 1 -o " + (dir_ / "out.exr").string());
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_TRUE(fs::exists(dir_ / "out.exr"));
+}
