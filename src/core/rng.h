@@ -38,6 +38,17 @@ class Pcg32 {
   uint64_t inc_ = 0;
 };
 
+// A 32-bit avalanche mix (Chris Wellons' "lowbias32"): fixed integer arithmetic, so noise
+// built on it is identical on every platform and run.
+inline uint32_t lowbias32(uint32_t x) {
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+
 // 64-bit finaliser of MurmurHash3: a bijective avalanche mix.
 inline uint64_t mix_bits(uint64_t v) {
   v ^= v >> 33;

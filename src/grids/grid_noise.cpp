@@ -7,15 +7,9 @@
 namespace caligo {
 namespace {
 
-// A 32-bit avalanche of the lattice point (the "lowbias32" finaliser by C. Wellons).
+// A 32-bit avalanche of the lattice point.
 uint32_t hash_lattice(uint32_t seed, int i, int j, int k) {
-  uint32_t h = seed ^ (uint32_t(i) * 0x8da6b343u) ^ (uint32_t(j) * 0xd8163841u) ^ (uint32_t(k) * 0xcb1ab31fu);
-  h ^= h >> 16;
-  h *= 0x7feb352du;
-  h ^= h >> 15;
-  h *= 0x846ca68bu;
-  h ^= h >> 16;
-  return h;
+  return lowbias32(seed ^ (uint32_t(i) * 0x8da6b343u) ^ (uint32_t(j) * 0xd8163841u) ^ (uint32_t(k) * 0xcb1ab31fu));
 }
 
 // Dot product of the offset with one of the 12 edge directions (Perlin 2002), picked by hash.

@@ -135,7 +135,8 @@ TEST(SceneAtTime, NoiseMovesWithTheWind) {
 }
 
 TEST(SceneAtTime, BeforeTheFirstKeyTheLightHoldsTheFirstKey) {
-  const auto& box = std::get<BoxLight>(animated_scene().at_time(0.0f).lights[1]);
+  const SceneDesc at = animated_scene().at_time(0.0f);  // kept: the light is a reference into it
+  const auto& box = std::get<BoxLight>(at.lights[1]);
   expect_vec_near(box.direction, {0, -1, 0}, 1e-6f);
 }
 

@@ -5,22 +5,16 @@
 #include <cstdint>
 
 #include "core/math.h"
+#include "core/rng.h"
 
 namespace caligo {
 namespace {
 
 constexpr int kN = NoiseTexture::kSize;
 
-// A fixed integer hash (Chris Wellons' "lowbias32"): the texture is identical on every
-// platform and every run, so renders and tests are reproducible.
-uint32_t hash32(uint32_t x) {
-  x ^= x >> 16;
-  x *= 0x7feb352du;
-  x ^= x >> 15;
-  x *= 0x846ca68bu;
-  x ^= x >> 16;
-  return x;
-}
+// A fixed integer hash: the texture is identical on every platform and every run, so renders
+// and tests are reproducible.
+uint32_t hash32(uint32_t x) { return lowbias32(x); }
 
 // The quintic fade 6t^5 - 15t^4 + 10t^3 (Perlin 2002): C2 across lattice cells, so the
 // density has no visible grid creases. fade(1 - t) = 1 - fade(t), which makes the mean of the
