@@ -9,6 +9,7 @@
 #include "grids/volume_grid_build.h"
 #include "core/rng.h"
 #include "integrators/reference.h"
+#include "media/blackbody.h"
 #include "raymarch/march.h"
 #include "render/render.h"
 
@@ -73,6 +74,44 @@ TEST(GridVolume, ReferenceTransmittanceThroughAConstantGrid) {
   const auto scene = Scene::build(desc);
   const RGB t = reference_transmittance(*scene, Ray{{-1.0f, 1.55f, 1.45f}, {1, 0, 0}}, kInfinity, 64);
   EXPECT_NEAR(-std::log(t.r), 1.6, 1e-3);
+}
+
+// A grid's other channels: Cd (clamped to [0, 1]) tints sigma_s, temperature emits as a
+// blackbody, flame as colour x intensity; the interval's majorant still bounds sigma_t.
+TEST(GridVolume, ShadingReadsColorTemperatureAndFlame) {
+  const auto constant = [](float v) {
+    nanovdb::GridBuilder<float> b(0.0f);
+    b([&](const nanovdb::Coord&) { return v; }, nanovdb::CoordBBox(nanovdb::Coord(0), nanovdb::Coord(15)));
+    return b.getHandle<>(0.1, nanovdb::Vec3d(0.0), "g");
+  };
+  nanovdb::GridBuilder<nanovdb::Vec3f> cd(nanovdb::Vec3f(0.0f));
+  cd([](const nanovdb::Coord&) { return nanovdb::Vec3f(0.2f, 0.5f, 1.5f); },
+     nanovdb::CoordBBox(nanovdb::Coord(0), nanovdb::Coord(15)));
+  NanoGrids grids{constant(0.5f), constant(1500.0f), constant(0.25f), cd.getHandle<>(0.1, nanovdb::Vec3d(0.0), "Cd")};
+  const auto grid = make_volume_grid(std::move(grids), {"test", ""});
+  ASSERT_TRUE(grid->has_color() && grid->has_temperature() && grid->has_flame());
+  VolumePrimitive prim = grid_primitive(grid, RGB(0.3f), RGB(2.0f));
+  prim.shader.density = 4.0f;
+  prim.shader.blackbody = BlackbodyEmission{2e-6f, 1.0f, 0.0f};
+  prim.shader.flame = FlameEmission{RGB(1.0f, 0.4f, 0.1f), 3.0f};
+  VolumeContext ctx;
+  const Vec3 centre(0.75f, 0.75f, 0.75f);
+  const MediumSample m = shade_volume(prim, centre, ctx);
+  EXPECT_NEAR(m.sigma_a.g, 0.3f * 4.0f * 0.5f, 1e-5f);
+  EXPECT_NEAR(m.sigma_s.r, 2.0f * 2.0f * 0.2f, 1e-5f);
+  EXPECT_NEAR(m.sigma_s.g, 2.0f * 2.0f * 0.5f, 1e-5f);
+  EXPECT_NEAR(m.sigma_s.b, 2.0f * 2.0f * 1.0f, 1e-5f);  // 1.5 clamped to 1
+  const RGB expected = blackbody_color(1500.0f) * (2e-6f * blackbody_exitance_radiance(1500.0f)) +
+                       RGB(1.0f, 0.4f, 0.1f) * (3.0f * 0.25f);
+  EXPECT_NEAR(m.emission.r, expected.r, 1e-4f * expected.r);
+  EXPECT_NEAR(m.emission.b, expected.b, 1e-4f * expected.r);
+  // Without the tint, sigma_s is grey again.
+  prim.shader.tint_with_color_grid = false;
+  EXPECT_NEAR(shade_volume(prim, centre, ctx).sigma_s.r, 4.0f, 1e-5f);
+  // The interval through the centre bounds sigma_t and is constant inside (all channels equal there).
+  append_intervals(prim, 0, Ray{{-1, 0.75f, 0.75f}, {1, 0, 0}}, ctx);
+  ASSERT_FALSE(ctx.intervals.empty());
+  for (const VolumeInterval& iv : ctx.intervals) EXPECT_GE(iv.sigma_maj.g + 1e-5f, m.sigma_t().g);
 }
 
 // The bias of larger steps (docs/techniques.md): a jittered step samples the field once per
