@@ -94,6 +94,32 @@ TEST(GridBlocks, EveryChannelMustBeConstant) {
   EXPECT_TRUE(grid->data().blocks.block(1, 0, 0).constant);
 }
 
+// A Cd grid on another transform is looked up through its own map, so the blocks cannot vouch
+// for it: a block that is constant in density but whose colour varies would be shaded at one
+// point while its extinction (sigma_s is tinted) varies. No block may then be constant.
+TEST(GridBlocks, ColorOnAnotherTransformMakesNoBlockConstant) {
+  NanoGrids grids{cube_grid()};
+  grids.color = testing::make_nano_grid<nanovdb::Vec3f>(
+      [](auto& acc) {
+        for (int i = 0; i < 48; ++i)
+          for (int j = 0; j < 48; ++j)
+            for (int k = 0; k < 48; ++k) acc.setValue(Coord(i, j, k), nanovdb::Vec3f(0.5f, i / 48.0f, 1.0f));
+      },
+      0.5);
+  const auto grid = make_volume_grid(std::move(grids), {});
+  ASSERT_FALSE(grid->data().color_shares_index_space);
+  GridAccessorCache cache;
+  // The colour does vary inside block (0, 0, 0), which is constant in density.
+  EXPECT_NE(grid->values(Vec3(1.0f, 4.0f, 4.0f), GridFilter::kTrilinear, cache).color.g,
+            grid->values(Vec3(6.0f, 4.0f, 4.0f), GridFilter::kTrilinear, cache).color.g);
+  EXPECT_EQ(grid->statistics().constant_blocks, 0u);
+  EXPECT_FALSE(grid->data().blocks.block(0, 0, 0).constant);
+  std::vector<GridInterval> iv;
+  grid->intervals({Vec3(-20.0f, 4.5f, 4.5f), Vec3(1.0f, 0.0f, 0.0f)}, 0.0f, 100.0f, iv);
+  ASSERT_FALSE(iv.empty());
+  for (const GridInterval& i : iv) EXPECT_FALSE(i.constant);
+}
+
 TEST(GridBlocks, EmissionAloneOccupiesBlocks) {
   // A fireball's flame may burn where there is no smoke: density is empty here.
   NanoGrids fire{testing::make_nano_grid<float>([](auto&) {})};

@@ -16,8 +16,11 @@ void dda(Vec3 o, Vec3 d, float ta, float tb, const int n[3], Visit&& visit) {
   for (int a = 0; a < 3; ++a) {
     const float p = o[a] + d[a] * ta;
     cell[a] = int(std::floor(std::clamp(p, 0.0f, float(n[a]) - 0.5f)));
-    step[a] = d[a] > 0.0f ? 1 : (d[a] < 0.0f ? -1 : 0);
-    inv[a] = step[a] != 0 ? 1.0f / d[a] : 0.0f;
+    // A component so small that 1/d overflows never crosses a cell within float range of t;
+    // stepping on it would make next = 0 * inf = NaN on a cell face and derail the axis choice.
+    inv[a] = 1.0f / d[a];
+    step[a] = !std::isfinite(inv[a]) ? 0 : (d[a] > 0.0f ? 1 : -1);
+    if (step[a] == 0) inv[a] = 0.0f;
     next[a] = step[a] != 0 ? (float(cell[a] + (step[a] > 0)) - o[a]) * inv[a] : kInfinity;
   }
   float t = ta;

@@ -120,8 +120,29 @@ void check_map(const nanovdb::GridData& grid, const char* role, const SourceLoca
   const nanovdb::Vec3d v = grid.mVoxelSize;
   bool ok = true;
   for (int a = 0; a < 3; ++a) ok = ok && std::isfinite(v[a]) && v[a] > 0.0;
-  for (float m : grid.mMap.mInvMatF) ok = ok && std::isfinite(m);
-  for (float m : grid.mMap.mVecF) ok = ok && std::isfinite(m);
+  const nanovdb::Map& map = grid.mMap;
+  for (float m : map.mMatF) ok = ok && std::isfinite(m);
+  for (float m : map.mInvMatF) ok = ok && std::isfinite(m);
+  for (float m : map.mVecF) ok = ok && std::isfinite(m);
+  for (double m : map.mMatD) ok = ok && std::isfinite(m);
+  for (double m : map.mInvMatD) ok = ok && std::isfinite(m);
+  for (double m : map.mVecD) ok = ok && std::isfinite(m);
+  // A file stores the map and its inverse, in double and float, separately: the bounds use the
+  // double map, lookups and traversal the float inverse, so they must agree (M * M^-1 = I up to
+  // rounding, which also rules out a singular M).
+  for (int i = 0; ok && i < 3; ++i)
+    for (int j = 0; ok && j < 3; ++j) {
+      double product = 0.0, product_f = 0.0, magnitude = 0.0;
+      for (int k = 0; k < 3; ++k) {
+        product += map.mMatD[3 * i + k] * map.mInvMatD[3 * k + j];
+        product_f += map.mMatD[3 * i + k] * double(map.mInvMatF[3 * k + j]);
+        magnitude += std::abs(map.mMatD[3 * i + k] * map.mInvMatD[3 * k + j]);
+      }
+      const double identity = i == j ? 1.0 : 0.0, tolerance = 1e-5 * std::max(1.0, magnitude);
+      ok = std::abs(product - identity) <= tolerance && std::abs(product_f - identity) <= tolerance;
+    }
+  for (int a = 0; ok && a < 3; ++a)
+    ok = std::abs(double(map.mVecF[a]) - map.mVecD[a]) <= 1e-6 * std::max(1.0, std::abs(map.mVecD[a]));
   if (!ok)
     throw InputError(where, std::string("grid '") + role + "' has a degenerate or non-finite transform");
 }
@@ -175,6 +196,12 @@ std::shared_ptr<const VolumeGrid> make_volume_grid(NanoGrids grids, const Source
   BlockChannels channels{data->density, data->temperature, data->flame,
                          data->color_shares_index_space ? data->color : nullptr};
   data->blocks = build_grid_blocks(channels, where);
+  if (data->color && !data->color_shares_index_space) {
+    // The colour is read through its own map and may vary inside any block (it tints sigma_s,
+    // hence the extinction): no block can promise constant coefficients.
+    for (ParentCell& cell : data->blocks.parents) cell.constant_bits.fill(0);
+    data->blocks.constant_blocks = 0;
+  }
   if (data->blocks.empty())
     throw InputError(where, "grid 'density' is empty (no non-zero voxels, and no temperature or flame)");
 

@@ -20,8 +20,8 @@ struct VolumeGridData {
   const nanovdb::FloatGrid* flame = nullptr;
   const nanovdb::Vec3fGrid* color = nullptr;
   // Temperature and flame share the density grid's index space (checked at build); the colour
-  // grid may not, in which case it is looked up through its own map and never makes a block
-  // constant.
+  // grid may not, in which case it is looked up through its own map and no block is flagged
+  // constant (its colour, which tints sigma_s, may vary inside any block).
   bool color_shares_index_space = false;
 
   GridBlocks blocks;

@@ -199,6 +199,20 @@ TEST_F(VolumeGridTest, InvalidInputIsALocatedError) {
                  acc.setValue(nanovdb::Coord(1 << 24, 1 << 24, 0), 1.0f);
                })}),
                "too large/sparse");
+  // A file's forward map (world bounds) and inverse map (lookups, traversal) are stored
+  // separately: a non-finite or inconsistent pair would place the grid's box and its voxels
+  // apart, or give NaN bounds.
+  for (int corrupt = 0; corrupt < 4; ++corrupt) {
+    NanoGridHandle handle = one_voxel(1.0f);
+    nanovdb::Map& map = reinterpret_cast<nanovdb::GridData*>(handle.data())->mMap;
+    if (corrupt == 0) map.mMatD[0] = map.mMatF[0] = std::numeric_limits<float>::infinity();
+    if (corrupt == 1) map.mVecD[1] = std::nan("");
+    // 2: the map is no longer the inverse's inverse; 3: the float inverse disagrees with the map.
+    if (corrupt == 2) map.mMatD[4] = map.mMatF[4] = 3.0f;
+    if (corrupt == 3) map.mInvMatF[0] = 0.5f;
+    EXPECT_PRED2(has, error_of({std::move(handle)}), "'density' has a degenerate or non-finite transform")
+        << corrupt;
+  }
   auto huge = openvdb::FloatGrid::create(0.0f);
   huge->tree().addTile(3, openvdb::Coord(0), 1.0f, true);  // one 4096^3 root tile
   EXPECT_PRED2(has, error_of({nanovdb::openToNanoVDB(*huge)}), "too large");

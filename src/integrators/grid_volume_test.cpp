@@ -105,6 +105,10 @@ TEST(GridVolume, ShadingReadsColorTemperatureAndFlame) {
                        RGB(1.0f, 0.4f, 0.1f) * (3.0f * 0.25f);
   EXPECT_NEAR(m.emission.r, expected.r, 1e-4f * expected.r);
   EXPECT_NEAR(m.emission.b, expected.b, 1e-4f * expected.r);
+  // An absurd temperature scale is clamped (10^6 K), not turned into infinite emission.
+  prim.shader.blackbody->temperature_scale = 1e30f;
+  EXPECT_TRUE(shade_volume(prim, centre, ctx).emission.is_finite());
+  prim.shader.blackbody->temperature_scale = 1.0f;
   // Without the tint, sigma_s is grey again.
   prim.shader.tint_with_color_grid = false;
   EXPECT_NEAR(shade_volume(prim, centre, ctx).sigma_s.r, 4.0f, 1e-5f);

@@ -164,8 +164,10 @@ std::optional<float> sample_collision(const Segment& seg, int channel, Pcg32& rn
   for (const MajorantPiece& piece : seg.pieces) {
     if (!(piece.majorant > 0.0f)) continue;
     for (float t = piece.t0;;) {
-      t -= std::log(1.0f - rng.next_float()) / piece.majorant;
-      if (t >= piece.t1) break;
+      const float next = t - std::log(1.0f - rng.next_float()) / piece.majorant;
+      // A step below float's resolution of t (a huge majorant far away) cannot advance: stop.
+      if (!(next > t) || next >= piece.t1) break;
+      t = next;
       if (rng.next_float() * piece.majorant < coefficients(seg, t, channel).sigma_t) return t;
     }
   }
@@ -178,8 +180,9 @@ float ratio_tracking(const Segment& seg, int channel, Pcg32& rng) {
   for (const MajorantPiece& piece : seg.pieces) {
     if (!(piece.majorant > 0.0f)) continue;
     for (float t = piece.t0;;) {
-      t -= std::log(1.0f - rng.next_float()) / piece.majorant;
-      if (t >= piece.t1) break;
+      const float next = t - std::log(1.0f - rng.next_float()) / piece.majorant;
+      if (!(next > t) || next >= piece.t1) break;
+      t = next;
       tr *= 1.0f - coefficients(seg, t, channel).sigma_t / piece.majorant;
     }
   }

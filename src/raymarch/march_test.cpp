@@ -82,6 +82,23 @@ TEST(March, HeterogeneousStepsConvergeToTheIntegral) {
   EXPECT_NEAR(record.transmittance_end().g, std::exp(-1.0f * 4.0f * 2.0f / 3.0f), 1e-4f);
 }
 
+// A step far below the span's length (a hostile step_size, or a tiny voxel) makes more steps
+// than an int holds: the count must saturate at max_steps_per_span, not wrap to one step.
+TEST(March, TinyStepSizeSaturatesAtTheStepLimit) {
+  VolumePrimitive puff{SphereVolumeShape{Sphere::make({0, 0, 5}, 2.0f, {})}, {RGB(0.5f), RGB(0.5f)}};
+  puff.shader.field = RadialFalloffDensity{1.0f};
+  puff.shader.step_size = 1e-30f;
+  const VolumeScene scene({puff});
+  MarchSettings settings;
+  settings.max_steps_per_span = 100;
+  MarchScratch scratch;
+  TransmittanceRecord record;
+  march(scene, {{0, 0, 0}, {0, 0, 1}}, 0.5f, settings, scratch, record);
+  EXPECT_EQ(record.steps().size(), 100u);
+  // 100 midpoint steps of the diameter integral sigma_t * 4R/3.
+  EXPECT_NEAR(record.transmittance_end().g, std::exp(-1.0f * 4.0f * 2.0f / 3.0f), 1e-3f);
+}
+
 TEST(March, StopsAtTheOpacityThreshold) {
   const VolumeScene scene({box({-1, -1, 1}, {1, 1, 2}, RGB(20.0f), RGB(0.0f)),
                            box({-1, -1, 3}, {1, 1, 4}, RGB(1.0f), RGB(1.0f))});

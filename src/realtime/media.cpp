@@ -42,7 +42,7 @@ RGB primitive_optical_depth(const VolumePrimitive& primitive, const Ray& ray, fl
   constexpr float kVoxelsPerPanel = 2.0f;
   const float voxel = field_voxel_size(primitive);
   const int panels =
-      std::isfinite(voxel) ? std::clamp(int(std::ceil(len / (kVoxelsPerPanel * voxel))), 1, 4096) : 1;
+      std::isfinite(voxel) ? int(std::clamp(std::ceil(len / (kVoxelsPerPanel * voxel)), 1.0f, 4096.0f)) : 1;
   const float width = len / float(panels), half = 0.5f * width;
   float sum = 0.0f;
   for (int k = 0; k < panels; ++k) {

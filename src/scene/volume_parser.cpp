@@ -1,6 +1,7 @@
 #include "scene/volume_parser.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <nlohmann/json.hpp>
 
@@ -190,7 +191,12 @@ GridDensity parse_grid_field(ObjectReader& r, const std::string& type, const Tra
   const auto elements = dims.elements("an array of three voxel counts");
   if (elements.size() != 3) dims.fail("expected an array of three voxel counts, got " + dims.describe());
   DenseGridLayout layout;
-  for (int a = 0; a < 3; ++a) layout.dims[size_t(a)] = int(elements[size_t(a)].number(Range::closed(1, 1 << 16)));
+  for (int a = 0; a < 3; ++a) {
+    const JsonCursor& n = elements[size_t(a)];
+    const float count = n.number(Range::closed(1, 1 << 16));
+    if (count != std::floor(count)) n.fail("expected a whole number of voxels, got " + n.describe());
+    layout.dims[size_t(a)] = int(count);
+  }
   layout.voxel_size = r.number("voxel_size", size_range());
   layout.origin = r.optional_vec3("origin").value_or(Vec3(0.0f));
   field.grid = load_dense_grid(resolve_path(file.string(), base_dir), layout, file.where());

@@ -129,6 +129,12 @@ TEST(VolumeParser, DenseGridFromARawFile) {
                                  dir);
   EXPECT_NE(e.find("/volumes/0/file"), std::string::npos) << e;
   EXPECT_NE(e.find("puff.raw"), std::string::npos) << e;
+  EXPECT_NE(error_of(R"({"c": {"sigma_s": 1}})",
+                     R"([{"type": "dense", "file": "puff.raw", "dimensions": [4, 3, 2.5], "voxel_size": 0.5,
+                          "medium": "c"}])",
+                     dir)
+                .find("/volumes/0/dimensions/2: expected a whole number"),
+            std::string::npos);
 }
 
 TEST(VolumeParser, MeshVolumesMustBeClosed) {

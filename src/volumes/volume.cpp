@@ -148,9 +148,12 @@ struct FieldIntervals {
   }
 };
 
+// Hotter than any flame by far, and low enough that sigma T^4 stays finite in float.
+constexpr float kMaxKelvin = 1e6f;
+
 RGB blackbody_emission(const BlackbodyEmission& b, float raw_temperature) {
   if (!(raw_temperature > 0.0f)) return RGB(0.0f);
-  const float kelvin = raw_temperature * b.temperature_scale + b.temperature_offset;
+  const float kelvin = std::min(raw_temperature * b.temperature_scale + b.temperature_offset, kMaxKelvin);
   if (!(kelvin > 0.0f)) return RGB(0.0f);
   return blackbody_color(kelvin) * (b.intensity * blackbody_exitance_radiance(kelvin));
 }
