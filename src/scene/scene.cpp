@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "geometry/mesh_generate.h"
 #include "geometry/shapes.h"
 #include "scene/mesh_loader.h"
 
@@ -43,6 +44,15 @@ struct ShapeMesh {
   TriangleMesh operator()(const MeshFileShape& m) const {
     return load_mesh(m.path, shape.where,
                      m.skip_degenerate ? DegenerateTriangles::kRemove : DegenerateTriangles::kReject);
+  }
+  TriangleMesh operator()(const GeneratedMeshShape& g) const {
+    switch (g.kind) {
+      case GeneratedMeshShape::Kind::kSphere:
+        return icosphere(icosphere_subdivisions_for(g.triangles));
+      case GeneratedMeshShape::Kind::kTorusKnot:
+        return torus_knot(torus_knot_for(g.triangles));
+    }
+    throw std::logic_error("unknown generated mesh");
   }
   TriangleMesh operator()(const SphereShape&) const { throw std::logic_error("spheres are not meshed"); }
 };

@@ -93,7 +93,13 @@ struct MeshFileShape {
   std::string path;              // absolute, or relative to the working directory
   bool skip_degenerate = false;  // remove zero-area triangles instead of rejecting the file
 };
-using ShapeGeometry = std::variant<SphereShape, BoxShape, RectangleShape, MeshFileShape>;
+// A closed mesh made on demand (geometry/mesh_generate.h): a subdivided unit sphere or a
+// (2, 3) torus knot of at least `triangles` triangles (occluders of a chosen size).
+struct GeneratedMeshShape {
+  enum class Kind { kSphere, kTorusKnot } kind = Kind::kSphere;
+  uint64_t triangles = 20;
+};
+using ShapeGeometry = std::variant<SphereShape, BoxShape, RectangleShape, MeshFileShape, GeneratedMeshShape>;
 
 struct ShapeDesc {
   ShapeGeometry geometry;

@@ -216,7 +216,19 @@ ShapeGeometry read_geometry(ObjectReader& r, const std::string& type, const std:
     read_parallelogram(r, rect.corner, rect.edge1, rect.edge2);
     return rect;
   }
-  r.allow({"type", "file", "skip_degenerate", "material", "transform"});
+  r.allow({"type", "file", "generate", "skip_degenerate", "material", "transform"});
+  if (const auto g = r.optional("generate")) {
+    if (r.has("file")) r.fail("a mesh takes either \"file\" or \"generate\", not both");
+    ObjectReader gr(*g, "a generated mesh");
+    gr.allow({"kind", "triangles"});
+    GeneratedMeshShape mesh;
+    mesh.kind = gr.choice("kind", {"sphere", "torus_knot"}) == "sphere" ? GeneratedMeshShape::Kind::kSphere
+                                                                       : GeneratedMeshShape::Kind::kTorusKnot;
+    // A subdivided sphere jumps by 4x: 5 million triangles allows its level 8 (1.3 M).
+    mesh.triangles = uint64_t(gr.integer_or("triangles", 20000, Range::closed(20, 5e6)));
+    gr.finish();
+    return mesh;
+  }
   return read_mesh(r, base_dir);
 }
 

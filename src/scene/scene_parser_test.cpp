@@ -676,3 +676,40 @@ TEST(SceneParser, BadMediaAreLocated) {
 
 }  // namespace
 }  // namespace caligo
+
+namespace caligo {
+namespace {
+
+TEST(SceneParser, GeneratedMeshShapes) {
+  const auto with_mesh = [](const std::string& mesh) {
+    return R"({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},
+               "materials": {"w": {"type": "diffuse", "reflectance": 0.5}},
+               "shapes": [)" + mesh + "]}";
+  };
+  const SceneDesc s = parse_scene_text(
+      with_mesh(R"({"type": "mesh", "generate": {"kind": "torus_knot", "triangles": 70000}, "material": "w"})"),
+      "g.json", "");
+  const auto& g = std::get<GeneratedMeshShape>(s.shapes[0].geometry);
+  EXPECT_EQ(g.kind, GeneratedMeshShape::Kind::kTorusKnot);
+  EXPECT_EQ(g.triangles, 70000u);
+  const auto error_of = [&](const std::string& mesh) {
+    try {
+      parse_scene_text(with_mesh(mesh), "g.json", "");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(error_of(R"({"type": "mesh", "generate": {"kind": "teapot"}, "material": "w"})")
+                .find("/shapes/0/generate/kind"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"type": "mesh", "generate": {"kind": "sphere", "triangles": 1e9}, "material": "w"})")
+                .find("/shapes/0/generate/triangles"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"type": "mesh", "file": "a.obj", "generate": {"kind": "sphere"}, "material": "w"})")
+                .find("not both"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace caligo

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "geometry/mesh_generate.h"
 
 namespace caligo {
 namespace {
@@ -76,6 +77,33 @@ TEST(Scene, MissingMeshFileIsAnInputErrorAtTheShape) {
     EXPECT_NE(what.find("room.json: /shapes/3"), std::string::npos) << what;
     EXPECT_NE(what.find("bunny.obj"), std::string::npos) << what;
   }
+}
+
+}  // namespace
+}  // namespace caligo
+
+namespace caligo {
+namespace {
+
+// A generated occluder is a real, closed mesh in the scene: a ray through the knot's tube
+// hits it, one beside it does not.
+TEST(Scene, GeneratedMeshesBecomeSurfaces) {
+  SceneDesc desc = base();
+  desc.shapes.push_back({GeneratedMeshShape{GeneratedMeshShape::Kind::kTorusKnot, 30000}, {}, 0, {}});
+  desc.shapes.push_back(
+      {GeneratedMeshShape{GeneratedMeshShape::Kind::kSphere, 20000}, Transform::translate({0, 0, -20}), 0, {}});
+  const auto scene = Scene::build(desc);
+  const TorusKnot k = torus_knot_for(30000);
+  EXPECT_GE(2 * k.segments * k.sides, 30000);
+  // The (2, 3) knot passes through (major + minor, 0, 0) = (1.4, 0, 0) at s = 0 with a tangent
+  // in the y-z plane: a ray along -x meets the tube (radius 0.15) square on, at x = 1.55.
+  const auto hit = scene->surfaces().intersect(Ray{{5.0f, 0.0f, 0.0f}, {-1, 0, 0}});
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(hit->t, 5.0f - 1.55f, 0.01f);
+  // The sphere 20 m away along -z, radius 1.
+  const auto far = scene->surfaces().intersect(Ray{{0.0f, 0.0f, -10.0f}, {0, 0, -1}});
+  ASSERT_TRUE(far);
+  EXPECT_NEAR(far->t, 9.0f, 0.01f);
 }
 
 }  // namespace
