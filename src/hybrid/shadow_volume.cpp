@@ -1,0 +1,314 @@
+// Shadow-volume geometry, the eye's winding number, and the eye pass.
+#include "hybrid/shadow_volume.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+
+#include "core/parallel.h"
+#include "realtime/raster_setup.h"
+#include "realtime/scene_buffers.h"
+
+namespace caligo {
+namespace {
+
+Vec3 extrude(Vec3 p, Vec3 light, float extrusion) {
+  const Vec3 d = p - light;
+  const float len = length(d);
+  // A vertex at the light cannot be extruded; no lit triangle has one, as it would face
+  // the light edge-on.
+  return len > 0.0f ? p + d * (extrusion / len) : p;
+}
+
+// Segment p -> q against triangle (a, b, c) in double (Moller-Trumbore). Returns 0 for no
+// crossing, +1 when the segment leaves through the face's front (outward) side, -1 when it
+// enters; sets *grazing when the crossing is too close to an edge or an end to trust.
+int segment_crossing(const double p[3], const double q[3], Vec3 a, Vec3 b, Vec3 c, bool* grazing) {
+  const double d[3] = {q[0] - p[0], q[1] - p[1], q[2] - p[2]};
+  const double e1[3] = {double(b.x) - a.x, double(b.y) - a.y, double(b.z) - a.z};
+  const double e2[3] = {double(c.x) - a.x, double(c.y) - a.y, double(c.z) - a.z};
+  const double h[3] = {d[1] * e2[2] - d[2] * e2[1], d[2] * e2[0] - d[0] * e2[2], d[0] * e2[1] - d[1] * e2[0]};
+  const double det = e1[0] * h[0] + e1[1] * h[1] + e1[2] * h[2];
+  if (det == 0.0) return 0;  // segment parallel to the plane: crosses nothing
+  const double inv = 1.0 / det;
+  const double s[3] = {p[0] - a.x, p[1] - a.y, p[2] - a.z};
+  const double u = (s[0] * h[0] + s[1] * h[1] + s[2] * h[2]) * inv;
+  const double qv[3] = {s[1] * e1[2] - s[2] * e1[1], s[2] * e1[0] - s[0] * e1[2],
+                        s[0] * e1[1] - s[1] * e1[0]};
+  const double v = (d[0] * qv[0] + d[1] * qv[1] + d[2] * qv[2]) * inv;
+  const double t = (e2[0] * qv[0] + e2[1] * qv[1] + e2[2] * qv[2]) * inv;
+  constexpr double kEps = 1e-7;
+  const double w = 1.0 - u - v;
+  if (u < -kEps || v < -kEps || w < -kEps || t < -kEps || t > 1.0 + kEps) return 0;
+  if (u < kEps || v < kEps || w < kEps || t < kEps || t > 1.0 - kEps) {
+    *grazing = true;
+    return 0;
+  }
+  // det = e1 . (d x e2) = d . (e2 x e1) = -d . n: det < 0 means the segment runs along the
+  // outward normal, i.e. it leaves the volume.
+  return det < 0.0 ? 1 : -1;
+}
+
+bool segment_hits_box(Vec3 p, Vec3 q, const Bounds3& b) {
+  if (b.empty()) return false;
+  Ray r{p, q - p, 0.0f, 1.0f};
+  // Pad the box: the slab test in float must not reject a segment the exact test accepts.
+  Bounds3 padded = b;
+  const float pad =
+      1e-4f * (1.0f + max_component(max(Vec3(std::abs(b.lo.x), std::abs(b.lo.y), std::abs(b.lo.z)),
+                                        Vec3(std::abs(b.hi.x), std::abs(b.hi.y), std::abs(b.hi.z)))));
+  padded.lo = padded.lo - Vec3(pad);
+  padded.hi = padded.hi + Vec3(pad);
+  float t0, t1;
+  return padded.intersect(r, &t0, &t1);
+}
+
+// Winding number towards one target; false when some crossing grazed an edge.
+bool winding_towards(const ShadowVolume& v, Vec3 point, Vec3 target, int* winding) {
+  const double p[3] = {point.x, point.y, point.z}, q[3] = {target.x, target.y, target.z};
+  const auto& pos = v.mesh.positions;
+  const auto& idx = v.mesh.indices;
+  bool grazing = false;
+  int sum = 0;
+  auto range = [&](size_t begin, size_t count) {
+    for (size_t t = begin; t < begin + count && !grazing; ++t)
+      sum += segment_crossing(p, q, pos[idx[3 * t]], pos[idx[3 * t + 1]], pos[idx[3 * t + 2]], &grazing);
+  };
+  range(v.side_begin(), v.side_triangles);
+  // The near cap lies on the occluder and the far cap beyond min_far_distance from the
+  // light: most eye positions skip both tests.
+  if (segment_hits_box(point, target, v.occluder_bounds)) range(v.near_cap_begin(), v.near_cap_triangles);
+  if (distance(point, v.light) >= 0.999f * v.min_far_distance) range(v.far_cap_begin(), v.far_cap_triangles);
+  *winding = sum;
+  return !grazing;
+}
+
+// --- The eye pass -------------------------------------------------------------------------
+
+struct VolumeScene {
+  RasterScene scene;
+  std::vector<int8_t> sign;  // per rasterised triangle: +1 turned to the eye (entering), -1 away
+};
+
+VolumeScene gather_triangles(std::span<const ShadowVolume> volumes, const View& view,
+                             const ShadowVolumeOptions& options) {
+  VolumeScene out;
+  const bool perspective = view.projection == Projection::perspective;
+  for (const ShadowVolume& v : volumes) {
+    auto add = [&](size_t begin, size_t count) {
+      for (size_t t = begin; t < begin + count; ++t) {
+        const Vec3 p0 = v.mesh.positions[v.mesh.indices[3 * t]],
+                   p1 = v.mesh.positions[v.mesh.indices[3 * t + 1]],
+                   p2 = v.mesh.positions[v.mesh.indices[3 * t + 2]];
+        const size_t before = out.scene.triangle_count();
+        out.scene.add_triangle(p0, p1, p2, Vec3(0, 0, 1), Vec3(0, 0, 1), Vec3(0, 0, 1), 0);
+        if (out.scene.triangle_count() == before) continue;  // zero area: dropped
+        const Vec3 n = out.scene.geometric_normal(before);
+        const float towards_eye = perspective ? dot(n, view.eye - p0) : -dot(n, view.forward);
+        out.sign.push_back(towards_eye > 0.0f ? 1 : -1);
+      }
+    };
+    add(v.side_begin(), v.side_triangles);
+    if (options.near_caps) add(v.near_cap_begin(), v.near_cap_triangles);
+    if (options.far_caps) add(v.far_cap_begin(), v.far_cap_triangles);
+  }
+  return out;
+}
+
+// Per-tile accumulators. Keys grow towards the viewer (raster_setup.h): the nearest
+// surface has the largest key.
+struct TileTarget {
+  static constexpr int stride = raster::kTileSize;
+  float nearest[stride * stride];
+  float farthest[stride * stride];
+  float limit[stride * stride];  // key of the biased opaque depth: surfaces need key > limit
+  float row_limit[stride];       // the smallest limit of each row (its farthest opaque depth)
+  int32_t crossings[stride * stride];
+};
+
+inline float depth_to_key(float depth, bool perspective) { return perspective ? 1.0f / depth : -depth; }
+inline float key_to_depth(float key, bool perspective) { return perspective ? 1.0f / key : -key; }
+inline bool covered(float e, bool tie) { return e > 0.0f || (e == 0.0f && tie); }
+
+// Narrows [*x0, *x1) to the pixels of one row that can be covered. Side quads are long
+// slivers whose bounding boxes span much of the screen, so testing every pixel of the box
+// costs ~20x the covered area. Each edge function is linear in x along the row, so it
+// bounds x on one side; the bound is widened by a pixel and every pixel inside is still
+// tested exactly, so coverage is unchanged. False when the row is empty.
+bool row_span(const raster::ScreenTri& tri, std::array<float, 3> r, int* x0, int* x1) {
+  for (int i = 0; i < 3; ++i) {
+    const float dy = tri.dy[i];
+    if (dy == 0.0f) {  // e = -r along the whole row
+      if (!covered(-r[size_t(i)], tri.tie[i])) return false;
+      continue;
+    }
+    // e = 0 at px = cross; clamped to the screen's neighbourhood before converting to int.
+    const float cross = std::clamp(tri.ax[i] + r[size_t(i)] / dy, -1.0e6f, 1.0e6f);
+    if (!std::isfinite(cross)) continue;  // cannot narrow; the exact tests still decide
+    if (dy > 0.0f)
+      *x0 = std::max(*x0, int(std::floor(cross - 0.5f)) - 1);
+    else
+      *x1 = std::min(*x1, int(std::ceil(cross - 0.5f)) + 2);
+  }
+  return *x0 < *x1;
+}
+
+void raster_tile(const raster::Setup& s, const VolumeScene& vs, const Tile& tile, TileTarget& t) {
+  for (uint32_t index : s.bins[size_t(tile.index)]) {
+    const raster::ScreenTri& tri = s.tris[index];
+    const int sign = vs.sign[tri.source];
+    const int x0 = std::max(tri.x0, tile.x0), x1 = std::min(tri.x1, tile.x1);
+    const int y0 = std::max(tri.y0, tile.y0), y1 = std::min(tri.y1, tile.y1);
+    for (int y = y0; y < y1; ++y) {
+      const float py = float(y) + 0.5f;
+      const float r0 = (py - tri.ay[0]) * tri.dx[0], r1 = (py - tri.ay[1]) * tri.dx[1],
+                  r2 = (py - tri.ay[2]) * tri.dx[2];
+      const size_t row = size_t(y - tile.y0) * TileTarget::stride;
+      int span_x0 = x0, span_x1 = x1;
+      if (!row_span(tri, {r0, r1, r2}, &span_x0, &span_x1)) continue;
+      // Row-level depth cull: the key is linear along the row, so its largest value over the
+      // span is at an end. Most of a volume lies under the ground, behind every pixel.
+      auto key_at = [&](float px) {
+        return ((px - tri.ax[0]) * tri.dy[0] - r0) * tri.c[0] +
+               ((px - tri.ax[1]) * tri.dy[1] - r1) * tri.c[1] +
+               ((px - tri.ax[2]) * tri.dy[2] - r2) * tri.c[2];
+      };
+      const float best = std::max(key_at(float(span_x0) + 0.5f), key_at(float(span_x1) - 0.5f));
+      if (best + 1e-5f * std::abs(best) <= t.row_limit[y - tile.y0]) continue;
+      for (int x = span_x0; x < span_x1; ++x) {
+        const float px = float(x) + 0.5f;
+        const float e0 = (px - tri.ax[0]) * tri.dy[0] - r0;
+        const float e1 = (px - tri.ax[1]) * tri.dy[1] - r1;
+        const float e2 = (px - tri.ax[2]) * tri.dy[2] - r2;
+        if (!covered(e0, tri.tie[0]) || !covered(e1, tri.tie[1]) || !covered(e2, tri.tie[2])) continue;
+        const float key = e0 * tri.c[0] + e1 * tri.c[1] + e2 * tri.c[2];
+        const size_t i = row + size_t(x - tile.x0);
+        if (!(key > t.limit[i])) continue;  // at or behind the opaque surface
+        t.nearest[i] = std::max(t.nearest[i], key);
+        t.farthest[i] = std::min(t.farthest[i], key);
+        t.crossings[i] += sign;
+      }
+    }
+  }
+}
+
+}  // namespace
+
+ShadowVolume build_shadow_volume(const MeshEdges& occluder, Vec3 light, float extrusion) {
+  if (!occluder.closed())
+    throw std::invalid_argument("shadow volume of a mesh that is not closed: " + occluder.problem());
+  if (!(extrusion > 0.0f) || !std::isfinite(extrusion))
+    throw std::invalid_argument("shadow volume extrusion must be positive and finite");
+  ShadowVolume v;
+  v.light = light;
+  v.extrusion = extrusion;
+  const Silhouette sil = find_silhouette(occluder, light);
+  const auto& verts = occluder.vertices();
+  const uint32_t n = uint32_t(verts.size());
+  v.mesh.positions = verts;
+  v.mesh.positions.reserve(2 * size_t(n));
+  v.min_far_distance = kInfinity;
+  for (Vec3 p : verts) v.mesh.positions.push_back(extrude(p, light, extrusion));
+
+  auto& idx = v.mesh.indices;
+  idx.reserve(3 * (2 * sil.edges.size() + 2 * sil.lit_count));
+  for (const auto& [a, b] : sil.edges) {  // the lit triangle traverses a -> b
+    idx.insert(idx.end(), {b, a, a + n});
+    idx.insert(idx.end(), {b, a + n, b + n});
+  }
+  v.side_triangles = 2 * sil.edges.size();
+  const auto& tris = occluder.triangles();
+  for (size_t t = 0; t < tris.size(); ++t) {
+    if (!sil.lit[t]) continue;
+    idx.insert(idx.end(), {tris[t][0], tris[t][1], tris[t][2]});
+    for (uint32_t k : tris[t]) {
+      v.occluder_bounds.extend(verts[k]);
+      v.min_far_distance = std::min(v.min_far_distance, distance(v.mesh.positions[k + n], light));
+    }
+  }
+  v.near_cap_triangles = sil.lit_count;
+  // Central projection from the light keeps a triangle's winding as seen from the light,
+  // so the far copy must be reversed to face away from it (outwards).
+  for (size_t t = 0; t < tris.size(); ++t)
+    if (sil.lit[t]) idx.insert(idx.end(), {tris[t][0] + n, tris[t][2] + n, tris[t][1] + n});
+  v.far_cap_triangles = sil.lit_count;
+  return v;
+}
+
+float extrusion_for(const Bounds3& scene_bounds, Vec3 light) {
+  Bounds3 b = scene_bounds;
+  b.extend(light);
+  return 1.01f * length(b.diagonal()) + 1.0f;
+}
+
+int volumes_containing(const ShadowVolume& volume, Vec3 point) {
+  // The light is outside the volume (the volume starts at the occluder's lit surface), so
+  // the signed crossings of point -> light give the winding number. A segment through an
+  // edge or vertex would count a crossing twice or not at all; such targets are rejected
+  // and the light jittered by a tiny, deterministic amount instead.
+  const float scale = 1e-4f * std::max(1.0f, length(point - volume.light));
+  static constexpr float kJitter[8][3] = {
+      {0.31f, 0.77f, -0.52f}, {-0.68f, 0.12f, 0.71f},  {0.45f, -0.83f, 0.29f},  {-0.19f, -0.41f, -0.89f},
+      {0.93f, 0.27f, 0.22f},  {-0.57f, 0.61f, -0.55f}, {0.08f, -0.97f, -0.21f}, {0.66f, 0.49f, 0.57f}};
+  int winding = 0;
+  if (winding_towards(volume, point, volume.light, &winding)) return winding;
+  for (const auto& j : kJitter)
+    if (winding_towards(volume, point, volume.light + Vec3(j[0], j[1], j[2]) * scale, &winding))
+      return winding;
+  return winding;  // every target grazed: astronomically unlikely; keep the last count
+}
+
+ShadowVolumeBuffers rasterize_shadow_volumes(std::span<const ShadowVolume> volumes, const View& view,
+                                             const Plane& opaque_depth, const ShadowVolumeOptions& options) {
+  const int w = view.resolution.x, h = view.resolution.y;
+  if (opaque_depth.width != w || opaque_depth.height != h)
+    throw std::invalid_argument("rasterize_shadow_volumes: opaque depth size differs from the view's");
+  ShadowVolumeBuffers out;
+  out.front = Plane(w, h, kNoShadowVolume);
+  out.back = Plane(w, h, kNoShadowVolume);
+  out.tail_count.assign(size_t(w) * size_t(h), 0);
+  for (const ShadowVolume& v : volumes) out.eye_count += volumes_containing(v, view.eye);
+
+  const VolumeScene vs = gather_triangles(volumes, view, options);
+  const raster::Setup s = raster::setup_triangles(vs.scene, view, false);
+  const bool perspective = s.perspective;
+  const float keep = 1.0f - options.depth_bias;
+  parallel_for_tiles(make_tiles(view.resolution, raster::kTileSize), [&](const Tile& tile) {
+    thread_local TileTarget t;
+    for (int y = tile.y0; y < tile.y1; ++y)
+      for (int x = tile.x0; x < tile.x1; ++x) {
+        const size_t i = size_t(y - tile.y0) * TileTarget::stride + size_t(x - tile.x0);
+        t.nearest[i] = -kInfinity;
+        t.farthest[i] = kInfinity;
+        t.crossings[i] = 0;
+        t.limit[i] = depth_to_key(opaque_depth.at(x, y) * keep, perspective);
+      }
+    for (int y = tile.y0; y < tile.y1; ++y) {
+      const float* row = t.limit + size_t(y - tile.y0) * TileTarget::stride;
+      t.row_limit[y - tile.y0] = *std::min_element(row, row + (tile.x1 - tile.x0));
+    }
+    raster_tile(s, vs, tile, t);
+    for (int y = tile.y0; y < tile.y1; ++y)
+      for (int x = tile.x0; x < tile.x1; ++x) {
+        const size_t i = size_t(y - tile.y0) * TileTarget::stride + size_t(x - tile.x0);
+        const size_t pixel = size_t(y) * size_t(w) + size_t(x);
+        out.tail_count[pixel] = out.eye_count + t.crossings[i];
+        float front = kNoShadowVolume, back = kNoShadowVolume;
+        if (t.nearest[i] > -kInfinity) {
+          const float per_t = view.depth_per_t(view.ray({float(x) + 0.5f, float(y) + 0.5f}).direction);
+          front = key_to_depth(t.nearest[i], perspective) / per_t;
+          back = key_to_depth(t.farthest[i], perspective) / per_t;
+        }
+        if (out.eye_count > 0) {
+          front = 0.0f;
+          if (back == kNoShadowVolume) back = 0.0f;
+        }
+        out.front.at(x, y) = front;
+        out.back.at(x, y) = back;
+      }
+  });
+  return out;
+}
+
+}  // namespace caligo
