@@ -184,6 +184,31 @@ constexpr const char* kMeshVolume = R"json({
              {"type": "environment", "radiance": 0.1}]
 })json";
 
+// The Wyman & Ramsey (2008) test scenes: a point light in homogeneous fog over a ground
+// plane, above a closed occluder of a chosen size whose shadow volume cuts dark shafts into
+// the airlight. Single scattering and direct light (the real-time methods' reference).
+// Sizes: Debian's assimp-testmodels has no closed mesh of 20k-750k triangles (its largest,
+// the 110k-triangle 2CylinderEngine glTF, is open), so the occluders are generated.
+std::string wyman_scene(const char* kind, int triangles, const char* transform) {
+  return std::string(R"json({
+  "camera": {"position": [0, 2.2, 7.5], "look_at": [0, 1.1, 0], "fov": 45, "resolution": [512, 512]},
+  "render": {"spp": 64, "max_depth": 1, "max_volume_bounces": 1},
+  "materials": {"ground": {"type": "diffuse", "reflectance": 0.4},
+                "occluder": {"type": "diffuse", "reflectance": 0.6}},
+  "media": {"fog": {"sigma_s": 0.25, "sigma_a": 0.03}},
+  "shapes": [
+    {"type": "rectangle", "corner": [-8, 0, -8], "edge1": [0, 0, 16], "edge2": [16, 0, 0], "material": "ground"},
+    {"type": "mesh", "generate": {"kind": ")json") + kind + R"json(", "triangles": )json" + std::to_string(triangles) +
+         R"json(}, "material": "occluder", "transform": )json" + transform + R"json(}
+  ],
+  "volumes": [{"type": "box", "min": [-8, 0, -8], "max": [8, 6, 8], "medium": "fog"}],
+  "lights": [{"type": "point", "position": [0.6, 4.2, -0.4], "color": [1, 0.92, 0.8], "intensity": 60}]
+})json";
+}
+
+const char* const kWymanSphere = R"([{"scale": 0.8}, {"translate": [0, 1.6, 0]}])";
+const char* const kWymanKnot = R"([{"scale": 0.9}, {"translate": [0, 1.6, 0]}])";
+
 const std::vector<BuiltinScene>& all_builtins() {
   static const std::vector<BuiltinScene> scenes = {
       {"default",
@@ -210,6 +235,14 @@ const std::vector<BuiltinScene>& all_builtins() {
        kFire},
       {"mesh-volume", "the COLLADA duck from assimp-testmodels filled with smoke (a closed-mesh volume, even/odd counting)",
        kMeshVolume},
+      {"wyman-20k", "Wyman & Ramsey: a point light in fog over a ground plane, a 20,480-triangle sphere occluder",
+       wyman_scene("sphere", 20000, kWymanSphere)},
+      {"wyman-70k", "Wyman & Ramsey: a point light in fog, a 70,688-triangle torus-knot occluder",
+       wyman_scene("torus_knot", 70000, kWymanKnot)},
+      {"wyman-330k", "Wyman & Ramsey: a point light in fog, a 327,680-triangle sphere occluder",
+       wyman_scene("sphere", 300000, kWymanSphere)},
+      {"wyman-750k", "Wyman & Ramsey: a point light in fog, a 750,000-triangle torus-knot occluder",
+       wyman_scene("torus_knot", 750000, kWymanKnot)},
   };
   return scenes;
 }

@@ -116,3 +116,25 @@ TEST(Builtins, VolumeScenesHaveTheirMedia) {
 
 }  // namespace
 }  // namespace caligo
+
+namespace caligo {
+namespace {
+
+// The Wyman & Ramsey family: one point light, homogeneous fog, a ground and a generated
+// closed occluder of the size in the name.
+TEST(Builtins, WymanScenesHaveAPointLightFogAndASizedOccluder) {
+  for (const auto& [name, triangles] : {std::pair{"wyman-20k", 20000u}, std::pair{"wyman-70k", 70000u},
+                                        std::pair{"wyman-330k", 300000u}, std::pair{"wyman-750k", 750000u}}) {
+    SCOPED_TRACE(name);
+    const SceneDesc scene = parse_builtin(*find_builtin(name));
+    ASSERT_EQ(scene.lights.size(), 1u);
+    EXPECT_TRUE(std::holds_alternative<PointLight>(scene.lights[0]));
+    ASSERT_EQ(scene.volumes.size(), 1u);
+    EXPECT_TRUE(is_homogeneous(scene.volumes[0].shader));
+    ASSERT_EQ(scene.shapes.size(), 2u);
+    EXPECT_EQ(std::get<GeneratedMeshShape>(scene.shapes[1].geometry).triangles, triangles);
+  }
+}
+
+}  // namespace
+}  // namespace caligo
