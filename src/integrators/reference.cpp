@@ -158,9 +158,11 @@ RGB scattered_once(const Scene& scene, const Segment& seg, float t, Pcg32& rng) 
 
 // ---- delta tracking, one channel ----
 
-// The first real collision in the segment (delta tracking with a piecewise-constant majorant:
-// the memoryless exponential restarts at each piece's start), or none.
-std::optional<float> sample_collision(const Segment& seg, int channel, Pcg32& rng) {
+// Tentative collisions of the segment's piecewise-constant majorant, front to back: the
+// memoryless exponential restarts at each piece's start. `visit(t, majorant)` returns false
+// to stop; returns whether it stopped.
+template <typename Visit>
+bool walk_tentative_collisions(const Segment& seg, Pcg32& rng, Visit&& visit) {
   for (const MajorantPiece& piece : seg.pieces) {
     if (!(piece.majorant > 0.0f)) continue;
     for (float t = piece.t0;;) {
@@ -168,24 +170,29 @@ std::optional<float> sample_collision(const Segment& seg, int channel, Pcg32& rn
       // A step below float's resolution of t (a huge majorant far away) cannot advance: stop.
       if (!(next > t) || next >= piece.t1) break;
       t = next;
-      if (rng.next_float() * piece.majorant < coefficients(seg, t, channel).sigma_t) return t;
+      if (!visit(t, piece.majorant)) return true;
     }
   }
-  return std::nullopt;
+  return false;
 }
 
-// Unbiased transmittance estimate over the segment (ratio tracking, piece by piece).
+// The first real collision in the segment (delta tracking), or none.
+std::optional<float> sample_collision(const Segment& seg, int channel, Pcg32& rng) {
+  float hit = 0.0f;
+  const bool collided = walk_tentative_collisions(seg, rng, [&](float t, float majorant) {
+    hit = t;
+    return !(rng.next_float() * majorant < coefficients(seg, t, channel).sigma_t);
+  });
+  return collided ? std::optional<float>(hit) : std::nullopt;
+}
+
+// Unbiased transmittance estimate over the segment (ratio tracking).
 float ratio_tracking(const Segment& seg, int channel, Pcg32& rng) {
   float tr = 1.0f;
-  for (const MajorantPiece& piece : seg.pieces) {
-    if (!(piece.majorant > 0.0f)) continue;
-    for (float t = piece.t0;;) {
-      const float next = t - std::log(1.0f - rng.next_float()) / piece.majorant;
-      if (!(next > t) || next >= piece.t1) break;
-      t = next;
-      tr *= 1.0f - coefficients(seg, t, channel).sigma_t / piece.majorant;
-    }
-  }
+  walk_tentative_collisions(seg, rng, [&](float t, float majorant) {
+    tr *= 1.0f - coefficients(seg, t, channel).sigma_t / majorant;
+    return true;
+  });
   return tr;
 }
 
