@@ -251,7 +251,7 @@ TEST_F(Cli, RealtimeWritesFramesAndPrintsThePassTable) {
   const RunResult r = run("realtime " + scene.string() + " --frames 4 --warmup 1 -o " + (dir_ / "frames").string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (int i = 0; i < 4; ++i) EXPECT_TRUE(fs::exists(dir_ / "frames" / ("frame_000" + std::to_string(i) + ".png")));
-  for (const char* pass : {"depth", "shadow maps", "accumulation", "light 0 (spot)", "gather", "upsample",
+  for (const char* pass : {"depth", "shadow maps", "accumulation", "light 0 (spot, march)", "gather", "upsample",
                            "temporal", "composite", "total"})
     EXPECT_NE(r.out.find(pass), std::string::npos) << pass;
   EXPECT_NE(r.out.find("caligo realtime:"), std::string::npos);
@@ -286,6 +286,18 @@ TEST_F(Cli, RealtimeRejectsBadOptionsBeforeRendering) {
   const RunResult missing = run("realtime " + scene.string() + " -o " + (dir_ / "no" / "such" / "x.gif").string());
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_NE(missing.err.find("does not exist"), std::string::npos);
+}
+
+// The Wyman & Ramsey hybrid on its built-in scene: every occluder (the ground box, the
+// sphere) is closed, so the point light really takes the hybrid, not a fallback.
+TEST_F(Cli, RealtimeRunsTheHybridMethodOnAWymanScene) {
+  const fs::path out = dir_ / "hybrid.png";
+  const RunResult r = run("realtime wyman-20k --method hybrid --res 128x128 --frames 1 -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("light 0 (point, hybrid)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("per light: 0 hybrid"), std::string::npos) << r.out;
+  EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+  EXPECT_GT(fs::file_size(out), 100u);
 }
 
 TEST_F(Cli, RealtimeReportsBrokenGoboAndIesFilesWithTheirJsonPath) {

@@ -40,7 +40,7 @@ struct RealtimeOptions {
   std::optional<int> frames;
   std::optional<std::string> resolution;
   std::optional<std::string> scale;          // full, half, quarter
-  std::string method = "march";              // the Lords of the Fallen ray marcher
+  std::string method = "march";              // march (Lords of the Fallen), none, brute or hybrid
   std::string scene_buffers = "raster";      // raster or embree
   std::optional<int> samples;
   std::optional<int> tile_size;

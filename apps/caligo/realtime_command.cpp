@@ -1,4 +1,5 @@
-// caligo realtime SCENE [--frames N] [--res WxH] [--scale full|half|quarter] [-o OUT] ...
+// caligo realtime SCENE [--frames N] [--res WxH] [--scale full|half|quarter]
+//                 [--method march|none|brute|hybrid] [-o OUT] ...
 // Renders the scene's camera path with the real-time pipeline, prints the per-pass table
 // (median over the frames after warm-up) and optionally compares the last frame with the
 // path tracer's single-scattering reference.
@@ -8,11 +9,13 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <variant>
 #include <vector>
 
 #include "commands.h"
+#include "hybrid/hybrid_pipeline.h"
 #include "image/exr_io.h"
 #include "image/png_io.h"
 #include "image/tonemap.h"
@@ -33,7 +36,10 @@ void add_realtime_command(CLI::App& app, RealtimeOptions& o) {
   cmd->add_option("--frames", o.frames, "Frames to render (overrides the scene's realtime.frames)");
   cmd->add_option("--res", o.resolution, "Output resolution WxH (overrides the scene)");
   cmd->add_option("--scale", o.scale, "Accumulation resolution: full, half or quarter");
-  cmd->add_option("--method", o.method, "Volumetric method: march (ray marching with shadow maps)");
+  cmd->add_option("--method", o.method,
+                  "Volumetric method of point lights in one homogeneous medium: march (ray marching with shadow "
+                  "maps, all lights), none (airlight, no volumetric shadows), brute (150 steps, closed-form lit "
+                  "intervals) or hybrid (Wyman & Ramsey shadow volumes, 50 steps); other lights march");
   cmd->add_option("--scene-buffers", o.scene_buffers, "Depth/normal buffers by: raster (default) or embree");
   cmd->add_option("--samples", o.samples, "March steps per pixel per light");
   cmd->add_option("--tile", o.tile_size, "Interleaved-sampling tile side (1: no interleaving)");
@@ -78,8 +84,8 @@ RealtimeSettings settings_from(const RealtimeOptions& o, const SceneDesc& desc) 
     else if (*o.scale == "quarter") s.scale = 4;
     else throw InputError(kCommandLine, "--scale: expected full, half or quarter, got \"" + *o.scale + "\"");
   }
-  if (o.method != "march")
-    throw InputError(kCommandLine, "--method: expected march, got \"" + o.method + "\"");
+  if (!parse_volumetric_method(o.method))
+    throw InputError(kCommandLine, "--method: expected march, none, brute or hybrid, got \"" + o.method + "\"");
   if (o.scene_buffers == "raster") s.scene_buffers = SceneBufferMethod::raster;
   else if (o.scene_buffers == "embree") s.scene_buffers = SceneBufferMethod::embree;
   else throw InputError(kCommandLine, "--scene-buffers: expected raster or embree, got \"" + o.scene_buffers + "\"");
@@ -149,7 +155,12 @@ const char* light_kind(const Light& light) {
   return std::visit(Kind{}, light);
 }
 
-void print_table(const SceneDesc& desc, const std::vector<PassTimes>& timed) {
+// "march", or what the scatterer used for the light in the last frame.
+std::string light_method(const HybridScatterer* scatterer, size_t light) {
+  return volumetric_method_name(scatterer ? scatterer->used(light) : VolumetricMethod::kMarch);
+}
+
+void print_table(const SceneDesc& desc, const std::vector<PassTimes>& timed, const HybridScatterer* scatterer) {
   const auto row = [&](const char* name, auto get) {
     std::vector<double> v;
     for (const PassTimes& t : timed) v.push_back(get(t));
@@ -163,7 +174,8 @@ void print_table(const SceneDesc& desc, const std::vector<PassTimes>& timed) {
   for (size_t i = 0; i < desc.lights.size(); ++i) {
     if (!desc.options(i).volumetric) continue;
     char name[64];
-    std::snprintf(name, sizeof name, "  light %zu (%s)", i, light_kind(desc.lights[i]));
+    std::snprintf(name, sizeof name, "  light %zu (%s, %s)", i, light_kind(desc.lights[i]),
+                  light_method(scatterer, i).c_str());
     row(name, [i](const PassTimes& t) { return i < t.per_light.size() ? t.per_light[i] : 0.0; });
   }
   row("gather", [](const PassTimes& t) { return t.gather; });
@@ -272,6 +284,13 @@ int run_realtime(const RealtimeOptions& o) {
                      "reference would count once per light");
 
   RealtimePipeline pipeline(desc, settings);
+  const VolumetricMethod method = *parse_volumetric_method(o.method);
+  HybridScatterer* scatterer = nullptr;  // owned by the pipeline
+  if (method != VolumetricMethod::kMarch) {
+    auto owned = std::make_unique<HybridScatterer>(pipeline.scene(), method);
+    scatterer = owned.get();
+    pipeline.set_scatterer(std::move(owned));
+  }
   std::vector<PassTimes> timed;
   std::vector<std::vector<uint8_t>> gif_frames;
   const PreviewSettings preview{o.exposure, true};
@@ -303,7 +322,7 @@ int run_realtime(const RealtimeOptions& o) {
   if (kind == OutputKind::gif)
     write_gif(o.output, settings.resolution.x, settings.resolution.y, gif_frames, desc.realtime.fps);
 
-  if (!o.quiet) print_table(desc, timed);
+  if (!o.quiet) print_table(desc, timed, scatterer);
   std::vector<double> volumetric, total;
   for (const PassTimes& t : timed) {
     volumetric.push_back(t.volumetric());
@@ -316,6 +335,12 @@ int run_realtime(const RealtimeOptions& o) {
               o.scene.c_str(), settings.resolution.x, settings.resolution.y, low.x, low.y, desc.lights.size(),
               frames, median(volumetric) / 1000.0, median(total) / 1000.0, o.output.empty() ? "" : " -> ",
               o.output.c_str());
+  std::string methods;
+  for (size_t i = 0; i < desc.lights.size(); ++i)
+    if (desc.options(i).volumetric)
+      methods += (methods.empty() ? "" : ", ") + std::to_string(i) + " " + light_method(scatterer, i);
+  std::printf("volumetric method (--method %s) per light: %s\n", o.method.c_str(),
+              methods.empty() ? "no volumetric lights" : methods.c_str());
   if (!changes.empty())
     std::printf("volumetric frame-to-frame change: %.2f %% (median over %zu frame pairs)\n", median(changes) * 100.0,
                 changes.size());

@@ -136,7 +136,8 @@ const RealtimeFrame& RealtimePipeline::render(float time, uint32_t frame_index) 
   for (size_t i = 0; i < lights.size(); ++i) {
     if (!lights[i].options.volumetric) continue;
     const auto light_start = Clock::now();
-    accumulate_light(lights[i], volumes, accumulation_rays_, acc, accum);
+    if (!scatterer_ || !scatterer_->scatter(i, lights[i], volumes, next.low_view, next.low_depth, accum))
+      accumulate_light(lights[i], volumes, accumulation_rays_, acc, accum);
     times.per_light[i] = micros_since(light_start);
   }
   times.accumulation = micros_since(t);

@@ -22,8 +22,24 @@ namespace caligo {
 
 class Scene;
 class RasterScene;
+class VolumeScene;
+struct FrameLight;
 struct GBuffer;
 struct ShadowMap;
+
+// A replacement for accumulate_light on the lights it accepts: the Wyman & Ramsey hybrid of
+// src/hybrid (hybrid/hybrid_pipeline.h) plugs in here. It is an interface rather than a
+// settings enum because caligo::hybrid is built on caligo::realtime (views, shadow maps,
+// the rasteriser), so the pipeline cannot call it directly without a dependency cycle.
+class LightScatterer {
+ public:
+  virtual ~LightScatterer() = default;
+  // Adds light `index`'s in-scattered radiance at low_view's resolution into `accum` and
+  // returns true, or returns false without touching `accum` to leave the light to the march.
+  // `low_depth` is the linear depth at low_view's resolution (kSkyDepth where nothing).
+  virtual bool scatter(size_t index, const FrameLight& light, const VolumeScene& volumes, const View& low_view,
+                       const Plane& low_depth, ColorPlanes& accum) = 0;
+};
 
 enum class SceneBufferMethod { raster, embree };
 
@@ -76,6 +92,11 @@ class RealtimePipeline {
   // previous call's frame is the temporal history.
   const RealtimeFrame& render(float time, uint32_t frame_index);
 
+  // The built scene (geometry never moves): what a scatterer builds its occluders from.
+  const Scene& scene() const { return *scene_; }
+  // Lights the scatterer accepts skip accumulate_light; null (the default) marches all.
+  void set_scatterer(std::unique_ptr<LightScatterer> scatterer) { scatterer_ = std::move(scatterer); }
+
  private:
   struct CachedShadow;
 
@@ -90,6 +111,7 @@ class RealtimePipeline {
   std::unique_ptr<GBuffer> gbuffer_;  // reused frame to frame (allocation costs as much as drawing it)
   RealtimeFrame frame_, previous_;   // swapped each frame so their buffers are reused
   bool has_history_ = false;
+  std::unique_ptr<LightScatterer> scatterer_;
 };
 
 }  // namespace caligo

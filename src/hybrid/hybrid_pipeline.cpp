@@ -1,0 +1,244 @@
+#include "hybrid/hybrid_pipeline.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <variant>
+
+#include "core/parallel.h"
+#include "geometry/mesh_generate.h"
+#include "geometry/shapes.h"
+#include "realtime/frame_light.h"
+#include "realtime/scene_buffers.h"
+#include "realtime/shadow_map.h"
+#include "scene/scene.h"
+#include "volumes/volume_scene.h"
+
+namespace caligo {
+
+struct HybridScatterer::CachedVolumes {
+  bool valid = false;
+  Vec3 light;
+  std::vector<ShadowVolume> volumes;
+};
+
+namespace {
+
+constexpr int kSphereSubdivisions = 4;
+
+// The unit icosphere grown so that every face plane lies at distance >= 1 from the centre:
+// it then contains the unit sphere and every inscribed tessellation of it (the raster's UV
+// sphere), so its shadow volume contains the shadow the shadow map holds.
+TriangleMesh circumscribed_sphere(const Sphere& sphere) {
+  TriangleMesh m = icosphere(kSphereSubdivisions);
+  float min_plane = 1.0f;
+  for (size_t t = 0; t < m.triangle_count(); ++t) {
+    const Vec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]],
+               c = m.positions[m.indices[3 * t + 2]];
+    const Vec3 n = normalize(cross(b - a, c - a));
+    min_plane = std::min(min_plane, std::abs(dot(n, a)));
+  }
+  const float grow = 1.0f / min_plane * 1.0005f;  // and a little for rounding
+  for (Vec3& p : m.positions) p = sphere.object_to_world.point(p * grow);
+  m.normals.clear();
+  return m;
+}
+
+struct IsotropicCheck {
+  bool operator()(const IsotropicPhase&) const { return true; }
+  bool operator()(const HenyeyGreensteinPhase& p) const { return p.g == 0.0f; }
+  bool operator()(const SchlickPhase& p) const { return p.k == 0.0f; }
+  bool operator()(const DoubleHenyeyGreensteinPhase& p) const { return p.g1 == 0.0f && p.g2 == 0.0f; }
+};
+
+struct ConvexCheck {
+  bool operator()(const SphereVolumeShape&) const { return true; }
+  bool operator()(const BoxVolumeShape&) const { return true; }
+  bool operator()(const MeshVolumeShape&) const { return false; }
+};
+
+bool inside(const VolumeShape& shape, Vec3 p) {
+  // A short ray from p: p is inside a convex hull when the hull interval starts at p.
+  const Ray ray{p, Vec3(0, 1, 0), 0.0f, kInfinity};
+  const auto hull = volume_hull_interval(shape, ray);
+  return hull && hull->first <= 0.0f && hull->second > 0.0f;
+}
+
+struct PointOnly {
+  const PointLight* operator()(const PointLight& l) const { return &l; }
+  const PointLight* operator()(const SpotLight&) const { return nullptr; }
+  const PointLight* operator()(const SphereLight&) const { return nullptr; }
+  const PointLight* operator()(const QuadLight&) const { return nullptr; }
+  const PointLight* operator()(const DirectionalLight&) const { return nullptr; }
+  const PointLight* operator()(const EnvironmentLight&) const { return nullptr; }
+  const PointLight* operator()(const TriangleLight&) const { return nullptr; }
+  const PointLight* operator()(const BoxLight&) const { return nullptr; }
+};
+
+// The opaque depth cut at the medium's exit, so every pass integrates the lit medium only.
+Plane clip_to_medium(const Plane& depth, const View& view, const VolumeShape& shape) {
+  Plane out(depth.width, depth.height);
+  parallel_for(depth.height, [&](int y) {
+    for (int x = 0; x < depth.width; ++x) {
+      Ray ray = view.ray({float(x) + 0.5f, float(y) + 0.5f});
+      ray.tmin = 0.0f;
+      ray.tmax = kInfinity;
+      const auto hull = volume_hull_interval(shape, ray);
+      const float exit_depth = hull ? hull->second * view.depth_per_t(ray.direction) : 0.0f;
+      out.at(x, y) = std::min(depth.at(x, y), exit_depth);
+    }
+  });
+  return out;
+}
+
+void add_scaled(ColorPlanes& accum, const ColorPlanes& add, RGB weight) {
+  Plane* const out[3] = {&accum.r, &accum.g, &accum.b};
+  const Plane* const in[3] = {&add.r, &add.g, &add.b};
+  for (int c = 0; c < 3; ++c)
+    for (size_t i = 0; i < out[c]->data.size(); ++i) out[c]->data[i] += weight[c] * in[c]->data[i];
+}
+
+}  // namespace
+
+std::optional<VolumetricMethod> parse_volumetric_method(std::string_view name) {
+  if (name == "march") return VolumetricMethod::kMarch;
+  if (name == "none") return VolumetricMethod::kNone;
+  if (name == "brute") return VolumetricMethod::kBrute;
+  if (name == "hybrid") return VolumetricMethod::kHybrid;
+  return std::nullopt;
+}
+
+const char* volumetric_method_name(VolumetricMethod method) {
+  switch (method) {
+    case VolumetricMethod::kMarch:
+      return "march";
+    case VolumetricMethod::kNone:
+      return "none";
+    case VolumetricMethod::kBrute:
+      return "brute";
+    case VolumetricMethod::kHybrid:
+      return "hybrid";
+  }
+  return "?";
+}
+
+HybridScatterer::HybridScatterer(const Scene& scene, VolumetricMethod method, HybridSettings settings)
+    : method_(method), settings_(settings) {
+  const EmbreeScene& surfaces = scene.surfaces();
+  scene_bounds_ = surfaces.bounds();
+  if (method_ != VolumetricMethod::kHybrid) return;
+  for (uint32_t g = 0; g < uint32_t(surfaces.geometry_count()); ++g) {
+    SurfaceHit hit;
+    hit.geom_id = g;
+    // Null surfaces cast no shadow (the raster scene leaves them out of the shadow maps too).
+    if (std::holds_alternative<NullBsdf>(scene.material(hit).bsdf)) continue;
+    MeshEdges edges(surfaces.is_sphere(g) ? circumscribed_sphere(surfaces.sphere(g)) : surfaces.mesh(g));
+    if (!edges.closed()) {
+      if (open_occluder_.empty()) open_occluder_ = "geometry " + std::to_string(g) + ": " + edges.problem();
+      continue;
+    }
+    occluders_.push_back(std::move(edges));
+  }
+  if (!open_occluder_.empty())
+    std::fprintf(stderr,
+                 "caligo realtime: warning: --method hybrid: occluder %s; shadow volumes need closed meshes, "
+                 "so point lights use brute-force marching (the shadow map alone)\n",
+                 open_occluder_.c_str());
+}
+
+HybridScatterer::~HybridScatterer() = default;
+
+VolumetricMethod HybridScatterer::used(size_t index) const {
+  return index < used_.size() ? used_[index] : VolumetricMethod::kMarch;
+}
+
+void HybridScatterer::note(size_t index, const std::string& why) {
+  if (noted_[index]) return;
+  noted_[index] = true;
+  std::fprintf(stderr, "caligo realtime: note: light %zu uses the march, not --method %s: %s\n", index,
+               volumetric_method_name(method_), why.c_str());
+}
+
+bool HybridScatterer::scatter(size_t index, const FrameLight& frame_light, const VolumeScene& volumes,
+                              const View& low_view, const Plane& low_depth, ColorPlanes& accum) {
+  if (used_.size() <= index) {
+    used_.resize(index + 1, VolumetricMethod::kMarch);
+    noted_.resize(index + 1, false);
+    cache_.resize(index + 1);
+  }
+  used_[index] = VolumetricMethod::kMarch;
+  if (method_ == VolumetricMethod::kMarch) return false;
+  const PointLight* point = std::visit(PointOnly{}, frame_light.light);
+  if (!point) return note(index, "not a point light"), false;
+  if (point->ies.profile || std::isfinite(point->range))
+    return note(index, "an IES profile or a finite range is outside the airlight model"), false;
+  if (volumes.primitives().size() != 1)
+    return note(index,
+                std::to_string(volumes.primitives().size()) + " volume primitives (the model takes one)"),
+           false;
+  const VolumePrimitive& medium = volumes.primitive(0);
+  if (!is_homogeneous(medium.shader)) return note(index, "the medium is not homogeneous"), false;
+  if (!std::visit(ConvexCheck{}, medium.shape)) return note(index, "a mesh-bounded medium"), false;
+  if (!std::visit(IsotropicCheck{}, medium.shader.phase))
+    return note(index, "an anisotropic phase function (the airlight is isotropic)"), false;
+  if (!inside(medium.shape, low_view.eye) || !inside(medium.shape, point->position))
+    return note(index, "the eye or the light is outside the medium"), false;
+
+  VolumetricMethod method = method_;
+  if (method == VolumetricMethod::kHybrid && !open_occluder_.empty()) method = VolumetricMethod::kBrute;
+  if (!frame_light.shadow) method = VolumetricMethod::kNone;  // casts no shadow: the airlight is exact
+
+  const float density = medium.shader.density;
+  const RGB sigma_s = medium.shader.sigma_s * density,
+            sigma_t = (medium.shader.sigma_a + medium.shader.sigma_s) * density;
+  const Plane depth = clip_to_medium(low_depth, low_view, medium.shape);
+  const AirlightTable& table = AirlightTable::shared();
+
+  const ShadowVolumeBuffers* buffers = nullptr;
+  ShadowVolumeBuffers sv;
+  if (method == VolumetricMethod::kHybrid) {
+    CachedVolumes& cache = cache_[index];
+    if (!cache.valid || !(cache.light == point->position)) {
+      cache.volumes.clear();
+      const float extrusion = extrusion_for(scene_bounds_, point->position);
+      for (const MeshEdges& o : occluders_)
+        cache.volumes.push_back(build_shadow_volume(o, point->position, extrusion));
+      cache.light = point->position;
+      cache.valid = true;
+    }
+    sv = rasterize_shadow_volumes(cache.volumes, low_view, depth);
+    buffers = &sv;
+  }
+
+  // Grey media take one evaluation, coloured ones one per channel.
+  const bool grey =
+      sigma_s.r == sigma_s.g && sigma_s.g == sigma_s.b && sigma_t.r == sigma_t.g && sigma_t.g == sigma_t.b;
+  const RGB weight = point->intensity * frame_light.options.volumetric_intensity;
+  const int passes = grey ? 1 : 3;
+  for (int c = 0; c < passes; ++c) {
+    const AirlightMedium m{sigma_s[c], sigma_t[c]};
+    const HybridLight light{point->position, 1.0f, RGB(1.0f)};
+    ColorPlanes result;
+    switch (method) {
+      case VolumetricMethod::kNone:
+        result = scatter_unshadowed(low_view, depth, table, m, light, settings_);
+        break;
+      case VolumetricMethod::kBrute:
+        result = scatter_brute(low_view, depth, *frame_light.shadow, table, m, light, settings_).radiance;
+        break;
+      case VolumetricMethod::kHybrid:
+        result = scatter_hybrid(low_view, depth, *buffers, *frame_light.shadow, table, m, light, settings_)
+                     .radiance;
+        break;
+      case VolumetricMethod::kMarch:
+        return false;  // handled above
+    }
+    RGB w = weight;
+    if (!grey) w = RGB(c == 0 ? weight.r : 0.0f, c == 1 ? weight.g : 0.0f, c == 2 ? weight.b : 0.0f);
+    add_scaled(accum, result, w);
+  }
+  used_[index] = method;
+  return true;
+}
+
+}  // namespace caligo

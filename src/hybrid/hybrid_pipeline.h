@@ -1,0 +1,85 @@
+// The volumetric methods of Wyman & Ramsey's Table 1 (2008) inside the real-time pipeline
+// (realtime/pipeline.h): `caligo realtime --method march|none|brute|hybrid`. A
+// HybridScatterer plugs into RealtimePipeline::set_scatterer() and replaces accumulate_light
+// for the lights the airlight model covers; everything else of the frame (gather, temporal,
+// nearest-depth upsampling, surfaces, composite) is unchanged.
+//
+// Which lights (the model: an isotropic point light in ONE homogeneous medium, single
+// scattering, isotropic phase). A volumetric light takes the method when
+//   - it is a PointLight with no IES profile and no finite range;
+//   - exactly one volume primitive exists, homogeneous (is_homogeneous()), with a box or sphere
+//     shape (convex: each view ray leaves it once), containing both the eye and the light;
+//   - its phase is isotropic (IsotropicPhase, or a lobe with g = 0). Anisotropic phases are
+//     REJECTED rather than approximated: the airlight integrates 1/(4π) in closed form and an
+//     HG lobe of g = 0.3 already changes forward in-scattering by ~2x.
+// Other lights (spots, box and directional lights, other media) keep the march, with one note
+// on stderr per light. The medium's bounds cut each ray at its exit (the depth handed to the
+// scatter passes is min(opaque depth, exit)): the airlight of a bounded convex medium seen
+// and lit from inside is exactly the unbounded one over that segment. Colour: σ_s and σ_t are
+// RGB; a grey medium takes one evaluation, a coloured one three (one per channel, exact).
+// The march's faked multiple-scattering floor does not apply to these methods.
+//
+// Occluders (for kHybrid's shadow volumes): every opaque surface of the scene, MeshEdges built
+// once at construction. Analytic spheres are tessellated as icospheres (4 subdivisions,
+// 5,120 triangles) scaled to CIRCUMSCRIBE the sphere: the volume may then only be larger
+// than the shadow the shadow map holds, and inside it the shadow map decides, so the result
+// stays exact. An open or non-manifold mesh cannot bound a volume: with any such occluder
+// the hybrid light falls back to kBrute (the shadow map alone), with a warning on stderr
+// naming the geometry and its problem (mesh_edges.h). Shadow volumes are rebuilt when the
+// light moves (cached by position).
+//
+// Thread safety: one scatterer per pipeline; scatter() is called from the pipeline's thread
+// and runs its passes on the thread pool.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "hybrid/airlight.h"
+#include "hybrid/hybrid_scatter.h"
+#include "hybrid/mesh_edges.h"
+#include "hybrid/shadow_volume.h"
+#include "realtime/pipeline.h"
+
+namespace caligo {
+
+enum class VolumetricMethod { kMarch, kNone, kBrute, kHybrid };
+
+// "march", "none", "brute", "hybrid"; std::nullopt for anything else.
+std::optional<VolumetricMethod> parse_volumetric_method(std::string_view name);
+const char* volumetric_method_name(VolumetricMethod method);
+
+class HybridScatterer : public LightScatterer {
+ public:
+  // settings: samples (hybrid, 50) and brute_samples (150) as in the paper.
+  HybridScatterer(const Scene& scene, VolumetricMethod method, HybridSettings settings = {});
+  ~HybridScatterer() override;
+
+  bool scatter(size_t index, const FrameLight& light, const VolumeScene& volumes, const View& low_view,
+               const Plane& low_depth, ColorPlanes& accum) override;
+
+  // The method light `index` used in the last frame (kMarch for lights left to the march or
+  // never seen); kHybrid may have become kBrute for open occluders.
+  VolumetricMethod used(size_t index) const;
+  size_t occluder_count() const { return occluders_.size(); }
+  // Non-empty when some occluder is open or non-manifold (kHybrid then runs as kBrute).
+  const std::string& open_occluder() const { return open_occluder_; }
+
+ private:
+  struct CachedVolumes;
+  void note(size_t index, const std::string& why);
+
+  VolumetricMethod method_;
+  HybridSettings settings_;
+  Bounds3 scene_bounds_;
+  std::vector<MeshEdges> occluders_;
+  std::string open_occluder_;
+  std::vector<VolumetricMethod> used_;
+  std::vector<bool> noted_;
+  std::vector<CachedVolumes> cache_;
+};
+
+}  // namespace caligo
