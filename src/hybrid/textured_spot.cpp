@@ -1,0 +1,131 @@
+#include "hybrid/textured_spot.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "core/parallel.h"
+#include "lights/light_profile.h"
+#include "realtime/light_volume.h"
+#include "realtime/scene_buffers.h"
+
+namespace caligo {
+namespace {
+
+// Jimenez's interleaved gradient noise in [0, 1): neighbouring pixels get well-spread offsets.
+float pixel_noise(int x, int y) {
+  const float f = 0.06711056f * float(x) + 0.00583715f * float(y);
+  const float g = 52.9829189f * (f - std::floor(f));
+  return g - std::floor(g);
+}
+
+GoboImage half_size(const GoboImage& src) {
+  const int sw = src.width(), sh = src.height();
+  const int w = std::max(sw / 2, 1), h = std::max(sh / 2, 1);
+  std::vector<RGB> out(size_t(w) * size_t(h));
+  for (int y = 0; y < h; ++y) {
+    // Source rows [y0, y1) map to target row y: a partition of the source, so the mean is kept.
+    const int y0 = y * sh / h, y1 = (y + 1) * sh / h;
+    for (int x = 0; x < w; ++x) {
+      const int x0 = x * sw / w, x1 = (x + 1) * sw / w;
+      RGB sum(0.0f);
+      for (int j = y0; j < y1; ++j)
+        for (int i = x0; i < x1; ++i) sum += src.pixel(i, j);
+      out[size_t(y) * size_t(w) + size_t(x)] = sum * (1.0f / float((x1 - x0) * (y1 - y0)));
+    }
+  }
+  return GoboImage(w, h, std::move(out));
+}
+
+// The spot's emitted intensity towards a point (W/sr, no 1/d²), with the volumetric gobo.
+struct Emitter {
+  const SpotLight& light;
+  Gobo gobo;  // the light's gobo with its image swapped for the blurred level
+
+  RGB towards(Vec3 p) const {
+    const Vec3 v = p - light.position;
+    const float dist = length(v);
+    if (!(dist > 0.0f)) return RGB(0.0f);
+    const Vec3 w = v / dist;
+    const float scale = spot_cone(light, w) * range_window(dist, light.range) * ies_factor(light.ies, w);
+    if (!(scale > 0.0f)) return RGB(0.0f);
+    return light.intensity * gobo_filter(gobo, spot_gobo_uv(light, w)) * scale;
+  }
+};
+
+}  // namespace
+
+std::vector<GoboImage> gobo_mip_chain(const GoboImage& image, int max_levels) {
+  std::vector<GoboImage> chain{image};
+  while (int(chain.size()) < max_levels && (chain.back().width() > 1 || chain.back().height() > 1))
+    chain.push_back(half_size(chain.back()));
+  return chain;
+}
+
+int textured_spot_steps(float abs_cos_axis, const TexturedSpotSettings& settings) {
+  const int lo = std::max(settings.min_steps, 1), hi = std::max(settings.max_steps, lo);
+  const float c = std::clamp(std::abs(abs_cos_axis), 0.0f, 1.0f);
+  const float sin_a = std::sqrt(std::max(1.0f - c * c, 0.0f));
+  // NaN direction reads as the transversal worst case.
+  if (!(sin_a >= 0.0f)) return hi;
+  return std::clamp(int(std::lround(float(lo) + float(hi - lo) * sin_a)), lo, hi);
+}
+
+ScatterResult scatter_textured_spot(const View& view, const Plane& opaque_depth, const ShadowMap* shadow,
+                                    const AirlightTable& table, const AirlightMedium& medium,
+                                    const SpotLight& light, const TexturedSpotSettings& settings) {
+  if (opaque_depth.width != view.resolution.x || opaque_depth.height != view.resolution.y)
+    throw std::invalid_argument("textured spot: opaque depth is " + std::to_string(opaque_depth.width) + "x" +
+                                std::to_string(opaque_depth.height) + ", the view " +
+                                std::to_string(view.resolution.x) + "x" + std::to_string(view.resolution.y));
+  Emitter emitter{light, light.gobo};
+  std::vector<GoboImage> chain;
+  if (light.gobo.image && settings.blur_level > 0) {
+    chain = gobo_mip_chain(*light.gobo.image, settings.blur_level + 1);
+    emitter.gobo.image = std::make_shared<const GoboImage>(chain.back());
+  }
+  const Light as_light{light};
+  const float max_distance = std::max(settings.max_distance, 0.0f);
+  const float jitter = std::clamp(settings.jitter, 0.0f, 1.0f);
+
+  const int w = view.resolution.x, h = view.resolution.y;
+  ScatterResult result;
+  result.radiance = ColorPlanes(w, h);
+  result.lookups.assign(size_t(w) * size_t(h), 0);
+  parallel_for(h, [&](int y) {
+    for (int x = 0; x < w; ++x) {
+      const Ray ray = view.ray({float(x) + 0.5f, float(y) + 0.5f});
+      const Vec3 o = ray.origin, dir = ray.direction;
+      const float d = opaque_depth.at(x, y), per_t = view.depth_per_t(dir);
+      // NaN depth reads as sky rather than poisoning the pixel.
+      const float t_opaque = d < kSkyDepth && per_t > 0.0f ? std::max(d, 0.0f) / per_t : kInfinity;
+      const float t_end = std::min(t_opaque, max_distance);
+      const auto span = light_volume_interval(as_light, o, dir, 0.0f, t_end);
+      if (!span || !(span->t1 > span->t0)) continue;
+      const int n = textured_spot_steps(dot(dir, light.direction), settings);
+      const AirlightRay air = make_airlight_ray(table, medium, 1.0f, light.position, o, dir);
+      const float offset = 0.5f + jitter * (pixel_noise(x, y) - 0.5f);
+      const float step = (span->t1 - span->t0) / float(n);
+      RGB sum(0.0f);
+      float tail0 = airlight_tail(table, air, span->t0);
+      for (int i = 0; i < n; ++i) {
+        const float t1 = i + 1 == n ? span->t1 : span->t0 + step * float(i + 1);
+        const float tail1 = airlight_tail(table, air, t1);
+        const Vec3 p = o + dir * (span->t0 + step * (float(i) + offset));
+        const float lit = shadow ? shadow->visibility(p) : 1.0f;
+        if (lit > 0.0f) sum += emitter.towards(p) * (lit * std::max(tail0 - tail1, 0.0f));
+        tail0 = tail1;
+      }
+      result.lookups[size_t(y) * size_t(w) + size_t(x)] = n;
+      result.radiance.set(x, y, sum);
+    }
+  });
+  for (int32_t n : result.lookups) {
+    result.total_lookups += n;
+    result.marched_pixels += n > 0;
+  }
+  return result;
+}
+
+}  // namespace caligo

@@ -1,0 +1,82 @@
+// The scattering pass of Wyman and Ramsey's textured spotlights (2008, §5): single scattering
+// of one SpotLight whose gobo (projector texture) colours the light, in a homogeneous medium,
+// marched only where the ray is inside the light's frustum.
+//
+// Quantity (as in hybrid_scatter.h, which it complements for spot lights): the in-scattered
+// radiance along each pixel's centre ray from the eye to the opaque surface, isotropic phase,
+// no surface term,
+//
+//   L = σ_s / (4π) ∫ V(x) E(x) e^{-σ_t (t + d)} / d² dt,   E(x) = I · cone · window · IES · gobo,
+//
+// E the spot's emitted colour towards x (lights/light_profile.h: the same cone, range window,
+// IES and gobo functions the path tracer's delta_arrival uses), d the distance to the light.
+//
+// The pass:
+//   - the ray's stretch inside the spot (light_volume_interval: the outer cone cut by the range
+//     sphere), clipped to [0, min(opaque, max_distance)]; a pixel whose ray misses it costs
+//     nothing (no lookups, zero radiance);
+//   - that stretch is cut into n equal steps with
+//         n = round(min_steps + (max_steps - min_steps) · sin α),
+//     α the angle between the ray and the spot axis (|cos α| = |dot(dir, axis)|). Why: a ray
+//     nearly parallel to the axis runs along the cone for a long stretch over which the light
+//     direction, hence the texture coordinate, barely changes (the gobo uv depends only on the
+//     direction from the light), so few steps suffice; a ray crossing the cone transversally
+//     sweeps the whole texture in a short stretch and needs many;
+//   - each step reads E and the shadow map once, at the step's midpoint moved by
+//     jitter · (noise - 0.5) steps (noise: per-pixel interleaved gradient noise), so the step
+//     pattern differs between neighbouring pixels and no sampling planes show; E · V is held
+//     constant over the step and the step's airlight of an isotropic point light of unit
+//     intensity at the spot's position is integrated in closed form (airlight.h; consecutive
+//     steps share their endpoint tails, n + 1 tail evaluations per pixel). The only errors are
+//     E and V varying inside a step.
+//
+// Blur (an approximation): the paper stands in for multiple scattering by lighting the medium
+// with a blurred copy of the texture (in-scattered light has been spread over neighbouring
+// directions). We build a box-filtered mip chain of the gobo image and use level `blur_level`
+// (clamped to the coarsest) for the volumetric term; bilinear lookup with the gobo's own
+// rotation and offset. blur_level 0 is the exact single-scattering texture, the one the path
+// tracer uses; any level > 0 is NOT what the path tracer computes (it keeps total flux close,
+// since a box filter preserves the mean, but moves colour between shafts).
+//
+// Sky pixels and far surfaces: the march ends at max_distance; the spot's light beyond it is
+// dropped (a finite range bounds it anyway). Units: metres, W/sr, 1/m. `opaque_depth` is LINEAR
+// depth (GBuffer::depth / rasterize_depth, kSkyDepth for none). Thread safety: pure; rows run on
+// the thread pool.
+#pragma once
+
+#include <vector>
+
+#include "hybrid/airlight.h"
+#include "hybrid/hybrid_scatter.h"
+#include "lights/gobo.h"
+#include "lights/light.h"
+#include "realtime/plane.h"
+#include "realtime/shadow_map.h"
+#include "realtime/view.h"
+
+namespace caligo {
+
+struct TexturedSpotSettings {
+  int min_steps = 16;   // rays along the axis (clamped to >= 1)
+  int max_steps = 150;  // rays across the axis (clamped to >= min_steps)
+  float jitter = 0.5f;  // 0 = step midpoints; 1 = anywhere in the step
+  int blur_level = 2;   // mip level of the gobo for the volumetric term; 0 = exact
+  float max_distance = 1000.0f;
+};
+
+// The box-filtered mip chain of `image`: level 0 is a copy, each next level half the size
+// (at least 1 texel; each target texel averages a block of source texels, the blocks partitioning
+// the source: even sizes keep the mean exactly, odd ones nearly), down to 1x1 or `max_levels` levels.
+std::vector<GoboImage> gobo_mip_chain(const GoboImage& image, int max_levels = 16);
+
+// The steps the pass takes for a ray at |cos α| = abs_cos_axis (the rule above).
+int textured_spot_steps(float abs_cos_axis, const TexturedSpotSettings& settings);
+
+// `opaque_depth` must have view.resolution (std::invalid_argument otherwise). `shadow` may be
+// null (no occlusion). ScatterResult::lookups counts steps: each reads the gobo once and the
+// shadow map once when one is given.
+ScatterResult scatter_textured_spot(const View& view, const Plane& opaque_depth, const ShadowMap* shadow,
+                                    const AirlightTable& table, const AirlightMedium& medium,
+                                    const SpotLight& light, const TexturedSpotSettings& settings = {});
+
+}  // namespace caligo
