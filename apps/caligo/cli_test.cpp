@@ -448,3 +448,58 @@ TEST_F(Cli, BadVolumeFilesInAScene) {
   EXPECT_EQ(ok.exit_code, 0) << ok.err;
   EXPECT_TRUE(fs::exists(dir_ / "out.exr"));
 }
+
+namespace {
+
+// PNG width and height from the IHDR chunk (big-endian at bytes 16 and 20).
+std::pair<uint32_t, uint32_t> png_size(const fs::path& path) {
+  const std::string bytes = slurp(path);
+  if (bytes.size() < 24 || bytes.compare(1, 3, "PNG") != 0) return {0, 0};
+  const auto be32 = [&bytes](size_t at) {
+    uint32_t v = 0;
+    for (size_t i = 0; i < 4; ++i) v = (v << 8) | uint8_t(bytes[at + i]);
+    return v;
+  };
+  return {be32(16), be32(20)};
+}
+
+}  // namespace
+
+TEST_F(Cli, BenchTableWymanWritesTheTableAndAStrip) {
+  const fs::path out = dir_ / "table";
+  const RunResult r =
+      run("bench-table wyman --res 64 --scenes wyman-20k --frames 1 --reference-spp 4 -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* want : {"| wyman-20k | 20,480 |", "none @64²", "brute 150 @64²", "hybrid 50 @16²",
+                           "march @16²", "brute 25", "brute 2000", "speed-up (frame)"})
+    EXPECT_NE(r.out.find(want), std::string::npos) << want << "\n" << r.out;
+  const std::string md = slurp(out / "table.md");
+  EXPECT_NE(md.find("| wyman-20k | 20,480 |"), std::string::npos) << md;
+  // Two rows (scales 1 and 4) of five 64-pixel panels (none, brute, hybrid, march, reference), 4-pixel gaps.
+  const auto [w, h] = png_size(out / "wyman-20k.png");
+  EXPECT_EQ(w, 5u * 64u + 4u * 4u);
+  EXPECT_EQ(h, 2u * 64u + 4u);
+}
+
+TEST_F(Cli, BenchTableRejectsBadOptions) {
+  struct Case {
+    std::string args, expect, where = "command line";
+  };
+  const std::vector<Case> cases = {
+      {"bench-table nope", "wyman"},
+      {"bench-table wyman --scales 1,x", "--scales"},
+      {"bench-table wyman --scales 0", "--scales"},
+      {"bench-table wyman --res 0", "--res"},
+      {"bench-table wyman --frames 0", "--frames"},
+      {"bench-table wyman --reference-spp -1", "--reference-spp"},
+      {"bench-table wyman --scenes wyman-20k,no-such-scene", "built-in", "no-such-scene"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.args);
+    const RunResult r = run(c.args + " -o " + (dir_ / "out").string());
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find(c.expect), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(c.where), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "out" / "table.md"));
+  }
+}

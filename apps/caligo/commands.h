@@ -67,6 +67,17 @@ struct GenerateOptions {
   bool quiet = false;
 };
 
+struct BenchTableOptions {
+  std::string table;  // wyman
+  int resolution = 1024;
+  std::string scales = "1,4";
+  int frames = 5;
+  int reference_spp = 64;
+  std::string scenes;  // comma separated; empty: the table's own scenes
+  std::string output;  // a folder: table.md and one PNG per scene
+  float exposure = 0.0f;
+};
+
 struct InfoOptions {
   std::string file;  // .vdb or .nvdb
 };
@@ -88,5 +99,7 @@ void add_generate_command(CLI::App& app, GenerateOptions& options);
 int run_generate(const GenerateOptions& options);
 void add_info_command(CLI::App& app, InfoOptions& options);
 int run_info(const InfoOptions& options);
+void add_bench_table_command(CLI::App& app, BenchTableOptions& options);
+int run_bench_table(const BenchTableOptions& options);
 
 }  // namespace caligo

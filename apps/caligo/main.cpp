@@ -31,6 +31,8 @@ int main(int argc, char** argv) {
   caligo::InfoOptions info;
   caligo::add_generate_command(app, generate);
   caligo::add_info_command(app, info);
+  caligo::BenchTableOptions bench_table;
+  caligo::add_bench_table_command(app, bench_table);
   // CLI11 would only say "a subcommand is required" for a misspelt one.
   const auto is_command = [&app](const std::string& name) {
     for (const CLI::App* sub : app.get_subcommands({}))
@@ -38,9 +40,11 @@ int main(int argc, char** argv) {
     return false;
   };
   if (argc > 1 && argv[1][0] != '-' && !is_command(argv[1])) {
-    std::fprintf(stderr,
-                 "caligo: error: unknown command \"%s\" (commands: render, realtime, compare, generate, info)\n",
-                 argv[1]);
+    std::fprintf(
+        stderr,
+        "caligo: error: unknown command \"%s\" (commands: render, realtime, compare, generate, info, "
+        "bench-table)\n",
+        argv[1]);
     return caligo::kExitInputError;
   }
   try {
@@ -62,6 +66,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("realtime")) return caligo::run_realtime(realtime);
     if (app.got_subcommand("generate")) return caligo::run_generate(generate);
     if (app.got_subcommand("info")) return caligo::run_info(info);
+    if (app.got_subcommand("bench-table")) return caligo::run_bench_table(bench_table);
   } catch (const caligo::InputError& e) {
     return print_error(e.what(), caligo::kExitInputError);
   } catch (const std::exception& e) {
