@@ -4,7 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "core/parallel.h"
+#include "hybrid/scatter_pixels.h"
 #include "realtime/scene_buffers.h"
 
 namespace caligo {
@@ -18,13 +18,8 @@ void check_size(const Plane& plane, const View& view, const char* what) {
                                 std::to_string(view.resolution.y));
 }
 
-// Jimenez's interleaved gradient noise: a per-pixel offset in [0, 1) whose neighbours differ
-// enough that a 3x3 blur averages the step pattern away.
-float pixel_noise(int x, int y) {
-  const float f = 0.06711056f * float(x) + 0.00583715f * float(y);
-  const float g = 52.9829189f * (f - std::floor(f));
-  return g - std::floor(g);
-}
+using scatter_pixels::for_each_pixel;
+using scatter_pixels::pixel_noise;
 
 struct PixelRay {
   Ray ray;
@@ -74,26 +69,6 @@ float march(const ShadowMap& shadow, const AirlightTable& table, const PixelRay&
     sum += airlight_interval(table, p.air, run_from, b);
   }
   return sum;
-}
-
-template <typename Body>
-ScatterResult for_each_pixel(const View& view, const Body& body) {
-  const int w = view.resolution.x, h = view.resolution.y;
-  ScatterResult result;
-  result.radiance = ColorPlanes(w, h);
-  result.lookups.assign(size_t(w) * size_t(h), 0);
-  parallel_for(h, [&](int y) {
-    for (int x = 0; x < w; ++x) {
-      int32_t& lookups = result.lookups[size_t(y) * size_t(w) + size_t(x)];
-      const RGB c = body(x, y, lookups);
-      result.radiance.set(x, y, c);
-    }
-  });
-  for (int32_t n : result.lookups) {
-    result.total_lookups += n;
-    result.marched_pixels += n > 0;
-  }
-  return result;
 }
 
 }  // namespace

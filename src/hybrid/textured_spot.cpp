@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/parallel.h"
+#include "hybrid/scatter_pixels.h"
 #include "lights/light_profile.h"
 #include "realtime/light_volume.h"
 #include "realtime/scene_buffers.h"
@@ -13,12 +13,7 @@
 namespace caligo {
 namespace {
 
-// Jimenez's interleaved gradient noise in [0, 1): neighbouring pixels get well-spread offsets.
-float pixel_noise(int x, int y) {
-  const float f = 0.06711056f * float(x) + 0.00583715f * float(y);
-  const float g = 52.9829189f * (f - std::floor(f));
-  return g - std::floor(g);
-}
+using scatter_pixels::pixel_noise;
 
 GoboImage half_size(const GoboImage& src) {
   const int sw = src.width(), sh = src.height();
@@ -89,43 +84,32 @@ ScatterResult scatter_textured_spot(const View& view, const Plane& opaque_depth,
   const float max_distance = std::max(settings.max_distance, 0.0f);
   const float jitter = std::clamp(settings.jitter, 0.0f, 1.0f);
 
-  const int w = view.resolution.x, h = view.resolution.y;
-  ScatterResult result;
-  result.radiance = ColorPlanes(w, h);
-  result.lookups.assign(size_t(w) * size_t(h), 0);
-  parallel_for(h, [&](int y) {
-    for (int x = 0; x < w; ++x) {
-      const Ray ray = view.ray({float(x) + 0.5f, float(y) + 0.5f});
-      const Vec3 o = ray.origin, dir = ray.direction;
-      const float d = opaque_depth.at(x, y), per_t = view.depth_per_t(dir);
-      // NaN depth reads as sky rather than poisoning the pixel.
-      const float t_opaque = d < kSkyDepth && per_t > 0.0f ? std::max(d, 0.0f) / per_t : kInfinity;
-      const float t_end = std::min(t_opaque, max_distance);
-      const auto span = light_volume_interval(as_light, o, dir, 0.0f, t_end);
-      if (!span || !(span->t1 > span->t0)) continue;
-      const int n = textured_spot_steps(dot(dir, light.direction), settings);
-      const AirlightRay air = make_airlight_ray(table, medium, 1.0f, light.position, o, dir);
-      const float offset = 0.5f + jitter * (pixel_noise(x, y) - 0.5f);
-      const float step = (span->t1 - span->t0) / float(n);
-      RGB sum(0.0f);
-      float tail0 = airlight_tail(table, air, span->t0);
-      for (int i = 0; i < n; ++i) {
-        const float t1 = i + 1 == n ? span->t1 : span->t0 + step * float(i + 1);
-        const float tail1 = airlight_tail(table, air, t1);
-        const Vec3 p = o + dir * (span->t0 + step * (float(i) + offset));
-        const float lit = shadow ? shadow->visibility(p) : 1.0f;
-        if (lit > 0.0f) sum += emitter.towards(p) * (lit * std::max(tail0 - tail1, 0.0f));
-        tail0 = tail1;
-      }
-      result.lookups[size_t(y) * size_t(w) + size_t(x)] = n;
-      result.radiance.set(x, y, sum);
+  return scatter_pixels::for_each_pixel(view, [&](int x, int y, int32_t& lookups) {
+    const Ray ray = view.ray({float(x) + 0.5f, float(y) + 0.5f});
+    const Vec3 o = ray.origin, dir = ray.direction;
+    const float d = opaque_depth.at(x, y), per_t = view.depth_per_t(dir);
+    // NaN depth reads as sky rather than poisoning the pixel.
+    const float t_opaque = d < kSkyDepth && per_t > 0.0f ? std::max(d, 0.0f) / per_t : kInfinity;
+    const float t_end = std::min(t_opaque, max_distance);
+    const auto span = light_volume_interval(as_light, o, dir, 0.0f, t_end);
+    if (!span || !(span->t1 > span->t0)) return RGB(0.0f);
+    const int n = textured_spot_steps(dot(dir, light.direction), settings);
+    const AirlightRay air = make_airlight_ray(table, medium, 1.0f, light.position, o, dir);
+    const float offset = 0.5f + jitter * (pixel_noise(x, y) - 0.5f);
+    const float step = (span->t1 - span->t0) / float(n);
+    RGB sum(0.0f);
+    float tail0 = airlight_tail(table, air, span->t0);
+    for (int i = 0; i < n; ++i) {
+      const float t1 = i + 1 == n ? span->t1 : span->t0 + step * float(i + 1);
+      const float tail1 = airlight_tail(table, air, t1);
+      const Vec3 p = o + dir * (span->t0 + step * (float(i) + offset));
+      const float lit = shadow ? shadow->visibility(p) : 1.0f;
+      if (lit > 0.0f) sum += emitter.towards(p) * (lit * std::max(tail0 - tail1, 0.0f));
+      tail0 = tail1;
     }
+    lookups = n;
+    return sum;
   });
-  for (int32_t n : result.lookups) {
-    result.total_lookups += n;
-    result.marched_pixels += n > 0;
-  }
-  return result;
 }
 
 }  // namespace caligo
