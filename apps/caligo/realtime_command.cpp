@@ -1,5 +1,5 @@
 // caligo realtime SCENE [--frames N] [--res WxH] [--scale full|half|quarter]
-//                 [--method march|none|brute|hybrid] [-o OUT] ...
+//                 [--method march|none|brute|hybrid|textured] [-o OUT] ...
 // Renders the scene's camera path with the real-time pipeline, prints the per-pass table
 // (median over the frames after warm-up) and optionally compares the last frame with the
 // path tracer's single-scattering reference.
@@ -39,7 +39,8 @@ void add_realtime_command(CLI::App& app, RealtimeOptions& o) {
   cmd->add_option("--method", o.method,
                   "Volumetric method of point lights in one homogeneous medium: march (ray marching with shadow "
                   "maps, all lights), none (airlight, no volumetric shadows), brute (150 steps, closed-form lit "
-                  "intervals) or hybrid (Wyman & Ramsey shadow volumes, 50 steps); other lights march");
+                  "intervals), hybrid (Wyman & Ramsey shadow volumes, 50 steps) or textured (hybrid, and spot lights by "
+                  "the textured-spotlight march); other lights march");
   cmd->add_option("--scene-buffers", o.scene_buffers, "Depth/normal buffers by: raster (default) or embree");
   cmd->add_option("--samples", o.samples, "March steps per pixel per light");
   cmd->add_option("--tile", o.tile_size, "Interleaved-sampling tile side (1: no interleaving)");
@@ -85,7 +86,7 @@ RealtimeSettings settings_from(const RealtimeOptions& o, const SceneDesc& desc) 
     else throw InputError(kCommandLine, "--scale: expected full, half or quarter, got \"" + *o.scale + "\"");
   }
   if (!parse_volumetric_method(o.method))
-    throw InputError(kCommandLine, "--method: expected march, none, brute or hybrid, got \"" + o.method + "\"");
+    throw InputError(kCommandLine, "--method: expected march, none, brute, hybrid or textured, got \"" + o.method + "\"");
   if (o.scene_buffers == "raster") s.scene_buffers = SceneBufferMethod::raster;
   else if (o.scene_buffers == "embree") s.scene_buffers = SceneBufferMethod::embree;
   else throw InputError(kCommandLine, "--scene-buffers: expected raster or embree, got \"" + o.scene_buffers + "\"");

@@ -91,6 +91,19 @@ Plane clip_to_medium(const Plane& depth, const View& view, const VolumeShape& sh
   return out;
 }
 
+// Why the scene's media are outside the airlight model for this eye and light ("" when inside):
+// one homogeneous, convex, isotropic medium containing both.
+std::string medium_problem(const VolumeScene& volumes, Vec3 eye, Vec3 light) {
+  if (volumes.primitives().size() != 1)
+    return std::to_string(volumes.primitives().size()) + " volume primitives (the model takes one)";
+  const VolumePrimitive& medium = volumes.primitive(0);
+  if (!is_homogeneous(medium.shader)) return "the medium is not homogeneous";
+  if (!std::visit(ConvexCheck{}, medium.shape)) return "a mesh-bounded medium";
+  if (!std::visit(IsotropicCheck{}, medium.shader.phase)) return "an anisotropic phase function (the airlight is isotropic)";
+  if (!inside(medium.shape, eye) || !inside(medium.shape, light)) return "the eye or the light is outside the medium";
+  return "";
+}
+
 void add_scaled(ColorPlanes& accum, const ColorPlanes& add, RGB weight) {
   Plane* const out[3] = {&accum.r, &accum.g, &accum.b};
   const Plane* const in[3] = {&add.r, &add.g, &add.b};
@@ -105,6 +118,7 @@ std::optional<VolumetricMethod> parse_volumetric_method(std::string_view name) {
   if (name == "none") return VolumetricMethod::kNone;
   if (name == "brute") return VolumetricMethod::kBrute;
   if (name == "hybrid") return VolumetricMethod::kHybrid;
+  if (name == "textured") return VolumetricMethod::kTextured;
   return std::nullopt;
 }
 
@@ -118,15 +132,18 @@ const char* volumetric_method_name(VolumetricMethod method) {
       return "brute";
     case VolumetricMethod::kHybrid:
       return "hybrid";
+    case VolumetricMethod::kTextured:
+      return "textured";
   }
   return "?";
 }
 
-HybridScatterer::HybridScatterer(const Scene& scene, VolumetricMethod method, HybridSettings settings)
-    : method_(method), settings_(settings) {
+HybridScatterer::HybridScatterer(const Scene& scene, VolumetricMethod method, HybridSettings settings,
+                                 TexturedSpotSettings spot_settings)
+    : method_(method), settings_(settings), spot_settings_(spot_settings) {
   const EmbreeScene& surfaces = scene.surfaces();
   scene_bounds_ = surfaces.bounds();
-  if (method_ != VolumetricMethod::kHybrid) return;
+  if (method_ != VolumetricMethod::kHybrid && method_ != VolumetricMethod::kTextured) return;
   for (uint32_t g = 0; g < uint32_t(surfaces.geometry_count()); ++g) {
     SurfaceHit hit;
     hit.geom_id = g;
@@ -169,22 +186,16 @@ bool HybridScatterer::scatter(size_t index, const FrameLight& frame_light, const
   used_[index] = VolumetricMethod::kMarch;
   if (method_ == VolumetricMethod::kMarch) return false;
   const PointLight* point = std::visit(PointOnly{}, frame_light.light);
+  const SpotLight* spot = std::get_if<SpotLight>(&frame_light.light);
+  if (method_ == VolumetricMethod::kTextured && spot) return scatter_spot(index, *spot, frame_light, volumes, low_view, low_depth, accum);
   if (!point) return note(index, "not a point light"), false;
   if (point->ies.profile || std::isfinite(point->range))
     return note(index, "an IES profile or a finite range is outside the airlight model"), false;
-  if (volumes.primitives().size() != 1)
-    return note(index,
-                std::to_string(volumes.primitives().size()) + " volume primitives (the model takes one)"),
-           false;
+  if (const std::string why = medium_problem(volumes, low_view.eye, point->position); !why.empty())
+    return note(index, why), false;
   const VolumePrimitive& medium = volumes.primitive(0);
-  if (!is_homogeneous(medium.shader)) return note(index, "the medium is not homogeneous"), false;
-  if (!std::visit(ConvexCheck{}, medium.shape)) return note(index, "a mesh-bounded medium"), false;
-  if (!std::visit(IsotropicCheck{}, medium.shader.phase))
-    return note(index, "an anisotropic phase function (the airlight is isotropic)"), false;
-  if (!inside(medium.shape, low_view.eye) || !inside(medium.shape, point->position))
-    return note(index, "the eye or the light is outside the medium"), false;
 
-  VolumetricMethod method = method_;
+  VolumetricMethod method = method_ == VolumetricMethod::kTextured ? VolumetricMethod::kHybrid : method_;
   if (method == VolumetricMethod::kHybrid && !open_occluder_.empty()) method = VolumetricMethod::kBrute;
   if (!frame_light.shadow) method = VolumetricMethod::kNone;  // casts no shadow: the airlight is exact
 
@@ -231,6 +242,7 @@ bool HybridScatterer::scatter(size_t index, const FrameLight& frame_light, const
                      .radiance;
         break;
       case VolumetricMethod::kMarch:
+      case VolumetricMethod::kTextured:
         return false;  // handled above
     }
     RGB w = weight;
@@ -238,6 +250,32 @@ bool HybridScatterer::scatter(size_t index, const FrameLight& frame_light, const
     add_scaled(accum, result, w);
   }
   used_[index] = method;
+  return true;
+}
+
+bool HybridScatterer::scatter_spot(size_t index, const SpotLight& spot, const FrameLight& frame_light,
+                                   const VolumeScene& volumes, const View& low_view, const Plane& low_depth,
+                                   ColorPlanes& accum) {
+  if (const std::string why = medium_problem(volumes, low_view.eye, spot.position); !why.empty())
+    return note(index, why), false;
+  const VolumePrimitive& medium = volumes.primitive(0);
+  const float density = medium.shader.density;
+  const RGB sigma_s = medium.shader.sigma_s * density,
+            sigma_t = (medium.shader.sigma_a + medium.shader.sigma_s) * density;
+  const Plane depth = clip_to_medium(low_depth, low_view, medium.shape);
+  const AirlightTable& table = AirlightTable::shared();
+  // The pass already carries the spot's colour (intensity, cone, gobo); a coloured medium takes
+  // one pass per channel, each keeping its own channel.
+  const bool grey =
+      sigma_s.r == sigma_s.g && sigma_s.g == sigma_s.b && sigma_t.r == sigma_t.g && sigma_t.g == sigma_t.b;
+  const float gain = frame_light.options.volumetric_intensity;
+  for (int c = 0; c < (grey ? 1 : 3); ++c) {
+    const ScatterResult r = scatter_textured_spot(low_view, depth, frame_light.shadow, table,
+                                                  AirlightMedium{sigma_s[c], sigma_t[c]}, spot, spot_settings_);
+    const RGB w = grey ? RGB(gain) : RGB(c == 0 ? gain : 0.0f, c == 1 ? gain : 0.0f, c == 2 ? gain : 0.0f);
+    add_scaled(accum, r.radiance, w);
+  }
+  used_[index] = VolumetricMethod::kTextured;
   return true;
 }
 

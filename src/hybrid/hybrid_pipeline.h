@@ -12,8 +12,11 @@
 //   - its phase is isotropic (IsotropicPhase, or a lobe with g = 0). Anisotropic phases are
 //     REJECTED rather than approximated: the airlight integrates 1/(4π) in closed form and an
 //     HG lobe of g = 0.3 already changes forward in-scattering by ~2x.
-// Other lights (spots, box and directional lights, other media) keep the march, with one note
-// on stderr per light. The medium's bounds cut each ray at its exit (the depth handed to the
+// kTextured is the paper's textured-spotlight method (hybrid/textured_spot.h) for SPOT lights
+// (gobo, IES and range included: they go through the path tracer's light profile), in the same
+// one-medium setting; point lights under kTextured take the hybrid.
+// Other lights (box and directional lights, spots outside kTextured, other media) keep the
+// march, with one note on stderr per light. The medium's bounds cut each ray at its exit (the depth handed to the
 // scatter passes is min(opaque depth, exit)): the airlight of a bounded convex medium seen
 // and lit from inside is exactly the unbounded one over that segment. Colour: σ_s and σ_t are
 // RGB; a grey medium takes one evaluation, a coloured one three (one per channel, exact).
@@ -42,20 +45,22 @@
 #include "hybrid/hybrid_scatter.h"
 #include "hybrid/mesh_edges.h"
 #include "hybrid/shadow_volume.h"
+#include "hybrid/textured_spot.h"
 #include "realtime/pipeline.h"
 
 namespace caligo {
 
-enum class VolumetricMethod { kMarch, kNone, kBrute, kHybrid };
+enum class VolumetricMethod { kMarch, kNone, kBrute, kHybrid, kTextured };
 
-// "march", "none", "brute", "hybrid"; std::nullopt for anything else.
+// "march", "none", "brute", "hybrid", "textured"; std::nullopt for anything else.
 std::optional<VolumetricMethod> parse_volumetric_method(std::string_view name);
 const char* volumetric_method_name(VolumetricMethod method);
 
 class HybridScatterer : public LightScatterer {
  public:
   // settings: samples (hybrid, 50) and brute_samples (150) as in the paper.
-  HybridScatterer(const Scene& scene, VolumetricMethod method, HybridSettings settings = {});
+  HybridScatterer(const Scene& scene, VolumetricMethod method, HybridSettings settings = {},
+                  TexturedSpotSettings spot_settings = {});
   ~HybridScatterer() override;
 
   bool scatter(size_t index, const FrameLight& light, const VolumeScene& volumes, const View& low_view,
@@ -71,9 +76,13 @@ class HybridScatterer : public LightScatterer {
  private:
   struct CachedVolumes;
   void note(size_t index, const std::string& why);
+  // kTextured for a spot light: the textured-spotlight pass (hybrid/textured_spot.h).
+  bool scatter_spot(size_t index, const SpotLight& spot, const FrameLight& frame_light, const VolumeScene& volumes,
+                    const View& low_view, const Plane& low_depth, ColorPlanes& accum);
 
   VolumetricMethod method_;
   HybridSettings settings_;
+  TexturedSpotSettings spot_settings_;
   Bounds3 scene_bounds_;
   std::vector<MeshEdges> occluders_;
   std::string open_occluder_;
