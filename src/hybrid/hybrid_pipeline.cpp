@@ -104,6 +104,19 @@ std::string medium_problem(const VolumeScene& volumes, Vec3 eye, Vec3 light) {
   return "";
 }
 
+// The largest view-ray distance t of any pixel's opaque point (depth is linear depth).
+float farthest_visible_t(const View& view, const Plane& depth) {
+  float t_max = 0.0f;
+  for (int y = 0; y < depth.height; ++y)
+    for (int x = 0; x < depth.width; ++x) {
+      const Vec3 dir = view.ray({float(x) + 0.5f, float(y) + 0.5f}).direction;
+      const float per_t = view.depth_per_t(dir);
+      const float d = depth.at(x, y);
+      t_max = std::max(t_max, per_t > 0.0f && d < kSkyDepth ? d / per_t : kInfinity);
+    }
+  return t_max;
+}
+
 void add_scaled(ColorPlanes& accum, const ColorPlanes& add, RGB weight) {
   Plane* const out[3] = {&accum.r, &accum.g, &accum.b};
   const Plane* const in[3] = {&add.r, &add.g, &add.b};
@@ -217,7 +230,14 @@ bool HybridScatterer::scatter(size_t index, const FrameLight& frame_light, const
       cache.light = point->position;
       cache.valid = true;
     }
-    sv = rasterize_shadow_volumes(cache.volumes, low_view, depth);
+    // Far caps lie at least min_far_distance from the light. When every visible point is
+    // nearer the light than that (|p - light| <= t + |eye - light|), no ray reaches a far cap:
+    // skipping them is exact and saves setting up half the occluder's triangles each frame.
+    ShadowVolumeOptions options;
+    const float reach = farthest_visible_t(low_view, depth) + distance(low_view.eye, point->position);
+    options.far_caps = std::any_of(cache.volumes.begin(), cache.volumes.end(),
+                                   [&](const ShadowVolume& v) { return !(reach < 0.999f * v.min_far_distance); });
+    sv = rasterize_shadow_volumes(cache.volumes, low_view, depth, options);
     buffers = &sv;
   }
 
