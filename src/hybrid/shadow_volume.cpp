@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "core/parallel.h"
@@ -91,8 +92,74 @@ struct VolumeScene {
   std::vector<int8_t> sign;  // per rasterised triangle: +1 turned to the eye (entering), -1 away
 };
 
+// The farthest opaque depth of each kCell x kCell block of pixels, to drop before set-up
+// the triangles that lie behind the opaque surface wherever they could cover a pixel. Most
+// of a volume's far cap (tens of thousands of triangles) lies under the ground.
+class DepthCull {
+ public:
+  static constexpr int kCell = 16;
+
+  // keep: the depth bias factor, 1 - ShadowVolumeOptions::depth_bias.
+  DepthCull(const View& view, const Plane& depth, float keep)
+      : view_(view),
+        perspective_(view.projection == Projection::perspective),
+        cells_x_((depth.width + kCell - 1) / kCell),
+        cells_y_((depth.height + kCell - 1) / kCell),
+        farthest_(size_t(cells_x_) * size_t(cells_y_), 0.0f) {
+    const float half_w = 0.5f * float(view.resolution.x), half_h = 0.5f * float(view.resolution.y);
+    scale_x_ = half_w / (perspective_ ? view.tan_half_fov_y * view.aspect : view.half_width);
+    scale_y_ = half_h / (perspective_ ? view.tan_half_fov_y : view.half_height);
+    for (int y = 0; y < depth.height; ++y) {
+      float* cells = &farthest_[size_t(y / kCell) * size_t(cells_x_)];
+      for (int x = 0; x < depth.width; ++x) {
+        // A NaN depth never passes the per-pixel test, so it may be ignored; +inf keeps all.
+        const float d = depth.at(x, y) * std::max(keep, 1.0f);
+        if (d > cells[x / kCell]) cells[x / kCell] = d;
+      }
+    }
+  }
+
+  // True when no pixel centre the triangle can cover has an opaque surface behind it.
+  // Conservative: the projected bounds are padded by two pixels, triangles reaching near
+  // the eye plane are kept, and the depth comparison has a 1e-4 relative margin (the
+  // rasteriser's key is exact to ~1e-6).
+  bool hidden(Vec3 p0, Vec3 p1, Vec3 p2) const {
+    float lo_x = kInfinity, hi_x = -kInfinity, lo_y = kInfinity, hi_y = -kInfinity, near = kInfinity;
+    for (Vec3 p : {p0, p1, p2}) {
+      const Vec3 d = p - view_.eye;
+      const float z = dot(d, view_.forward);
+      if (!(z > (perspective_ ? 1.0e-3f : 0.0f))) return false;  // clipped: let set-up decide
+      const float inv = perspective_ ? 1.0f / z : 1.0f;
+      const float sx = 0.5f * float(view_.resolution.x) + dot(d, view_.right) * inv * scale_x_;
+      const float sy = 0.5f * float(view_.resolution.y) - dot(d, view_.up) * inv * scale_y_;
+      lo_x = std::min(lo_x, sx), hi_x = std::max(hi_x, sx);
+      lo_y = std::min(lo_y, sy), hi_y = std::max(hi_y, sy);
+      near = std::min(near, z);
+    }
+    if (!(std::isfinite(lo_x) && std::isfinite(hi_x) && std::isfinite(lo_y) && std::isfinite(hi_y)))
+      return false;
+    const float limit_x = float(view_.resolution.x) + 4.0f, limit_y = float(view_.resolution.y) + 4.0f;
+    const int x0 = int(std::clamp(lo_x - 2.0f, 0.0f, limit_x)) / kCell;
+    const int x1 = std::min(int(std::clamp(hi_x + 2.0f, 0.0f, limit_x)) / kCell, cells_x_ - 1);
+    const int y0 = int(std::clamp(lo_y - 2.0f, 0.0f, limit_y)) / kCell;
+    const int y1 = std::min(int(std::clamp(hi_y + 2.0f, 0.0f, limit_y)) / kCell, cells_y_ - 1);
+    const float behind = near * (1.0f - 1.0e-4f);
+    for (int cy = y0; cy <= y1; ++cy)
+      for (int cx = x0; cx <= x1; ++cx)
+        if (!(farthest_[size_t(cy) * size_t(cells_x_) + size_t(cx)] < behind)) return false;
+    return true;  // also when the padded bounds miss the screen (no cell visited)
+  }
+
+ private:
+  const View& view_;
+  bool perspective_;
+  int cells_x_, cells_y_;
+  float scale_x_ = 1.0f, scale_y_ = 1.0f;
+  std::vector<float> farthest_;
+};
+
 VolumeScene gather_triangles(std::span<const ShadowVolume> volumes, const View& view,
-                             const ShadowVolumeOptions& options) {
+                             const ShadowVolumeOptions& options, const DepthCull& cull) {
   VolumeScene out;
   const bool perspective = view.projection == Projection::perspective;
   for (const ShadowVolume& v : volumes) {
@@ -101,6 +168,7 @@ VolumeScene gather_triangles(std::span<const ShadowVolume> volumes, const View& 
         const Vec3 p0 = v.mesh.positions[v.mesh.indices[3 * t]],
                    p1 = v.mesh.positions[v.mesh.indices[3 * t + 1]],
                    p2 = v.mesh.positions[v.mesh.indices[3 * t + 2]];
+        if (cull.hidden(p0, p1, p2)) continue;
         const size_t before = out.scene.triangle_count();
         out.scene.add_triangle(p0, p1, p2, Vec3(0, 0, 1), Vec3(0, 0, 1), Vec3(0, 0, 1), 0);
         if (out.scene.triangle_count() == before) continue;  // zero area: dropped
@@ -154,12 +222,51 @@ bool row_span(const raster::ScreenTri& tri, std::array<float, 3> r, int* x0, int
   return *x0 < *x1;
 }
 
+// Whether the triangle can count at some pixel centre of [x0, x1) x [y0, y1) whose biased
+// opaque key is `limit` or more (the rectangle's farthest opaque surface). The edge functions
+// and the key are affine in the pixel centre, so their largest values over the rectangle are
+// at its corners; they are evaluated there in double, and the float rounding of the per-pixel
+// evaluation in raster_tile() is bounded by a margin proportional to the magnitudes of its
+// terms (also largest at a corner, being sums of |affine| terms). The margin, 1e-5 of those
+// magnitudes, is over a hundred times the rounding's worst case, so a rejected triangle
+// covers no pixel of the rectangle in front of the opaque surface, and the result is exact.
+bool may_count(const raster::ScreenTri& tri, int x0, int x1, int y0, int y1, float limit) {
+  const double xs[2] = {double(x0) + 0.5, double(x1) - 0.5}, ys[2] = {double(y0) + 0.5, double(y1) - 0.5};
+  double best_edge[3], edge_mag[3];
+  for (int i = 0; i < 3; ++i) best_edge[i] = -std::numeric_limits<double>::infinity(), edge_mag[i] = 0.0;
+  double best_key = -std::numeric_limits<double>::infinity(), key_mag = 0.0;
+  for (double py : ys)
+    for (double px : xs) {
+      double key = 0.0, mag = 0.0;
+      for (int i = 0; i < 3; ++i) {
+        const double ex = (px - tri.ax[i]) * tri.dy[i], ey = (py - tri.ay[i]) * tri.dx[i];
+        const double m = std::abs(ex) + std::abs(ey);
+        best_edge[i] = std::max(best_edge[i], ex - ey);
+        edge_mag[i] = std::max(edge_mag[i], m);
+        key += (ex - ey) * tri.c[i];
+        mag += m * std::abs(double(tri.c[i]));
+      }
+      best_key = std::max(best_key, key);
+      key_mag = std::max(key_mag, mag);
+    }
+  // Sliver side quads are binned into every tile of their bounding box; most miss the tile.
+  for (int i = 0; i < 3; ++i)
+    if (best_edge[i] + 1e-5 * edge_mag[i] < 0.0) return false;
+  return best_key + 1e-5 * key_mag + 1e-5 * std::abs(best_key) > double(limit);
+}
+
 void raster_tile(const raster::Setup& s, const VolumeScene& vs, const Tile& tile, TileTarget& t) {
+  // The tile's farthest biased opaque depth: a triangle whose every key over the tile is
+  // at or behind it counts at no pixel (crossings behind the opaque surface are not
+  // counted), so it is skipped whole. Most of a volume lies under the ground.
+  const float tile_limit = *std::min_element(t.row_limit, t.row_limit + (tile.y1 - tile.y0));
   for (uint32_t index : s.bins[size_t(tile.index)]) {
     const raster::ScreenTri& tri = s.tris[index];
     const int sign = vs.sign[tri.source];
     const int x0 = std::max(tri.x0, tile.x0), x1 = std::min(tri.x1, tile.x1);
     const int y0 = std::max(tri.y0, tile.y0), y1 = std::min(tri.y1, tile.y1);
+    if (x0 >= x1 || y0 >= y1) continue;
+    if (!may_count(tri, x0, x1, y0, y1, tile_limit)) continue;
     for (int y = y0; y < y1; ++y) {
       const float py = float(y) + 0.5f;
       const float r0 = (py - tri.ay[0]) * tri.dx[0], r1 = (py - tri.ay[1]) * tri.dx[1],
@@ -270,10 +377,10 @@ ShadowVolumeBuffers rasterize_shadow_volumes(std::span<const ShadowVolume> volum
   out.tail_count.assign(size_t(w) * size_t(h), 0);
   for (const ShadowVolume& v : volumes) out.eye_count += volumes_containing(v, view.eye);
 
-  const VolumeScene vs = gather_triangles(volumes, view, options);
+  const float keep = 1.0f - options.depth_bias;
+  const VolumeScene vs = gather_triangles(volumes, view, options, DepthCull(view, opaque_depth, keep));
   const raster::Setup s = raster::setup_triangles(vs.scene, view, false);
   const bool perspective = s.perspective;
-  const float keep = 1.0f - options.depth_bias;
   parallel_for_tiles(make_tiles(view.resolution, raster::kTileSize), [&](const Tile& tile) {
     thread_local TileTarget t;
     for (int y = tile.y0; y < tile.y1; ++y)
