@@ -111,6 +111,26 @@ std::shared_ptr<const GoboImage> solid_gobo(int w, int h, RGB c) {
   return std::make_shared<const GoboImage>(w, h, std::vector<RGB>(size_t(w) * size_t(h), c));
 }
 
+// Per-channel absolute error of an image against a per-pixel reference: sums and maxima.
+struct ErrorStats {
+  double ref_sum = 0, err_sum = 0, ref_max = 0, err_max = 0;
+};
+template <typename Reference>
+ErrorStats error_stats(const ColorPlanes& got, Reference&& reference) {
+  ErrorStats e;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const RGB ref = reference(x, y), value = got.at(x, y);
+      for (int c = 0; c < 3; ++c) {
+        e.ref_sum += ref[c];
+        e.err_sum += std::abs(value[c] - ref[c]);
+        e.ref_max = std::max<double>(e.ref_max, ref[c]);
+        e.err_max = std::max<double>(e.err_max, std::abs(value[c] - ref[c]));
+      }
+    }
+  return e;
+}
+
 double luminance_sum(const ColorPlanes& c) {
   double s = 0;
   for (int y = 0; y < c.height(); ++y)
@@ -169,18 +189,8 @@ TEST(TexturedSpot, WhiteGoboMatchesTheSingleScatteringIntegral) {
   settings.blur_level = 0;
   const auto& table = AirlightTable::shared();
   const ScatterResult r = scatter_textured_spot(s.view, s.depth, nullptr, table, kFog, spot, settings);
-  double ref_sum = 0, err_sum = 0, ref_max = 0, err_max = 0;
-  for (int y = 0; y < kSize; ++y)
-    for (int x = 0; x < kSize; ++x) {
-      const RGB ref = reference_integral(s, spot, x, y, 8000);
-      const RGB got = r.radiance.at(x, y);
-      for (int c = 0; c < 3; ++c) {
-        ref_sum += ref[c];
-        err_sum += std::abs(got[c] - ref[c]);
-        ref_max = std::max<double>(ref_max, ref[c]);
-        err_max = std::max<double>(err_max, std::abs(got[c] - ref[c]));
-      }
-    }
+  const auto [ref_sum, err_sum, ref_max, err_max] =
+      error_stats(r.radiance, [&](int x, int y) { return reference_integral(s, spot, x, y, 8000); });
   const double total = luminance_sum(r.radiance);
   std::printf(
       "white gobo: total %.5g vs %.5g (%.3f%%), mean |err| %.3f%% of mean, max |err| %.3f%% of max, "
@@ -284,18 +294,8 @@ TEST(TexturedSpot, ShadowedSpotMatchesBruteForceMarch) {
   settings.blur_level = 0;
   const ScatterResult r = scatter_textured_spot(s.view, s.depth, &*map, table, kFog, spot, settings);
   const ScatterResult open = scatter_textured_spot(s.view, s.depth, nullptr, table, kFog, spot, settings);
-  double ref_sum = 0, err_sum = 0, ref_max = 0, err_max = 0;
-  for (int y = 0; y < kSize; ++y)
-    for (int x = 0; x < kSize; ++x) {
-      const RGB ref = brute_march(s, spot, &*map, table, x, y, 400);
-      const RGB got = r.radiance.at(x, y);
-      for (int c = 0; c < 3; ++c) {
-        ref_sum += ref[c];
-        err_sum += std::abs(got[c] - ref[c]);
-        ref_max = std::max<double>(ref_max, ref[c]);
-        err_max = std::max<double>(err_max, std::abs(got[c] - ref[c]));
-      }
-    }
+  const auto [ref_sum, err_sum, ref_max, err_max] =
+      error_stats(r.radiance, [&](int x, int y) { return brute_march(s, spot, &*map, table, x, y, 400); });
   const double total = luminance_sum(r.radiance), unshadowed = luminance_sum(open.radiance);
   std::printf(
       "shadowed: total %.5g vs brute %.5g (%.3f%%), mean |err| %.3f%% of mean, max |err| %.2f%% of max; "
