@@ -39,6 +39,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "core/atomic_file.h"
 #include "geometry/mesh_generate.h"
 #include "hybrid/hybrid_pipeline.h"
 #include "image/png_io.h"
@@ -475,9 +476,13 @@ int run_bench_table(const BenchTableOptions& o) {
   std::fputs(md.c_str(), stdout);
   if (!o.output.empty()) {
     const std::string path = (std::filesystem::path(o.output) / "table.md").string();
-    std::ofstream out(path);
-    out << md;
-    if (!out) throw InputError(SourceLocation{path, ""}, "cannot write the table");
+    // Atomically, like every other output: an interrupted run leaves no half table.
+    write_file_atomically(path, [&](const std::string& temp) {
+      std::ofstream out(temp);
+      out << md;
+      out.close();
+      if (!out) throw InputError(SourceLocation{path, ""}, "cannot write the table");
+    });
     std::string pngs;
     for (const std::string& n : names) pngs += " " + std::filesystem::path(n).stem().string() + ".png";
     std::printf("-> %s, per scene (rows: scales; columns: none, brute 150, hybrid 50, march, reference):%s\n",
