@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <optional>
 
 #include "core/parallel.h"
@@ -26,7 +27,9 @@ SparseFloatGrid dense_to_sparse(const std::vector<float>& values, const DenseGri
                                 float zero_tolerance) {
   const std::array<int, 3>& d = layout.dims;
   const int bx = blocks_along(d[0]), by = blocks_along(d[1]), bz = blocks_along(d[2]);
-  std::vector<std::optional<SparseBlock>> slots(size_t(bx) * by * bz);
+  // One pointer per block (8 bytes), a block only where data is: a 2 KB slot per block would
+  // cost as much memory again as the dense input.
+  std::vector<std::unique_ptr<SparseBlock>> slots(size_t(bx) * by * bz);
   parallel_for(int(slots.size()), [&](int s) {
     const int ib = s % bx, jb = (s / bx) % by, kb = s / (bx * by);
     SparseBlock block{{ib * kBlockDim, jb * kBlockDim, kb * kBlockDim}, {}};
@@ -41,13 +44,13 @@ SparseFloatGrid dense_to_sparse(const std::vector<float>& values, const DenseGri
           block.values[size_t(block_offset(x, y, z))] = v;
           any |= v != 0.0f;
         }
-    if (any) slots[size_t(s)] = block;
+    if (any) slots[size_t(s)] = std::make_unique<SparseBlock>(block);
   });
   SparseFloatGrid grid;
   grid.name = "density";
   grid.voxel_size = layout.voxel_size;
   grid.origin = layout.origin + Vec3(0.5f * layout.voxel_size);
-  for (std::optional<SparseBlock>& slot : slots)
+  for (const std::unique_ptr<SparseBlock>& slot : slots)
     if (slot) grid.blocks.push_back(*slot);
   return grid;
 }

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <memory>
 #include <variant>
 
 #include "core/error.h"
@@ -220,7 +221,9 @@ std::vector<SparseFloatGrid> sample_field(const F& field, int resolution) {
   const float block_radius = 0.5f * std::sqrt(3.0f) * float(kBlockDim) * voxel;
   const int block_count = blocks[0] * blocks[1] * blocks[2];
   const size_t channels = names.size();
-  std::vector<std::optional<SparseBlock>> slots(size_t(block_count) * channels);
+  // One pointer per block and channel, a block only where data is (a 2 KB slot each would need
+  // gigabytes at resolution 1024).
+  std::vector<std::unique_ptr<SparseBlock>> slots(size_t(block_count) * channels);
   parallel_for(block_count, [&](int b) {
     const std::array<int, 3> o{kBlockDim * (b % blocks[0]), kBlockDim * (b / blocks[0] % blocks[1]),
                                kBlockDim * (b / (blocks[0] * blocks[1]))};
@@ -242,7 +245,7 @@ std::vector<SparseFloatGrid> sample_field(const F& field, int resolution) {
           }
         }
     for (size_t c = 0; c < channels; ++c)
-      if (any[c]) slots[size_t(b) * channels + c] = out[c];
+      if (any[c]) slots[size_t(b) * channels + c] = std::make_unique<SparseBlock>(out[c]);
   });
   std::vector<SparseFloatGrid> grids(channels);
   for (size_t c = 0; c < channels; ++c) {
