@@ -64,17 +64,6 @@ bool inside(const VolumeShape& shape, Vec3 p) {
   return hull && hull->first <= 0.0f && hull->second > 0.0f;
 }
 
-struct PointOnly {
-  const PointLight* operator()(const PointLight& l) const { return &l; }
-  const PointLight* operator()(const SpotLight&) const { return nullptr; }
-  const PointLight* operator()(const SphereLight&) const { return nullptr; }
-  const PointLight* operator()(const QuadLight&) const { return nullptr; }
-  const PointLight* operator()(const DirectionalLight&) const { return nullptr; }
-  const PointLight* operator()(const EnvironmentLight&) const { return nullptr; }
-  const PointLight* operator()(const TriangleLight&) const { return nullptr; }
-  const PointLight* operator()(const BoxLight&) const { return nullptr; }
-};
-
 // The opaque depth cut at the medium's exit, so every pass integrates the lit medium only.
 Plane clip_to_medium(const Plane& depth, const View& view, const VolumeShape& shape) {
   Plane out(depth.width, depth.height);
@@ -198,7 +187,7 @@ bool HybridScatterer::scatter(size_t index, const FrameLight& frame_light, const
   }
   used_[index] = VolumetricMethod::kMarch;
   if (method_ == VolumetricMethod::kMarch) return false;
-  const PointLight* point = std::visit(PointOnly{}, frame_light.light);
+  const PointLight* point = std::get_if<PointLight>(&frame_light.light);
   const SpotLight* spot = std::get_if<SpotLight>(&frame_light.light);
   if (method_ == VolumetricMethod::kTextured && spot) return scatter_spot(index, *spot, frame_light, volumes, low_view, low_depth, accum);
   if (!point) return note(index, "not a point light"), false;

@@ -69,7 +69,6 @@ class HybridScatterer : public LightScatterer {
   // The method light `index` used in the last frame (kMarch for lights left to the march or
   // never seen); kHybrid may have become kBrute for open occluders.
   VolumetricMethod used(size_t index) const;
-  size_t occluder_count() const { return occluders_.size(); }
   // Non-empty when some occluder is open or non-manifold (kHybrid then runs as kBrute).
   const std::string& open_occluder() const { return open_occluder_; }
 

@@ -282,10 +282,9 @@ RGB reference_transmittance(const Scene& scene, const Ray& ray, float t_max, int
   const float metres_per_t = length(ray.direction);
   VolumeContext& ctx = context();
   scene.volumes().intervals(clipped, ctx);
-  // Copied: shading below may not reuse the context's interval list, but it is cheap to keep.
-  const std::vector<VolumeInterval> intervals = ctx.intervals;
   RGB depth;
-  for (const VolumeInterval& iv : intervals) {
+  // Shading uses only the context's grid accessors, never its interval list.
+  for (const VolumeInterval& iv : ctx.intervals) {
     const VolumePrimitive& p = scene.volumes().primitive(iv.primitive);
     const float dt = (iv.t1 - iv.t0) / float(steps);
     RGB sum;

@@ -47,7 +47,6 @@ int steps_for_span(const VolumeScene& volumes, const Span& span, std::span<const
   if (span.homogeneous) return 1;
   float h = kInfinity;
   for (uint32_t id : primitives) h = std::min(h, primitive_step_size(volumes.primitive(id), settings));
-  if (!std::isfinite(h)) return 1;
   // Clamped in float first: a ratio beyond INT_MAX (a tiny step) must not wrap when converted.
   const float n = std::ceil(length_m / h);
   if (!(n < float(settings.max_steps_per_span))) return std::max(1, settings.max_steps_per_span);

@@ -104,15 +104,6 @@ float media_extent(const VolumeScene& volumes) {
   return b.empty() ? 0.0f : length(b.diagonal()) * 1.01f + 1e-3f;
 }
 
-bool setup_pixel_march(const Light& light, const AccumulationRays::PixelRay& ray,
-                       std::span<const VolumeInterval> intervals, const AccumulationSettings& settings,
-                       PixelMarch& march) {
-  if (intervals.empty()) return false;
-  const auto span = light_volume_interval(light, ray.origin, ray.dir, 0.0f, ray.t_end);
-  return span && setup_pixel_march(*span, ray, intervals, settings, march,
-                                   settings.equiangular ? equiangular_focus(light) : nullptr);
-}
-
 const Vec3* equiangular_focus(const Light& light) {
   // Exhaustive, so that a new light type has to say whether its steps crowd towards a point.
   struct Focus {

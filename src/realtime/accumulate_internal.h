@@ -43,12 +43,8 @@ inline float march_sample(const PixelMarch& m, float k, float& weight) {
   return m.tc + x;
 }
 
-// The march of one pixel's ray for `light`, or false when the light volume, the depth and
-// the media leave nothing to march.
-bool setup_pixel_march(const Light& light, const AccumulationRays::PixelRay& ray,
-                       std::span<const VolumeInterval> intervals, const AccumulationSettings& settings,
-                       PixelMarch& march);
-// The same given the light volume's span of the ray (light_volume_interval over [0, t_end]).
+// The march of one pixel's ray given the light volume's span of it (light_volume_interval over
+// [0, t_end]), or false when the span, the depth and the media leave nothing to march.
 // `focus`: the point light or spot apex the steps crowd towards (null: uniform steps).
 bool setup_pixel_march(TInterval span, const AccumulationRays::PixelRay& ray,
                        std::span<const VolumeInterval> intervals, const AccumulationSettings& settings,

@@ -12,9 +12,6 @@ namespace {
 
 constexpr int kN = NoiseTexture::kSize;
 
-// A fixed integer hash: the texture is identical on every platform and every run, so renders
-// and tests are reproducible.
-uint32_t hash32(uint32_t x) { return lowbias32(x); }
 
 // The quintic fade 6t^5 - 15t^4 + 10t^3 (Perlin 2002): C2 across lattice cells, so the
 // density has no visible grid creases. fade(1 - t) = 1 - fade(t), which makes the mean of the
@@ -44,7 +41,7 @@ const NoiseTexture& NoiseTexture::shared() {
 // density modulation then averages to 1 over a period and stays within [1 - a, 1 + a].
 NoiseTexture::NoiseTexture() : values_(static_cast<size_t>(kN) * kN * kN) {
   for (size_t i = 0; i < values_.size(); ++i)
-    values_[i] = static_cast<float>(hash32(static_cast<uint32_t>(i) ^ 0x9e3779b9u) >> 8) * 0x1p-24f;
+    values_[i] = static_cast<float>(lowbias32(static_cast<uint32_t>(i) ^ 0x9e3779b9u) >> 8) * 0x1p-24f;
   double sum = 0.0;
   for (float v : values_) sum += v;
   const float mean = static_cast<float>(sum / static_cast<double>(values_.size()));

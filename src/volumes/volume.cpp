@@ -108,13 +108,6 @@ struct FieldIsConstant {
   bool operator()(const GridDensity&) const { return false; }
 };
 
-// The field's peak density multiplier over the whole primitive.
-struct FieldPeak {
-  float operator()(const ConstantDensity&) const { return 1.0f; }
-  float operator()(const RadialFalloffDensity&) const { return 1.0f; }
-  float operator()(const GridDensity& g) const { return g.grid->max_density(); }
-};
-
 // Splits one inside stretch by the field: analytic fields keep it whole, a grid cuts it into
 // its occupied block runs, each with its own majorant.
 struct FieldIntervals {
@@ -227,11 +220,6 @@ float field_density(const VolumePrimitive& primitive, Vec3 p, VolumeContext& con
 
 MediumSample shade_volume(const VolumePrimitive& primitive, Vec3 p, VolumeContext& context) {
   return std::visit(Shade{primitive, p, context}, primitive.shader.field);
-}
-
-RGB max_sigma_t(const VolumePrimitive& primitive) {
-  const VolumeShader& s = primitive.shader;
-  return (s.sigma_a + s.sigma_s) * (s.density * noise_peak(s) * std::visit(FieldPeak{}, s.field));
 }
 
 float field_voxel_size(const VolumePrimitive& primitive) {

@@ -99,8 +99,6 @@ bool is_homogeneous(const VolumeShader& shader);
 float field_density(const VolumePrimitive& primitive, Vec3 p, VolumeContext& context);
 // Coefficients of the primitive at a world-space point inside it.
 MediumSample shade_volume(const VolumePrimitive& primitive, Vec3 p, VolumeContext& context);
-// Upper bound of sigma_t over the whole primitive (intervals give tighter local ones).
-RGB max_sigma_t(const VolumePrimitive& primitive);
 // World-space length of one voxel of a grid field (after its placement), else infinity.
 float field_voxel_size(const VolumePrimitive& primitive);
 

@@ -70,7 +70,10 @@ TEST(VolumeShader, DensityScalesCoefficientsAndFalloffPeaksAtTheCentre) {
   // r = 1 of radius 2: (1 - 0.25)^2.
   EXPECT_NEAR(shade_volume(p, {1, 0, 0}, ctx).sigma_a.r, 0.3f * 0.5625f, 1e-6f);
   EXPECT_FLOAT_EQ(shade_volume(p, {0, 2.1f, 0}, ctx).sigma_a.r, 0.0f);
-  EXPECT_FLOAT_EQ(max_sigma_t(p).r, 1.8f);
+  // The interval's majorant is the peak: density 3 x sigma_t 0.6.
+  append_intervals(p, 0, Ray{{-5, 0, 0}, {1, 0, 0}}, ctx);
+  ASSERT_EQ(ctx.intervals.size(), 1u);
+  EXPECT_FLOAT_EQ(ctx.intervals[0].sigma_maj.r, 1.8f);
 }
 
 }  // namespace
@@ -97,7 +100,7 @@ TEST(VolumeScene, BvhAndLinearScanAgree) {
     std::vector<VolumeInterval> expected;
     for (uint32_t i = 0; i < many.size(); ++i)
       if (const auto range = volume_hull_interval(many[i].shape, ray))
-        expected.push_back({range->first, range->second, i, max_sigma_t(many[i]), true});
+        expected.push_back({range->first, range->second, i});
     ASSERT_EQ(found.size(), expected.size()) << "ray " << r;
     for (size_t k = 0; k < found.size(); ++k) {
       EXPECT_EQ(found[k].primitive, expected[k].primitive);
