@@ -243,7 +243,7 @@ const std::vector<BuiltinScene>& all_builtins() {
        wyman_scene("torus_knot", 70000, kWymanKnot)},
       {"wyman-330k", "Wyman & Ramsey: a point light in fog, a 327,680-triangle sphere occluder",
        wyman_scene("sphere", 300000, kWymanSphere)},
-      {"wyman-750k", "Wyman & Ramsey: a point light in fog, a 750,000-triangle torus-knot occluder",
+      {"wyman-750k", "Wyman & Ramsey: a point light in fog, a 758,912-triangle torus-knot occluder",
        wyman_scene("torus_knot", 750000, kWymanKnot)},
   };
   return scenes;
