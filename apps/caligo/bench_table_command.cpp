@@ -131,13 +131,6 @@ void check_range(int v, int lo, int hi, const char* option) {
                                        std::to_string(hi) + ", got " + std::to_string(v));
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 // Triangles of the generated occluders (from the generator's own sizing rule, without building
 // them); mesh files count as unknown (0).
 uint64_t generated_triangles(const SceneDesc& desc) {

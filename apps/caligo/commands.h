@@ -3,6 +3,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "scene/scene_desc.h"
@@ -88,6 +89,8 @@ inline const SourceLocation kCommandLine{"command line", ""};
 SceneDesc load_scene(const std::string& name);
 // "WxH" of --res; InputError otherwise.
 Vec2i parse_resolution(const std::string& text);
+// The median of frame timings (0 for none).
+double median(std::vector<double> values);
 
 void add_render_command(CLI::App& app, RenderOptions& options);
 void add_realtime_command(CLI::App& app, RealtimeOptions& options);

@@ -135,13 +135,6 @@ void check_output(const std::string& out, OutputKind kind) {
   if (fs::is_directory(out, ec)) throw InputError(SourceLocation{out, ""}, "output is a folder");
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 const char* light_kind(const Light& light) {
   struct Kind {
     const char* operator()(const PointLight&) const { return "point"; }
