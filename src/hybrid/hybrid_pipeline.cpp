@@ -19,6 +19,7 @@ namespace caligo {
 struct HybridScatterer::CachedVolumes {
   bool valid = false;
   Vec3 light;
+  float extrusion = 0.0f;
   std::vector<ShadowVolume> volumes;
 };
 
@@ -64,19 +65,34 @@ bool inside(const VolumeShape& shape, Vec3 p) {
   return hull && hull->first <= 0.0f && hull->second > 0.0f;
 }
 
-// The opaque depth cut at the medium's exit, so every pass integrates the lit medium only.
-Plane clip_to_medium(const Plane& depth, const View& view, const VolumeShape& shape) {
-  Plane out(depth.width, depth.height);
+// The opaque depth cut at the medium's exit, so every pass integrates the lit medium only, and
+// the radius around the light of a ball holding every visible point and the eye.
+struct ClippedDepth {
+  Plane depth;
+  float light_reach = 0.0f;  // max(|eye - light|, |p - light| over visible points p); inf: sky
+};
+
+ClippedDepth clip_to_medium(const Plane& depth, const View& view, const VolumeShape& shape, Vec3 light) {
+  ClippedDepth out{Plane(depth.width, depth.height), distance(view.eye, light)};
+  std::vector<float> row_reach(size_t(depth.height), 0.0f);
   parallel_for(depth.height, [&](int y) {
+    float reach = 0.0f;
     for (int x = 0; x < depth.width; ++x) {
       Ray ray = view.ray({float(x) + 0.5f, float(y) + 0.5f});
       ray.tmin = 0.0f;
       ray.tmax = kInfinity;
       const auto hull = volume_hull_interval(shape, ray);
-      const float exit_depth = hull ? hull->second * view.depth_per_t(ray.direction) : 0.0f;
-      out.at(x, y) = std::min(depth.at(x, y), exit_depth);
+      const float per_t = view.depth_per_t(ray.direction);
+      const float exit_depth = hull ? hull->second * per_t : 0.0f;
+      const float d = std::min(depth.at(x, y), exit_depth);
+      out.depth.at(x, y) = d;
+      const float t = per_t > 0.0f && d < kSkyDepth ? d / per_t : kInfinity;
+      reach = std::max(reach, distance(ray.at(t), light));
     }
+    row_reach[size_t(y)] = reach;
   });
+  for (float r : row_reach) out.light_reach = std::max(out.light_reach, r);
+  if (!std::isfinite(out.light_reach)) out.light_reach = kInfinity;
   return out;
 }
 
@@ -91,19 +107,6 @@ std::string medium_problem(const VolumeScene& volumes, Vec3 eye, Vec3 light) {
   if (!std::visit(IsotropicCheck{}, medium.shader.phase)) return "an anisotropic phase function (the airlight is isotropic)";
   if (!inside(medium.shape, eye) || !inside(medium.shape, light)) return "the eye or the light is outside the medium";
   return "";
-}
-
-// The largest view-ray distance t of any pixel's opaque point (depth is linear depth).
-float farthest_visible_t(const View& view, const Plane& depth) {
-  float t_max = 0.0f;
-  for (int y = 0; y < depth.height; ++y)
-    for (int x = 0; x < depth.width; ++x) {
-      const Vec3 dir = view.ray({float(x) + 0.5f, float(y) + 0.5f}).direction;
-      const float per_t = view.depth_per_t(dir);
-      const float d = depth.at(x, y);
-      t_max = std::max(t_max, per_t > 0.0f && d < kSkyDepth ? d / per_t : kInfinity);
-    }
-  return t_max;
 }
 
 void add_scaled(ColorPlanes& accum, const ColorPlanes& add, RGB weight) {
@@ -204,28 +207,34 @@ bool HybridScatterer::scatter(size_t index, const FrameLight& frame_light, const
   const float density = medium.shader.density;
   const RGB sigma_s = medium.shader.sigma_s * density,
             sigma_t = (medium.shader.sigma_a + medium.shader.sigma_s) * density;
-  const Plane depth = clip_to_medium(low_depth, low_view, medium.shape);
+  const ClippedDepth clipped = clip_to_medium(low_depth, low_view, medium.shape, point->position);
+  const Plane& depth = clipped.depth;
   const AirlightTable& table = AirlightTable::shared();
 
   const ShadowVolumeBuffers* buffers = nullptr;
   ShadowVolumeBuffers sv;
   if (method == VolumetricMethod::kHybrid) {
     CachedVolumes& cache = cache_[index];
-    if (!cache.valid || !(cache.light == point->position)) {
+    // Extrusion: every visible point and the eye lie within light_reach of the light, and so does
+    // every view ray's stretch up to its surface (a ball is convex). Extruded past that reach,
+    // the volumes hold every shadowed visible point and their far caps lie outside the ball, where
+    // no ray counts them: they are left out, which is exact. Shorter volumes also make shorter
+    // slivers on screen than extruding past the whole scene. Rebuilt when the light moves or the
+    // reach outgrows the cached length (or shrinks to under half of it).
+    const float needed = std::isfinite(clipped.light_reach) ? 1.02f * clipped.light_reach + 0.05f
+                                                            : extrusion_for(scene_bounds_, point->position);
+    if (!cache.valid || !(cache.light == point->position) || cache.extrusion < needed ||
+        cache.extrusion > 2.0f * needed) {
       cache.volumes.clear();
-      const float extrusion = extrusion_for(scene_bounds_, point->position);
-      for (const MeshEdges& o : occluders_)
-        cache.volumes.push_back(build_shadow_volume(o, point->position, extrusion));
+      for (const MeshEdges& o : occluders_) cache.volumes.push_back(build_shadow_volume(o, point->position, needed));
       cache.light = point->position;
+      cache.extrusion = needed;
       cache.valid = true;
     }
-    // Far caps lie at least min_far_distance from the light. When every visible point is
-    // nearer the light than that (|p - light| <= t + |eye - light|), no ray reaches a far cap:
-    // skipping them is exact and saves setting up half the occluder's triangles each frame.
     ShadowVolumeOptions options;
-    const float reach = farthest_visible_t(low_view, depth) + distance(low_view.eye, point->position);
-    options.far_caps = std::any_of(cache.volumes.begin(), cache.volumes.end(),
-                                   [&](const ShadowVolume& v) { return !(reach < 0.999f * v.min_far_distance); });
+    options.far_caps = std::any_of(cache.volumes.begin(), cache.volumes.end(), [&](const ShadowVolume& v) {
+      return !(clipped.light_reach < 0.999f * v.min_far_distance);
+    });
     sv = rasterize_shadow_volumes(cache.volumes, low_view, depth, options);
     buffers = &sv;
   }
@@ -271,7 +280,7 @@ bool HybridScatterer::scatter_spot(size_t index, const SpotLight& spot, const Fr
   const float density = medium.shader.density;
   const RGB sigma_s = medium.shader.sigma_s * density,
             sigma_t = (medium.shader.sigma_a + medium.shader.sigma_s) * density;
-  const Plane depth = clip_to_medium(low_depth, low_view, medium.shape);
+  const Plane depth = clip_to_medium(low_depth, low_view, medium.shape, spot.position).depth;
   const AirlightTable& table = AirlightTable::shared();
   // The pass already carries the spot's colour (intensity, cone, gobo); a coloured medium takes
   // one pass per channel, each keeping its own channel.

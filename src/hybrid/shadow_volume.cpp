@@ -7,6 +7,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include <xsimd/xsimd.hpp>
+
 #include "core/parallel.h"
 #include "realtime/raster_setup.h"
 #include "realtime/scene_buffers.h"
@@ -184,15 +186,31 @@ VolumeScene gather_triangles(std::span<const ShadowVolume> volumes, const View& 
   return out;
 }
 
-// Per-tile accumulators. Keys grow towards the viewer (raster_setup.h): the nearest
-// surface has the largest key.
-struct TileTarget {
-  static constexpr int stride = raster::kTileSize;
-  float nearest[stride * stride];
-  float farthest[stride * stride];
-  float limit[stride * stride];  // key of the biased opaque depth: surfaces need key > limit
-  float row_limit[stride];       // the smallest limit of each row (its farthest opaque depth)
-  int32_t crossings[stride * stride];
+// Per-band accumulators: `rows` full-width rows, padded to whole batches of 8. Keys grow
+// towards the viewer (raster_setup.h): the nearest surface has the largest key.
+struct BandTarget {
+  static constexpr int kBlock = 64;  // pixels per depth-cull block of a row
+  int stride = 0, rows = 0, blocks = 0;
+  std::vector<float> nearest, farthest, crossings;  // crossings: signed counts, exact in float
+  std::vector<float> limit;        // key of the biased opaque depth: surfaces need key > limit
+  std::vector<float> block_limit;  // the smallest limit of each block of each row
+
+  void reset(int width, int band_rows) {
+    stride = (width + 15) & ~7;  // a whole batch beyond the last pixel
+    rows = band_rows;
+    blocks = (width + kBlock - 1) / kBlock;
+    const size_t n = size_t(stride) * size_t(rows);
+    nearest.assign(n, -kInfinity);
+    farthest.assign(n, kInfinity);
+    crossings.assign(n, 0.0f);
+    limit.assign(n, kInfinity);
+    block_limit.assign(size_t(blocks) * size_t(rows), kInfinity);
+  }
+  // The farthest opaque surface (smallest limit) of row `row` over pixels [x0, x1).
+  float span_limit(int row, int x0, int x1) const {
+    const float* b = block_limit.data() + size_t(row) * size_t(blocks);
+    return *std::min_element(b + x0 / kBlock, b + (x1 - 1) / kBlock + 1);
+  }
 };
 
 inline float depth_to_key(float depth, bool perspective) { return perspective ? 1.0f / depth : -depth; }
@@ -204,7 +222,10 @@ inline bool covered(float e, bool tie) { return e > 0.0f || (e == 0.0f && tie); 
 // costs ~20x the covered area. Each edge function is linear in x along the row, so it
 // bounds x on one side; the bound is widened by a pixel and every pixel inside is still
 // tested exactly, so coverage is unchanged. False when the row is empty.
-bool row_span(const raster::ScreenTri& tri, std::array<float, 3> r, int* x0, int* x1) {
+// inv_dy: 1 / dy of each edge, once per triangle (the crossing only bounds the span, so the
+// reciprocal's extra rounding, far below the one-pixel widening, is harmless).
+bool row_span(const raster::ScreenTri& tri, const std::array<float, 3>& inv_dy, std::array<float, 3> r, int* x0,
+              int* x1) {
   for (int i = 0; i < 3; ++i) {
     const float dy = tri.dy[i];
     if (dy == 0.0f) {  // e = -r along the whole row
@@ -212,7 +233,7 @@ bool row_span(const raster::ScreenTri& tri, std::array<float, 3> r, int* x0, int
       continue;
     }
     // e = 0 at px = cross; clamped to the screen's neighbourhood before converting to int.
-    const float cross = std::clamp(tri.ax[i] + r[size_t(i)] / dy, -1.0e6f, 1.0e6f);
+    const float cross = std::clamp(tri.ax[i] + r[size_t(i)] * inv_dy[size_t(i)], -1.0e6f, 1.0e6f);
     if (!std::isfinite(cross)) continue;  // cannot narrow; the exact tests still decide
     if (dy > 0.0f)
       *x0 = std::max(*x0, int(std::floor(cross - 0.5f)) - 1);
@@ -222,80 +243,94 @@ bool row_span(const raster::ScreenTri& tri, std::array<float, 3> r, int* x0, int
   return *x0 < *x1;
 }
 
-// Whether the triangle can count at some pixel centre of [x0, x1) x [y0, y1) whose biased
-// opaque key is `limit` or more (the rectangle's farthest opaque surface). The edge functions
-// and the key are affine in the pixel centre, so their largest values over the rectangle are
-// at its corners; they are evaluated there in double, and the float rounding of the per-pixel
-// evaluation in raster_tile() is bounded by a margin proportional to the magnitudes of its
-// terms (also largest at a corner, being sums of |affine| terms). The margin, 1e-5 of those
-// magnitudes, is over a hundred times the rounding's worst case, so a rejected triangle
-// covers no pixel of the rectangle in front of the opaque surface, and the result is exact.
-bool may_count(const raster::ScreenTri& tri, int x0, int x1, int y0, int y1, float limit) {
-  const double xs[2] = {double(x0) + 0.5, double(x1) - 0.5}, ys[2] = {double(y0) + 0.5, double(y1) - 0.5};
-  double best_edge[3], edge_mag[3];
-  for (int i = 0; i < 3; ++i) best_edge[i] = -std::numeric_limits<double>::infinity(), edge_mag[i] = 0.0;
-  double best_key = -std::numeric_limits<double>::infinity(), key_mag = 0.0;
-  for (double py : ys)
-    for (double px : xs) {
-      double key = 0.0, mag = 0.0;
-      for (int i = 0; i < 3; ++i) {
-        const double ex = (px - tri.ax[i]) * tri.dy[i], ey = (py - tri.ay[i]) * tri.dx[i];
-        const double m = std::abs(ex) + std::abs(ey);
-        best_edge[i] = std::max(best_edge[i], ex - ey);
-        edge_mag[i] = std::max(edge_mag[i], m);
-        key += (ex - ey) * tri.c[i];
-        mag += m * std::abs(double(tri.c[i]));
-      }
-      best_key = std::max(best_key, key);
-      key_mag = std::max(key_mag, mag);
-    }
-  // Sliver side quads are binned into every tile of their bounding box; most miss the tile.
-  for (int i = 0; i < 3; ++i)
-    if (best_edge[i] + 1e-5 * edge_mag[i] < 0.0) return false;
-  return best_key + 1e-5 * key_mag + 1e-5 * std::abs(best_key) > double(limit);
+// The pixels of one row a triangle may count at: [*x0, *x1) narrowed by row_span() and by a
+// depth cull against the row's farthest opaque surface under the span (the key is linear along
+// the row, so its largest value over the span is at an end; most of a volume lies under the
+// ground, behind every pixel). False when none.
+bool row_pixels(const raster::ScreenTri& tri, const std::array<float, 3>& inv_dy, float py, const BandTarget& t,
+                int row, std::array<float, 3>* r, int* x0, int* x1) {
+  *r = {(py - tri.ay[0]) * tri.dx[0], (py - tri.ay[1]) * tri.dx[1], (py - tri.ay[2]) * tri.dx[2]};
+  if (!row_span(tri, inv_dy, *r, x0, x1)) return false;
+  auto key_at = [&](float px) {
+    return ((px - tri.ax[0]) * tri.dy[0] - (*r)[0]) * tri.c[0] + ((px - tri.ax[1]) * tri.dy[1] - (*r)[1]) * tri.c[1] +
+           ((px - tri.ax[2]) * tri.dy[2] - (*r)[2]) * tri.c[2];
+  };
+  const float best = std::max(key_at(float(*x0) + 0.5f), key_at(float(*x1) - 0.5f));
+  return best + 1e-5f * std::abs(best) > t.span_limit(row, *x0, *x1);
 }
 
-void raster_tile(const raster::Setup& s, const VolumeScene& vs, const Tile& tile, TileTarget& t) {
-  // The tile's farthest biased opaque depth: a triangle whose every key over the tile is
-  // at or behind it counts at no pixel (crossings behind the opaque surface are not
-  // counted), so it is skipped whole. Most of a volume lies under the ground.
-  const float tile_limit = *std::min_element(t.row_limit, t.row_limit + (tile.y1 - tile.y0));
-  for (uint32_t index : s.bins[size_t(tile.index)]) {
-    const raster::ScreenTri& tri = s.tris[index];
-    const int sign = vs.sign[tri.source];
-    const int x0 = std::max(tri.x0, tile.x0), x1 = std::min(tri.x1, tile.x1);
-    const int y0 = std::max(tri.y0, tile.y0), y1 = std::min(tri.y1, tile.y1);
-    if (x0 >= x1 || y0 >= y1) continue;
-    if (!may_count(tri, x0, x1, y0, y1, tile_limit)) continue;
-    for (int y = y0; y < y1; ++y) {
-      const float py = float(y) + 0.5f;
-      const float r0 = (py - tri.ay[0]) * tri.dx[0], r1 = (py - tri.ay[1]) * tri.dx[1],
-                  r2 = (py - tri.ay[2]) * tri.dx[2];
-      const size_t row = size_t(y - tile.y0) * TileTarget::stride;
-      int span_x0 = x0, span_x1 = x1;
-      if (!row_span(tri, {r0, r1, r2}, &span_x0, &span_x1)) continue;
-      // Row-level depth cull: the key is linear along the row, so its largest value over the
-      // span is at an end. Most of a volume lies under the ground, behind every pixel.
-      auto key_at = [&](float px) {
-        return ((px - tri.ax[0]) * tri.dy[0] - r0) * tri.c[0] +
-               ((px - tri.ax[1]) * tri.dy[1] - r1) * tri.c[1] +
-               ((px - tri.ax[2]) * tri.dy[2] - r2) * tri.c[2];
-      };
-      const float best = std::max(key_at(float(span_x0) + 0.5f), key_at(float(span_x1) - 0.5f));
-      if (best + 1e-5f * std::abs(best) <= t.row_limit[y - tile.y0]) continue;
-      for (int x = span_x0; x < span_x1; ++x) {
-        const float px = float(x) + 0.5f;
-        const float e0 = (px - tri.ax[0]) * tri.dy[0] - r0;
-        const float e1 = (px - tri.ax[1]) * tri.dy[1] - r1;
-        const float e2 = (px - tri.ax[2]) * tri.dy[2] - r2;
-        if (!covered(e0, tri.tie[0]) || !covered(e1, tri.tie[1]) || !covered(e2, tri.tie[2])) continue;
-        const float key = e0 * tri.c[0] + e1 * tri.c[1] + e2 * tri.c[2];
-        const size_t i = row + size_t(x - tile.x0);
-        if (!(key > t.limit[i])) continue;  // at or behind the opaque surface
-        t.nearest[i] = std::max(t.nearest[i], key);
-        t.farthest[i] = std::min(t.farthest[i], key);
-        t.crossings[i] += sign;
-      }
+// One pixel row of a triangle, a pixel at a time (the reference for the SIMD loop below).
+void raster_row_scalar(const raster::ScreenTri& tri, float sign, const std::array<float, 3>& r, int x0, int x1,
+                       size_t row, BandTarget& t) {
+  for (int x = x0; x < x1; ++x) {
+    const float px = float(x) + 0.5f;
+    const float e0 = (px - tri.ax[0]) * tri.dy[0] - r[0];
+    const float e1 = (px - tri.ax[1]) * tri.dy[1] - r[1];
+    const float e2 = (px - tri.ax[2]) * tri.dy[2] - r[2];
+    if (!covered(e0, tri.tie[0]) || !covered(e1, tri.tie[1]) || !covered(e2, tri.tie[2])) continue;
+    const float key = e0 * tri.c[0] + e1 * tri.c[1] + e2 * tri.c[2];
+    const size_t i = row + size_t(x);
+    if (!(key > t.limit[i])) continue;  // at or behind the opaque surface
+    t.nearest[i] = std::max(t.nearest[i], key);
+    t.farthest[i] = std::min(t.farthest[i], key);
+    t.crossings[i] += sign;
+  }
+}
+
+// The same row 8 pixels at a time (AVX2). The arithmetic is the scalar loop's, operation for
+// operation (this file is compiled without FMA contraction), so both give identical buffers.
+using Batch = xsimd::batch<float>;
+inline xsimd::batch_bool<float> covered(Batch e, bool tie) {
+  return tie ? (e >= Batch(0.0f)) : (e > Batch(0.0f));
+}
+
+void raster_row_simd(const raster::ScreenTri& tri, float sign, const std::array<float, 3>& r, int x0, int x1,
+                     size_t row, BandTarget& t) {
+  alignas(32) static constexpr float kLaneCentres[8] = {0.5f, 1.5f, 2.5f, 3.5f, 4.5f, 5.5f, 6.5f, 7.5f};
+  const Batch lanes = Batch::load_aligned(kLaneCentres);
+  const Batch lo = Batch(float(x0)), hi = Batch(float(x1));
+  const Batch ax0(tri.ax[0]), ax1(tri.ax[1]), ax2(tri.ax[2]);
+  const Batch dy0(tri.dy[0]), dy1(tri.dy[1]), dy2(tri.dy[2]);
+  const Batch c0(tri.c[0]), c1(tri.c[1]), c2(tri.c[2]);
+  const Batch r0(r[0]), r1(r[1]), r2(r[2]), step(sign), zero(0.0f);
+  for (int x = x0 & ~7; x < x1; x += 8) {
+    const Batch px = Batch(float(x)) + lanes;
+    const Batch e0 = (px - ax0) * dy0 - r0;
+    const Batch e1 = (px - ax1) * dy1 - r1;
+    const Batch e2 = (px - ax2) * dy2 - r2;
+    auto mask = covered(e0, tri.tie[0]) & covered(e1, tri.tie[1]) & covered(e2, tri.tie[2]) & (px > lo) &
+                (px < hi);
+    if (!xsimd::any(mask)) continue;
+    const Batch key = e0 * c0 + e1 * c1 + e2 * c2;
+    const size_t i = row + size_t(x);
+    mask = mask & (key > Batch::load_unaligned(&t.limit[i]));
+    if (!xsimd::any(mask)) continue;
+    const Batch nearest = Batch::load_unaligned(&t.nearest[i]), farthest = Batch::load_unaligned(&t.farthest[i]);
+    xsimd::select(mask, xsimd::max(nearest, key), nearest).store_unaligned(&t.nearest[i]);
+    xsimd::select(mask, xsimd::min(farthest, key), farthest).store_unaligned(&t.farthest[i]);
+    (Batch::load_unaligned(&t.crossings[i]) + xsimd::select(mask, step, zero)).store_unaligned(&t.crossings[i]);
+  }
+}
+
+// One band of rows [y0, y1): every triangle overlapping it, row by row. Bands rather than the
+// set-up's 64x64 tiles: side quads are long slivers whose bounding boxes cover many tiles, so a
+// tile loop visits each sliver row once per tile it crosses (and one tile, where the silhouette
+// bunches up on screen, held half the work); a full-width band visits each row once.
+void raster_band(const raster::Setup& s, const VolumeScene& vs, int y0, int y1, BandTarget& t, bool simd) {
+  for (const raster::ScreenTri& tri : s.tris) {
+    const int ty0 = std::max(tri.y0, y0), ty1 = std::min(tri.y1, y1);
+    if (ty0 >= ty1 || tri.x0 >= tri.x1) continue;
+    const float sign = float(vs.sign[tri.source]);
+    const std::array<float, 3> inv_dy = {1.0f / tri.dy[0], 1.0f / tri.dy[1], 1.0f / tri.dy[2]};
+    for (int y = ty0; y < ty1; ++y) {
+      std::array<float, 3> r;
+      int x0 = tri.x0, x1 = tri.x1;
+      if (!row_pixels(tri, inv_dy, float(y) + 0.5f, t, y - y0, &r, &x0, &x1)) continue;
+      const size_t row = size_t(y - y0) * size_t(t.stride);
+      if (simd)
+        raster_row_simd(tri, sign, r, x0, x1, row, t);
+      else
+        raster_row_scalar(tri, sign, r, x0, x1, row, t);
     }
   }
 }
@@ -381,26 +416,25 @@ ShadowVolumeBuffers rasterize_shadow_volumes(std::span<const ShadowVolume> volum
   const VolumeScene vs = gather_triangles(volumes, view, options, DepthCull(view, opaque_depth, keep));
   const raster::Setup s = raster::setup_triangles(vs.scene, view, false);
   const bool perspective = s.perspective;
-  parallel_for_tiles(make_tiles(view.resolution, raster::kTileSize), [&](const Tile& tile) {
-    thread_local TileTarget t;
-    for (int y = tile.y0; y < tile.y1; ++y)
-      for (int x = tile.x0; x < tile.x1; ++x) {
-        const size_t i = size_t(y - tile.y0) * TileTarget::stride + size_t(x - tile.x0);
-        t.nearest[i] = -kInfinity;
-        t.farthest[i] = kInfinity;
-        t.crossings[i] = 0;
-        t.limit[i] = depth_to_key(opaque_depth.at(x, y) * keep, perspective);
-      }
-    for (int y = tile.y0; y < tile.y1; ++y) {
-      const float* row = t.limit + size_t(y - tile.y0) * TileTarget::stride;
-      t.row_limit[y - tile.y0] = *std::min_element(row, row + (tile.x1 - tile.x0));
+  // About 64 bands (the thread pool balances them), at least 4 rows each.
+  const int band_rows = std::max(4, (h + 63) / 64);
+  parallel_for((h + band_rows - 1) / band_rows, [&](int band) {
+    const int y0 = band * band_rows, y1 = std::min(y0 + band_rows, h);
+    thread_local BandTarget t;
+    t.reset(w, y1 - y0);
+    for (int y = y0; y < y1; ++y) {
+      float* limit = &t.limit[size_t(y - y0) * size_t(t.stride)];
+      for (int x = 0; x < w; ++x) limit[x] = depth_to_key(opaque_depth.at(x, y) * keep, perspective);
+      for (int b = 0; b < t.blocks; ++b)
+        t.block_limit[size_t(y - y0) * size_t(t.blocks) + size_t(b)] =
+            *std::min_element(limit + b * BandTarget::kBlock, limit + std::min(w, (b + 1) * BandTarget::kBlock));
     }
-    raster_tile(s, vs, tile, t);
-    for (int y = tile.y0; y < tile.y1; ++y)
-      for (int x = tile.x0; x < tile.x1; ++x) {
-        const size_t i = size_t(y - tile.y0) * TileTarget::stride + size_t(x - tile.x0);
+    raster_band(s, vs, y0, y1, t, options.simd);
+    for (int y = y0; y < y1; ++y)
+      for (int x = 0; x < w; ++x) {
+        const size_t i = size_t(y - y0) * size_t(t.stride) + size_t(x);
         const size_t pixel = size_t(y) * size_t(w) + size_t(x);
-        out.tail_count[pixel] = out.eye_count + t.crossings[i];
+        out.tail_count[pixel] = out.eye_count + int32_t(t.crossings[i]);
         float front = kNoShadowVolume, back = kNoShadowVolume;
         if (t.nearest[i] > -kInfinity) {
           const float per_t = view.depth_per_t(view.ray({float(x) + 0.5f, float(y) + 0.5f}).direction);

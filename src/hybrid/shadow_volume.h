@@ -20,7 +20,8 @@
 // buffer already holds, so it never lies strictly in front of the visible surface: it is
 // left out of the pass by default (ShadowVolumeOptions::near_caps). The sides and the far
 // cap are rasterised with the real-time rasteriser's set-up (realtime/raster_setup.h:
-// near-plane and guard-band clipping, exact shared-edge coverage) and a tile loop that keeps,
+// near-plane and guard-band clipping, exact shared-edge coverage) and a loop over full-width
+// bands of rows (8 pixels at a time) that keeps,
 // per pixel, the nearest and farthest surface in front of the opaque depth and the signed
 // number of crossings (+1 entering a volume through a face turned to the eye, -1 leaving).
 //
@@ -30,7 +31,7 @@
 // at t = 0.
 //
 // Units: world metres; t is the distance along View::ray()'s unit direction. Thread safety:
-// the functions are pure; rasterize_shadow_volumes() runs tiles on the thread pool.
+// the functions are pure; rasterize_shadow_volumes() runs bands of rows on the thread pool.
 #pragma once
 
 #include <cstdint>
@@ -104,6 +105,8 @@ struct ShadowVolumeOptions {
   // the lit occluder surface at a grazing angle along the silhouette, and must not count
   // as "in front" of it there by rounding.
   float depth_bias = 1.0e-4f;
+  // The band loop 8 pixels at a time (AVX2); false: one at a time. Identical buffers.
+  bool simd = true;
 };
 
 // One pass over all the volumes. `opaque_depth` is the linear depth of the view's pixels

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <map>
 #include <random>
 #include <stdexcept>
@@ -261,6 +262,16 @@ void check_scene(const TestScene& s, int expected_eye_count, const ShadowVolumeO
   EXPECT_LT(c.ambiguous, pixels / 20) << "too many pixels excluded from the comparison";
   std::printf("    %d of %d pixels covered, %d compared, %d on outlines or the depth cut\n", c.covered,
               pixels, c.compared, c.ambiguous);
+  // The scalar tile loop gives the same buffers bit for bit.
+  ShadowVolumeOptions scalar = options;
+  scalar.simd = !options.simd;
+  const ShadowVolumeBuffers other = rasterize_shadow_volumes(s.volumes, s.view, depth, scalar);
+  EXPECT_EQ(other.tail_count, b.tail_count);
+  int differing = 0;
+  for (size_t i = 0; i < b.front.data.size(); ++i)
+    differing += std::memcmp(&b.front.data[i], &other.front.data[i], sizeof(float)) != 0 ||
+                 std::memcmp(&b.back.data[i], &other.back.data[i], sizeof(float)) != 0;
+  EXPECT_EQ(differing, 0) << "pixels where the SIMD and scalar tile loops differ";
 }
 
 TEST(ShadowVolumeBuffers, SphereOverGroundMatchesRayCasting) {

@@ -130,15 +130,23 @@ const RealtimeFrame& RealtimePipeline::render(float time, uint32_t frame_index) 
   acc.frame_seed = frame_index;
   acc.simd = settings_.simd;
   times.per_light.assign(lights.size(), 0.0);
-  const auto rays_start = Clock::now();
-  accumulation_rays_.build(volumes, next.low_view, next.low_depth, acc);
-  times.rays = micros_since(rays_start);
+  // The camera side of the march is built on the first light that marches: when a scatterer
+  // takes every light, no frame pays for it.
+  bool rays_built = false;
   for (size_t i = 0; i < lights.size(); ++i) {
     if (!lights[i].options.volumetric) continue;
     const auto light_start = Clock::now();
-    if (!scatterer_ || !scatterer_->scatter(i, lights[i], volumes, next.low_view, next.low_depth, accum))
+    const double rays_before = times.rays;
+    if (!scatterer_ || !scatterer_->scatter(i, lights[i], volumes, next.low_view, next.low_depth, accum)) {
+      if (!rays_built) {
+        const auto rays_start = Clock::now();
+        accumulation_rays_.build(volumes, next.low_view, next.low_depth, acc);
+        times.rays = micros_since(rays_start);
+        rays_built = true;
+      }
       accumulate_light(lights[i], volumes, accumulation_rays_, acc, accum);
-    times.per_light[i] = micros_since(light_start);
+    }
+    times.per_light[i] = micros_since(light_start) - (times.rays - rays_before);  // rays reported apart
   }
   times.accumulation = micros_since(t);
 

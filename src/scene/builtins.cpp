@@ -184,14 +184,15 @@ constexpr const char* kMeshVolume = R"json({
              {"type": "environment", "radiance": 0.1}]
 })json";
 
-// The Wyman & Ramsey (2008) test scenes: a point light in homogeneous fog over a ground
-// plane, above a closed occluder of a chosen size whose shadow volume cuts dark shafts into
-// the airlight. Single scattering and direct light (the real-time methods' reference). The
-// ground is a thin closed box rather than a rectangle so that it, too, can bound a shadow
-// volume (the hybrid wants every occluder closed: hybrid/hybrid_pipeline.h). Sizes: Debian's
+// The Wyman & Ramsey (2008) test scenes: one light in homogeneous fog over a ground plane,
+// above a closed occluder of a chosen size whose shadow volume cuts dark shafts into the
+// airlight. Single scattering and direct light (the real-time methods' reference). The ground
+// is a thin closed box rather than a rectangle so that it, too, can bound a shadow volume (the
+// hybrid wants every occluder closed: hybrid/hybrid_pipeline.h). Sizes: Debian's
 // assimp-testmodels has no closed mesh of 20k-750k triangles (its largest, the 110k-triangle
-// 2CylinderEngine glTF, is open), so the occluders are generated.
-std::string wyman_scene(const char* kind, int triangles, const char* transform) {
+// 2CylinderEngine glTF, is open), so the occluders are generated. `light` is the one light's
+// JSON: a point light (kWymanPoint) or the paper's textured spotlight (kWymanSpot).
+std::string wyman_scene(const char* kind, int triangles, const char* transform, const char* light) {
   return std::string(R"json({
   "camera": {"position": [0, 2.2, 7.5], "look_at": [0, 1.1, 0], "fov": 45, "resolution": [512, 512]},
   "render": {"spp": 64, "max_depth": 1, "max_volume_bounces": 1},
@@ -204,12 +205,23 @@ std::string wyman_scene(const char* kind, int triangles, const char* transform) 
          R"json(}, "material": "occluder", "transform": )json" + transform + R"json(}
   ],
   "volumes": [{"type": "box", "min": [-8, 0, -8], "max": [8, 6, 8], "medium": "fog"}],
-  "lights": [{"type": "point", "position": [0.6, 4.2, -0.4], "color": [1, 0.92, 0.8], "intensity": 60}]
+  "lights": [)json" + light + R"json(]
 })json";
 }
 
 const char* const kWymanSphere = R"([{"scale": 0.8}, {"translate": [0, 1.6, 0]}])";
 const char* const kWymanKnot = R"([{"scale": 0.9}, {"translate": [0, 1.6, 0]}])";
+
+const char* const kWymanPoint =
+    R"({"type": "point", "position": [0.6, 4.2, -0.4], "color": [1, 0.92, 0.8], "intensity": 60})";
+// The same position, aimed at the occluder's centre through a generated stained-glass gobo.
+// Its intensity is the point light's 60 W/sr over the gobo's mean luminance (0.20: the panes
+// are 0.3, the leading and the corners outside the window ~0), so the fog the cone lights is
+// about as bright as under the point light (the panes a little brighter, the leading dark).
+// Shadow map: the point light's default size.
+const char* const kWymanSpot = R"({"type": "spot", "position": [0.6, 4.2, -0.4], "look_at": [0, 1.6, 0],
+     "inner_angle": 26, "outer_angle": 32, "color": [1, 1, 1], "intensity": 300, "shadow_map_size": 1024,
+     "gobo": {"generate": {"kind": "stained_glass", "resolution": 256, "seed": 1}}})";
 
 const std::vector<BuiltinScene>& all_builtins() {
   static const std::vector<BuiltinScene> scenes = {
@@ -238,13 +250,28 @@ const std::vector<BuiltinScene>& all_builtins() {
       {"mesh-volume", "the COLLADA duck from assimp-testmodels filled with smoke (a closed-mesh volume, even/odd counting)",
        kMeshVolume},
       {"wyman-20k", "Wyman & Ramsey: a point light in fog over a ground plane, a 20,480-triangle sphere occluder",
-       wyman_scene("sphere", 20000, kWymanSphere)},
+       wyman_scene("sphere", 20000, kWymanSphere, kWymanPoint)},
       {"wyman-70k", "Wyman & Ramsey: a point light in fog, a 70,688-triangle torus-knot occluder",
-       wyman_scene("torus_knot", 70000, kWymanKnot)},
+       wyman_scene("torus_knot", 70000, kWymanKnot, kWymanPoint)},
       {"wyman-330k", "Wyman & Ramsey: a point light in fog, a 327,680-triangle sphere occluder",
-       wyman_scene("sphere", 300000, kWymanSphere)},
+       wyman_scene("sphere", 300000, kWymanSphere, kWymanPoint)},
       {"wyman-750k", "Wyman & Ramsey: a point light in fog, a 758,912-triangle torus-knot occluder",
-       wyman_scene("torus_knot", 750000, kWymanKnot)},
+       wyman_scene("torus_knot", 750000, kWymanKnot, kWymanPoint)},
+      {"wyman-20k-spot",
+       "Wyman & Ramsey: a textured spotlight (generated stained-glass gobo) in fog over a ground plane, a "
+       "20,480-triangle sphere occluder",
+       wyman_scene("sphere", 20000, kWymanSphere, kWymanSpot)},
+      {"wyman-70k-spot",
+       "Wyman & Ramsey: a textured spotlight (stained-glass gobo) in fog, a 70,688-triangle torus-knot "
+       "occluder",
+       wyman_scene("torus_knot", 70000, kWymanKnot, kWymanSpot)},
+      {"wyman-330k-spot",
+       "Wyman & Ramsey: a textured spotlight (stained-glass gobo) in fog, a 327,680-triangle sphere occluder",
+       wyman_scene("sphere", 300000, kWymanSphere, kWymanSpot)},
+      {"wyman-750k-spot",
+       "Wyman & Ramsey: a textured spotlight (stained-glass gobo) in fog, a 758,912-triangle torus-knot "
+       "occluder",
+       wyman_scene("torus_knot", 750000, kWymanKnot, kWymanSpot)},
   };
   return scenes;
 }

@@ -4,6 +4,8 @@
 
 #include <set>
 
+#include "lights/gobo.h"
+
 namespace caligo {
 namespace {
 
@@ -121,7 +123,8 @@ namespace caligo {
 namespace {
 
 // The Wyman & Ramsey family: one point light, homogeneous fog, a ground and a generated
-// closed occluder of the size in the name.
+// closed occluder of the size in the name; each "-spot" variant is the same scene lit by a
+// textured spotlight at the point light's position, aimed at the occluder.
 TEST(Builtins, WymanScenesHaveAPointLightFogAndASizedOccluder) {
   for (const auto& [name, triangles] : {std::pair{"wyman-20k", 20000u}, std::pair{"wyman-70k", 70000u},
                                         std::pair{"wyman-330k", 300000u}, std::pair{"wyman-750k", 750000u}}) {
@@ -133,6 +136,30 @@ TEST(Builtins, WymanScenesHaveAPointLightFogAndASizedOccluder) {
     EXPECT_TRUE(is_homogeneous(scene.volumes[0].shader));
     ASSERT_EQ(scene.shapes.size(), 2u);
     EXPECT_EQ(std::get<GeneratedMeshShape>(scene.shapes[1].geometry).triangles, triangles);
+
+    const std::string spot_name = std::string(name) + "-spot";
+    SCOPED_TRACE(spot_name);
+    const BuiltinScene* spot_builtin = find_builtin(spot_name);
+    ASSERT_NE(spot_builtin, nullptr);
+    EXPECT_NE(spot_builtin->description.find("textured spotlight"), std::string::npos);
+    const SceneDesc spot_scene = parse_builtin(*spot_builtin);
+    ASSERT_EQ(spot_scene.lights.size(), 1u);
+    const auto* spot = std::get_if<SpotLight>(&spot_scene.lights[0]);
+    ASSERT_NE(spot, nullptr);
+    ASSERT_TRUE(spot->gobo.image);
+    EXPECT_EQ(spot->gobo.image->width(), 256);
+    EXPECT_EQ(spot->position, std::get<PointLight>(scene.lights[0]).position);
+    const Vec3 to_occluder = normalize(Vec3(0, 1.6f, 0) - spot->position);
+    EXPECT_NEAR(dot(spot->direction, to_occluder), 1.0f, 1e-6f);
+    EXPECT_EQ(spot_scene.options(0).shadow_map_size, scene.options(0).shadow_map_size);
+    // Everything but the light is the point-light scene's.
+    ASSERT_EQ(spot_scene.volumes.size(), 1u);
+    EXPECT_TRUE(is_homogeneous(spot_scene.volumes[0].shader));
+    ASSERT_EQ(spot_scene.shapes.size(), 2u);
+    const auto& occluder = std::get<GeneratedMeshShape>(spot_scene.shapes[1].geometry);
+    EXPECT_EQ(occluder.triangles, triangles);
+    EXPECT_EQ(occluder.kind, std::get<GeneratedMeshShape>(scene.shapes[1].geometry).kind);
+    EXPECT_EQ(spot_scene.camera.position, scene.camera.position);
   }
 }
 

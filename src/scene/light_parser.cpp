@@ -1,6 +1,7 @@
 #include "scene/light_parser.h"
 
 #include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -8,6 +9,7 @@
 #include "core/math.h"
 #include "image/image_read.h"
 #include "lights/gobo.h"
+#include "lights/gobo_generate.h"
 #include "lights/ies.h"
 #include "lights/light_profile.h"
 #include "scene/shared_readers.h"
@@ -79,11 +81,23 @@ std::shared_ptr<const IesProfile> load_profile(const JsonCursor& c, LightFileCac
   }
 }
 
+// "generate": {"kind", "resolution", "seed"}: a procedural image (lights/gobo_generate.h).
+std::shared_ptr<const GoboImage> generate_gobo_image(const JsonCursor& c) {
+  ObjectReader r(c, "a generated gobo");
+  r.allow({"kind", "resolution", "seed"});
+  const std::string kind = r.choice("kind", {"stained_glass", "bars", "checker"});
+  const int res = int(r.integer_or("resolution", 256, Range::closed(kMinGoboResolution, kMaxGoboResolution)));
+  const auto seed = uint32_t(r.integer_or("seed", 1, Range::closed(0, UINT32_MAX)));
+  r.finish();
+  return std::make_shared<const GoboImage>(generate_gobo(*parse_gobo_pattern(kind), res, seed));
+}
+
 Gobo read_gobo(const JsonCursor& c, LightFileCache& files) {
   ObjectReader r(c, "a gobo");
-  r.allow({"file", "offset", "rotation", "scroll", "spin"});
+  r.allow({"file", "generate", "offset", "rotation", "scroll", "spin"});
   Gobo gobo;
-  gobo.image = load_gobo_image(r.required("file"), files);
+  const auto [which, image] = r.exactly_one("file", "generate");
+  gobo.image = which == 0 ? load_gobo_image(image, files) : generate_gobo_image(image);
   if (auto o = r.optional("offset")) gobo.offset = read_vec2(*o);
   gobo.rotation = radians(r.number_or("rotation", 0.0f));
   if (auto s = r.optional("scroll")) gobo.scroll = read_vec2(*s);

@@ -13,6 +13,7 @@
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "lights/gobo.h"
+#include "lights/gobo_generate.h"
 #include "lights/ies.h"
 #include "lights/light_profile.h"
 #include "scene/scene_parser.h"
@@ -166,6 +167,29 @@ float integrate_intensity(const Light& light, Vec3 position) {
   return float(sum * 4.0 * kPi / (double(kCos) * kPhi));
 }
 
+// "generate" instead of "file": the image is the generator's, with the defaults filled in,
+// and the placement keys still apply.
+TEST_F(LightFiles, SpotWithAGeneratedGobo) {
+  OJson spot = kSpot;
+  spot["gobo"] =
+      OJson::parse(R"({"generate": {"kind": "stained_glass", "resolution": 64, "seed": 9}, "rotation": 90})");
+  OJson box = kBox;
+  box["gobo"] = OJson::parse(R"({"generate": {"kind": "checker"}})");
+  const SceneDesc scene = parse(with_lights({spot, box}));
+  const Gobo& gobo = std::get<SpotLight>(scene.lights[0]).gobo;
+  ASSERT_TRUE(gobo.image);
+  const GoboImage expected = generate_gobo(GoboPattern::kStainedGlass, 64, 9);
+  ASSERT_EQ(gobo.image->width(), 64);
+  ASSERT_EQ(gobo.image->height(), 64);
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) ASSERT_EQ(gobo.image->pixel(x, y), expected.pixel(x, y));
+  EXPECT_FLOAT_EQ(gobo.rotation, kPi / 2);
+  const Gobo& checker = std::get<BoxLight>(scene.lights[1]).gobo;
+  ASSERT_TRUE(checker.image);
+  EXPECT_EQ(checker.image->width(), 256);  // the default resolution
+  EXPECT_EQ(checker.image->pixel(0, 0), RGB(1.0f));
+}
+
 TEST_F(LightFiles, PowerWithAnIesProfileIsTheEmittedPower) {
   const SceneDesc scene = parse(with_lights(OJson::parse(R"([
     {"type": "point", "position": [0, 0, 0], "power": 100, "ies": {"file": "lamp.ies", "axis": [1, 0, 0]}},
@@ -267,6 +291,24 @@ TEST_F(LightFiles, BadValuesAreLocated) {
       {spot_with(R"("gobo": {"file": "lamp.ies"})"), "/lights/0/gobo/file", "cannot use the gobo image"},
       {spot_with(R"("gobo": {"file": "tex/bars.ppm", "offset": [1]})"), "/lights/0/gobo/offset",
        "array of 2 numbers"},
+      {spot_with(R"("gobo": {"file": "tex/bars.ppm", "generate": {"kind": "bars"}})"), "/lights/0/gobo",
+       "got both"},
+      {spot_with(R"("gobo": {"rotation": 10})"), "/lights/0/gobo", "got neither"},
+      {spot_with(R"("gobo": {"generate": {"kind": "stripes"}})"), "/lights/0/gobo/generate/kind",
+       "unknown kind \"stripes\""},
+      {spot_with(R"("gobo": {"generate": {"resolution": 64}})"), "/lights/0/gobo/generate", "\"kind\""},
+      {spot_with(R"("gobo": {"generate": {"kind": "bars", "resolution": 3}})"),
+       "/lights/0/gobo/generate/resolution", "in [8, 4096]"},
+      {spot_with(R"("gobo": {"generate": {"kind": "bars", "resolution": 1e9}})"),
+       "/lights/0/gobo/generate/resolution", "in [8, 4096]"},
+      {spot_with(R"("gobo": {"generate": {"kind": "bars", "resolution": 64.5}})"),
+       "/lights/0/gobo/generate/resolution", "integer"},
+      {spot_with(R"("gobo": {"generate": {"kind": "bars", "seed": -1}})"), "/lights/0/gobo/generate/seed",
+       "integer"},
+      {spot_with(R"("gobo": {"generate": {"kind": "bars", "size": 64}})"), "/lights/0/gobo/generate/size",
+       "unknown key"},
+      {box_with(R"("irradiance": 1, "gobo": {"generate": {"kind": "checker", "resolution": 5000}})"),
+       "/lights/0/gobo/generate/resolution", "in [8, 4096]"},
       {spot_with(R"("ies": {"file": "broken.ies"})"), "/lights/0/ies/file", "truncated"},
       {spot_with(R"("ies": {"file": "lamp.ies", "axis": [0, 1, 0]})"), "/lights/0/ies/axis", "unknown key"},
       {spot_with(R"("animation": {"keys": []})"), "/lights/0/animation/keys", "at least one key"},
