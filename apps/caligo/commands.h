@@ -46,6 +46,7 @@ struct RealtimeOptions {
   std::optional<int> samples;
   std::optional<int> tile_size;
   std::optional<int> gather_radius;
+  std::optional<int> scatter_gather_radius;
   std::optional<float> ms_floor;
   std::optional<std::string> steps;  // uniform or equiangular
   std::optional<bool> temporal;

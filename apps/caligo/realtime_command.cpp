@@ -44,7 +44,9 @@ void add_realtime_command(CLI::App& app, RealtimeOptions& o) {
   cmd->add_option("--scene-buffers", o.scene_buffers, "Depth/normal buffers by: raster (default) or embree");
   cmd->add_option("--samples", o.samples, "March steps per pixel per light");
   cmd->add_option("--tile", o.tile_size, "Interleaved-sampling tile side (1: no interleaving)");
-  cmd->add_option("--gather-radius", o.gather_radius, "Bilateral gather taps each side (0: no gather)");
+  cmd->add_option("--gather-radius", o.gather_radius, "Bilateral gather taps each side for marched lights (0: no gather)");
+  cmd->add_option("--scatter-gather-radius", o.scatter_gather_radius,
+                  "Bilateral gather taps each side for lights of --method none|brute|hybrid|textured (default 1: 3x3)");
   cmd->add_option("--steps", o.steps, "March steps of point and spot lights: uniform (the seed) or equiangular");
   cmd->add_option("--ms-floor", o.ms_floor, "Faked multiple scattering: minimum shadow term in [0, 1]");
   cmd->add_option("--temporal", o.temporal, "Temporal reprojection on or off (true/false)");
@@ -93,6 +95,8 @@ RealtimeSettings settings_from(const RealtimeOptions& o, const SceneDesc& desc) 
   s.accumulation.samples = check_int(o.samples, 1, 1024, "--samples", s.accumulation.samples);
   s.accumulation.tile_size = check_int(o.tile_size, 1, 32, "--tile", s.accumulation.tile_size);
   s.gather_radius = check_int(o.gather_radius, 0, 16, "--gather-radius", s.gather_radius);
+  s.scatter_gather_radius =
+      check_int(o.scatter_gather_radius, 0, 16, "--scatter-gather-radius", s.scatter_gather_radius);
   if (o.ms_floor) {
     if (!(*o.ms_floor >= 0.0f && *o.ms_floor <= 1.0f))
       throw InputError(kCommandLine, "--ms-floor: expected a number in [0, 1]");

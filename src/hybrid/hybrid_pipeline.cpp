@@ -181,6 +181,32 @@ void HybridScatterer::note(size_t index, const std::string& why) {
                volumetric_method_name(method_), why.c_str());
 }
 
+ShadowVolumeBuffers HybridScatterer::shadow_volume_buffers(size_t index, Vec3 light, float light_reach,
+                                                           const View& low_view, const Plane& depth) {
+  CachedVolumes& cache = cache_[index];
+  // Extrusion: every visible point and the eye lie within light_reach of the light, and so does
+  // every view ray's stretch up to its surface (a ball is convex). Extruded past that reach,
+  // the volumes hold every shadowed visible point and their far caps lie outside the ball, where
+  // no ray counts them: they are left out, which is exact. Shorter volumes also make shorter
+  // slivers on screen than extruding past the whole scene. Rebuilt when the light moves or the
+  // reach outgrows the cached length (or shrinks to under half of it).
+  const float needed = std::isfinite(light_reach) ? 1.02f * light_reach + 0.05f
+                                                          : extrusion_for(scene_bounds_, light);
+  if (!cache.valid || !(cache.light == light) || cache.extrusion < needed ||
+      cache.extrusion > 2.0f * needed) {
+    cache.volumes.clear();
+    for (const MeshEdges& o : occluders_) cache.volumes.push_back(build_shadow_volume(o, light, needed));
+    cache.light = light;
+    cache.extrusion = needed;
+    cache.valid = true;
+  }
+  ShadowVolumeOptions options;
+  options.far_caps = std::any_of(cache.volumes.begin(), cache.volumes.end(), [&](const ShadowVolume& v) {
+    return !(light_reach < 0.999f * v.min_far_distance);
+  });
+  return rasterize_shadow_volumes(cache.volumes, low_view, depth, options);
+}
+
 bool HybridScatterer::scatter(size_t index, const FrameLight& frame_light, const VolumeScene& volumes,
                               const View& low_view, const Plane& low_depth, ColorPlanes& accum) {
   if (used_.size() <= index) {
@@ -214,28 +240,7 @@ bool HybridScatterer::scatter(size_t index, const FrameLight& frame_light, const
   const ShadowVolumeBuffers* buffers = nullptr;
   ShadowVolumeBuffers sv;
   if (method == VolumetricMethod::kHybrid) {
-    CachedVolumes& cache = cache_[index];
-    // Extrusion: every visible point and the eye lie within light_reach of the light, and so does
-    // every view ray's stretch up to its surface (a ball is convex). Extruded past that reach,
-    // the volumes hold every shadowed visible point and their far caps lie outside the ball, where
-    // no ray counts them: they are left out, which is exact. Shorter volumes also make shorter
-    // slivers on screen than extruding past the whole scene. Rebuilt when the light moves or the
-    // reach outgrows the cached length (or shrinks to under half of it).
-    const float needed = std::isfinite(clipped.light_reach) ? 1.02f * clipped.light_reach + 0.05f
-                                                            : extrusion_for(scene_bounds_, point->position);
-    if (!cache.valid || !(cache.light == point->position) || cache.extrusion < needed ||
-        cache.extrusion > 2.0f * needed) {
-      cache.volumes.clear();
-      for (const MeshEdges& o : occluders_) cache.volumes.push_back(build_shadow_volume(o, point->position, needed));
-      cache.light = point->position;
-      cache.extrusion = needed;
-      cache.valid = true;
-    }
-    ShadowVolumeOptions options;
-    options.far_caps = std::any_of(cache.volumes.begin(), cache.volumes.end(), [&](const ShadowVolume& v) {
-      return !(clipped.light_reach < 0.999f * v.min_far_distance);
-    });
-    sv = rasterize_shadow_volumes(cache.volumes, low_view, depth, options);
+    sv = shadow_volume_buffers(index, point->position, clipped.light_reach, low_view, depth);
     buffers = &sv;
   }
 
@@ -280,16 +285,25 @@ bool HybridScatterer::scatter_spot(size_t index, const SpotLight& spot, const Fr
   const float density = medium.shader.density;
   const RGB sigma_s = medium.shader.sigma_s * density,
             sigma_t = (medium.shader.sigma_a + medium.shader.sigma_s) * density;
-  const Plane depth = clip_to_medium(low_depth, low_view, medium.shape, spot.position).depth;
+  const ClippedDepth clipped = clip_to_medium(low_depth, low_view, medium.shape, spot.position);
   const AirlightTable& table = AirlightTable::shared();
+  // The spot's shadow volumes cut each frustum stretch into segments sampled at their own
+  // rates; with an open occluder, every step reads the shadow map.
+  const ShadowVolumeBuffers* buffers = nullptr;
+  ShadowVolumeBuffers sv;
+  if (frame_light.shadow && open_occluder_.empty()) {
+    sv = shadow_volume_buffers(index, spot.position, clipped.light_reach, low_view, clipped.depth);
+    buffers = &sv;
+  }
   // The pass already carries the spot's colour (intensity, cone, gobo); a coloured medium takes
   // one pass per channel, each keeping its own channel.
   const bool grey =
       sigma_s.r == sigma_s.g && sigma_s.g == sigma_s.b && sigma_t.r == sigma_t.g && sigma_t.g == sigma_t.b;
   const float gain = frame_light.options.volumetric_intensity;
   for (int c = 0; c < (grey ? 1 : 3); ++c) {
-    const ScatterResult r = scatter_textured_spot(low_view, depth, frame_light.shadow, table,
-                                                  AirlightMedium{sigma_s[c], sigma_t[c]}, spot, spot_settings_);
+    const ScatterResult r = scatter_textured_spot(low_view, clipped.depth, frame_light.shadow, table,
+                                                  AirlightMedium{sigma_s[c], sigma_t[c]}, spot, spot_settings_,
+                                                  buffers);
     const RGB w = grey ? RGB(gain) : RGB(c == 0 ? gain : 0.0f, c == 1 ? gain : 0.0f, c == 2 ? gain : 0.0f);
     add_scaled(accum, r.radiance, w);
   }

@@ -14,7 +14,9 @@
 //     HG lobe of g = 0.3 already changes forward in-scattering by ~2x.
 // kTextured is the paper's textured-spotlight method (hybrid/textured_spot.h) for SPOT lights
 // (gobo, IES and range included: they go through the path tracer's light profile), in the same
-// one-medium setting; point lights under kTextured take the hybrid.
+// one-medium setting, with the spot's own shadow volumes cutting each frustum stretch into
+// segments sampled at their own rates (every step reads the shadow map when an occluder is
+// open); point lights under kTextured take the hybrid.
 // Other lights (box and directional lights, spots outside kTextured, other media) keep the
 // march, with one note on stderr per light. The medium's bounds cut each ray at its exit (the depth handed to the
 // scatter passes is min(opaque depth, exit)): the airlight of a bounded convex medium seen
@@ -75,6 +77,10 @@ class HybridScatterer : public LightScatterer {
  private:
   struct CachedVolumes;
   void note(size_t index, const std::string& why);
+  // Light `index`'s shadow volumes for a light at `light` (cached while it stands still),
+  // rasterised from low_view against `depth`; every visible point lies within light_reach of it.
+  ShadowVolumeBuffers shadow_volume_buffers(size_t index, Vec3 light, float light_reach, const View& low_view,
+                                            const Plane& depth);
   // kTextured for a spot light: the textured-spotlight pass (hybrid/textured_spot.h).
   bool scatter_spot(size_t index, const SpotLight& spot, const FrameLight& frame_light, const VolumeScene& volumes,
                     const View& low_view, const Plane& low_depth, ColorPlanes& accum);

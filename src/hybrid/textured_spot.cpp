@@ -69,11 +69,16 @@ int textured_spot_steps(float abs_cos_axis, const TexturedSpotSettings& settings
 
 ScatterResult scatter_textured_spot(const View& view, const Plane& opaque_depth, const ShadowMap* shadow,
                                     const AirlightTable& table, const AirlightMedium& medium,
-                                    const SpotLight& light, const TexturedSpotSettings& settings) {
+                                    const SpotLight& light, const TexturedSpotSettings& settings,
+                                    const ShadowVolumeBuffers* volumes) {
   if (opaque_depth.width != view.resolution.x || opaque_depth.height != view.resolution.y)
     throw std::invalid_argument("textured spot: opaque depth is " + std::to_string(opaque_depth.width) + "x" +
                                 std::to_string(opaque_depth.height) + ", the view " +
                                 std::to_string(view.resolution.x) + "x" + std::to_string(view.resolution.y));
+  if (volumes && (volumes->front.width != opaque_depth.width || volumes->front.height != opaque_depth.height ||
+                  volumes->tail_count.size() != opaque_depth.data.size()))
+    throw std::invalid_argument("textured spot: shadow-volume buffers do not match the view");
+  if (!shadow) volumes = nullptr;  // nothing casts a shadow: every step is lit
   Emitter emitter{light, light.gobo};
   std::vector<GoboImage> chain;
   if (light.gobo.image && settings.blur_level > 0) {
@@ -83,6 +88,8 @@ ScatterResult scatter_textured_spot(const View& view, const Plane& opaque_depth,
   const Light as_light{light};
   const float max_distance = std::max(settings.max_distance, 0.0f);
   const float jitter = std::clamp(settings.jitter, 0.0f, 1.0f);
+  const float lit_rate = std::clamp(settings.lit_rate, 0.0f, 1.0f);
+  const bool eye_lit = !volumes || volumes->eye_count == 0;
 
   return scatter_pixels::for_each_pixel(view, [&](int x, int y, int32_t& lookups) {
     const Ray ray = view.ray({float(x) + 0.5f, float(y) + 0.5f});
@@ -93,21 +100,46 @@ ScatterResult scatter_textured_spot(const View& view, const Plane& opaque_depth,
     const float t_end = std::min(t_opaque, max_distance);
     const auto span = light_volume_interval(as_light, o, dir, 0.0f, t_end);
     if (!span || !(span->t1 > span->t0)) return RGB(0.0f);
+    const float s0 = span->t0, s1 = span->t1;
     const int n = textured_spot_steps(dot(dir, light.direction), settings);
     const AirlightRay air = make_airlight_ray(table, medium, 1.0f, light.position, o, dir);
     const float offset = 0.5f + jitter * (pixel_noise(x, y) - 0.5f);
-    const float step = (span->t1 - span->t0) / float(n);
+
+    // [a, b] in `k` equal steps, E held per step, V read per step when `shadowed` (else 1).
     RGB sum(0.0f);
-    float tail0 = airlight_tail(table, air, span->t0);
-    for (int i = 0; i < n; ++i) {
-      const float t1 = i + 1 == n ? span->t1 : span->t0 + step * float(i + 1);
-      const float tail1 = airlight_tail(table, air, t1);
-      const Vec3 p = o + dir * (span->t0 + step * (float(i) + offset));
-      const float lit = shadow ? shadow->visibility(p) : 1.0f;
-      if (lit > 0.0f) sum += emitter.towards(p) * (lit * std::max(tail0 - tail1, 0.0f));
-      tail0 = tail1;
+    const auto segment = [&](float a, float b, int k, bool shadowed) {
+      if (!(b > a) || k <= 0) return;
+      const float step = (b - a) / float(k);
+      float tail0 = airlight_tail(table, air, a);
+      for (int i = 0; i < k; ++i) {
+        const float t1 = i + 1 == k ? b : a + step * float(i + 1);
+        const float tail1 = airlight_tail(table, air, t1);
+        const Vec3 p = o + dir * (a + step * (float(i) + offset));
+        const float lit = shadowed ? shadow->visibility(p) : 1.0f;
+        if (lit > 0.0f) sum += emitter.towards(p) * (lit * std::max(tail0 - tail1, 0.0f));
+        tail0 = tail1;
+      }
+      lookups += k;
+    };
+    // Steps over a part of the frustum stretch at a rate (1: the stretch's own, n per stretch).
+    const auto steps = [&](float a, float b, float rate) {
+      return b > a ? std::max(1, int(std::ceil(rate * float(n) * ((b - a) / (s1 - s0))))) : 0;
+    };
+    if (!volumes) {
+      segment(s0, s1, n, shadow != nullptr);
+      return sum;
     }
-    lookups = n;
+    if (eye_lit && !volumes->covered(x, y)) {  // no shadow on this ray: the gobo alone
+      segment(s0, s1, steps(s0, s1, lit_rate), false);
+      return sum;
+    }
+    // Before the volumes: lit (eye outside every volume). Between them: the shadow map decides.
+    // Beyond: lit when no volume holds the tail, dark otherwise.
+    const float a = eye_lit ? std::clamp(volumes->front.at(x, y), s0, s1) : s0;
+    const float b = std::clamp(volumes->back.at(x, y), a, s1);
+    segment(s0, a, steps(s0, a, lit_rate), false);
+    segment(a, b, steps(a, b, 1.0f), true);
+    if (volumes->tail(x, y) == 0) segment(b, s1, steps(b, s1, lit_rate), false);
     return sum;
   });
 }

@@ -29,6 +29,15 @@
 //     intensity at the spot's position is integrated in closed form (airlight.h; consecutive
 //     steps share their endpoint tails, n + 1 tail evaluations per pixel). The only errors are
 //     E and V varying inside a step.
+//   - with the spot's shadow volumes (shadow_volume.h, built from the spot's position), the
+//     stretch is cut at the front-most and back-most volume surfaces into before / inside /
+//     after, each sampled at its own rate: inside, n steps per stretch length with a shadow
+//     lookup each; before and after (lit: the eye outside every volume, and for "after" no
+//     volume holding the tail) lit_rate x n per stretch length with no shadow lookups, since
+//     there only the gobo varies and its blurred copy varies slowly; after the back-most
+//     surface with a volume holding the tail, nothing (in shadow up to the surface). A pixel no
+//     volume covers takes the "before" rate over its whole stretch. Each segment has at least
+//     one step; lit_rate = 1 gives the stretch's own rate everywhere.
 //
 // Blur (an approximation): the paper stands in for multiple scattering by lighting the medium
 // with a blurred copy of the texture (in-scattered light has been spread over neighbouring
@@ -48,6 +57,7 @@
 
 #include "hybrid/airlight.h"
 #include "hybrid/hybrid_scatter.h"
+#include "hybrid/shadow_volume.h"
 #include "lights/gobo.h"
 #include "lights/light.h"
 #include "realtime/plane.h"
@@ -62,6 +72,10 @@ struct TexturedSpotSettings {
   float jitter = 0.5f;  // 0 = step midpoints; 1 = anywhere in the step
   int blur_level = 2;   // mip level of the gobo for the volumetric term; 0 = exact
   float max_distance = 1000.0f;
+  // With shadow volumes: the rate of the stretches outside them (before the front-most surface
+  // and, when lit, after the back-most), relative to the stretch inside. Those stretches need
+  // no shadow lookups and only follow the (blurred) gobo; see the header comment.
+  float lit_rate = 0.5f;
 };
 
 // The box-filtered mip chain of `image`: level 0 is a copy, each next level half the size
@@ -72,11 +86,14 @@ std::vector<GoboImage> gobo_mip_chain(const GoboImage& image, int max_levels = 1
 // The steps the pass takes for a ray at |cos α| = abs_cos_axis (the rule above).
 int textured_spot_steps(float abs_cos_axis, const TexturedSpotSettings& settings);
 
-// `opaque_depth` must have view.resolution (std::invalid_argument otherwise). `shadow` may be
-// null (no occlusion). ScatterResult::lookups counts steps: each reads the gobo once and the
-// shadow map once when one is given.
+// `opaque_depth` must have view.resolution, and `volumes`, when given, too (std::invalid_argument
+// otherwise). `shadow` may be null (no occlusion; `volumes` is then ignored). `volumes`: the
+// spot's shadow volumes from the eye (shadow_volume.h), or null to read the shadow map at every
+// step. ScatterResult::lookups counts steps: each reads the gobo once, and the shadow map once
+// when the step lies between the volumes (every step, without volumes).
 ScatterResult scatter_textured_spot(const View& view, const Plane& opaque_depth, const ShadowMap* shadow,
                                     const AirlightTable& table, const AirlightMedium& medium,
-                                    const SpotLight& light, const TexturedSpotSettings& settings = {});
+                                    const SpotLight& light, const TexturedSpotSettings& settings = {},
+                                    const ShadowVolumeBuffers* volumes = nullptr);
 
 }  // namespace caligo

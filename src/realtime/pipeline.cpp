@@ -132,12 +132,18 @@ const RealtimeFrame& RealtimePipeline::render(float time, uint32_t frame_index) 
   times.per_light.assign(lights.size(), 0.0);
   // The camera side of the march is built on the first light that marches: when a scatterer
   // takes every light, no frame pays for it.
-  bool rays_built = false;
+  // The scatterer's lights go to their own buffer: their noise-free result wants the small gather.
+  bool rays_built = false, marched = false, scattered = false;
+  ColorPlanes scatter_accum;
   for (size_t i = 0; i < lights.size(); ++i) {
     if (!lights[i].options.volumetric) continue;
     const auto light_start = Clock::now();
     const double rays_before = times.rays;
-    if (!scatterer_ || !scatterer_->scatter(i, lights[i], volumes, next.low_view, next.low_depth, accum)) {
+    if (scatterer_ && scatter_accum.width() == 0) scatter_accum = ColorPlanes(low_res.x, low_res.y);
+    if (scatterer_ && scatterer_->scatter(i, lights[i], volumes, next.low_view, next.low_depth, scatter_accum)) {
+      scattered = true;
+    } else {
+      marched = true;
       if (!rays_built) {
         const auto rays_start = Clock::now();
         accumulation_rays_.build(volumes, next.low_view, next.low_depth, acc);
@@ -151,10 +157,19 @@ const RealtimeFrame& RealtimePipeline::render(float time, uint32_t frame_index) 
   times.accumulation = micros_since(t);
 
   t = Clock::now();
-  ColorPlanes gathered = settings_.gather_radius > 0
-                             ? bilateral_gather(accum, next.low_depth, settings_.gather_radius,
-                                                settings_.gather_depth_falloff, settings_.simd)
-                             : std::move(accum);
+  const auto gather = [&](ColorPlanes& in, int radius) {
+    return radius > 0 ? bilateral_gather(in, next.low_depth, radius, settings_.gather_depth_falloff, settings_.simd)
+                      : std::move(in);
+  };
+  ColorPlanes gathered = scattered && !marched ? gather(scatter_accum, settings_.scatter_gather_radius)
+                                               : gather(accum, settings_.gather_radius);
+  if (scattered && marched) {
+    const ColorPlanes more = gather(scatter_accum, settings_.scatter_gather_radius);
+    Plane* const out[3] = {&gathered.r, &gathered.g, &gathered.b};
+    const Plane* const in[3] = {&more.r, &more.g, &more.b};
+    for (int c = 0; c < 3; ++c)
+      for (size_t k = 0; k < out[c]->data.size(); ++k) out[c]->data[k] += in[c]->data[k];
+  }
   times.gather = micros_since(t);
 
   // Temporal reprojection at accumulation resolution: the interleaving pattern and the

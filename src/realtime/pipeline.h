@@ -48,6 +48,9 @@ struct RealtimeSettings {
   int scale = 4;  // accumulation at resolution / scale
   AccumulationSettings accumulation;
   int gather_radius = 7;
+  // The gather of the lights a LightScatterer takes: their analytic result has no sampling
+  // noise to blur, only low-resolution edges, so Wyman & Ramsey's 3x3 bilateral filter.
+  int scatter_gather_radius = 1;
   float gather_depth_falloff = 1000.0f;
   bool temporal = true;
   float temporal_blend = 0.1f;
