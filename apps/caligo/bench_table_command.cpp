@@ -1,8 +1,11 @@
 // caligo bench-table wyman [--res N] [--scales 1,4] [--frames F] [--reference-spp S] [--scenes a,b] [-o DIR]
 // Wyman & Ramsey's Table 1 (2008) on our built-in scenes: frames per second of the volumetric
-// methods (none, brute 150, hybrid 50, and the march for reference) with scattering at each
-// accumulation scale, each frame's relative RMSE against the path tracer's single-scattering
-// reference, and the hybrid's speed-up over brute force at equal error.
+// methods (none, brute 150, hybrid 50, textured spotlight up to 150, and the march for
+// reference) with scattering at each accumulation scale, each frame's relative RMSE against the
+// path tracer's single-scattering reference, and the hybrid's speed-up over brute force at
+// equal error. The textured column runs on the scene's spot-light twin (built-in NAME-spot,
+// same occluders, a spot with a stained-glass gobo at the point light's place) against that
+// scene's own reference; scenes without a twin show "–" there.
 //
 // What is measured. The scene's surfaces are made black (BlackBsdf) for the whole benchmark, so
 // that both the real-time frame and the reference hold in-scattered light only: the error is
@@ -34,6 +37,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -47,6 +51,7 @@
 #include "realtime/pipeline.h"
 #include "realtime/reference_compare.h"
 #include "render/render.h"
+#include "scene/builtins.h"
 #include "scene/scene.h"
 
 namespace caligo {
@@ -77,23 +82,43 @@ struct Variant {
   VolumetricMethod method;
   int brute_samples = 150;
   bool in_main_table = true;
-  bool converged = false;  // the step-error yardstick: one untimed frame
+  bool converged = false;  // the step-error yardstick of its scene: one untimed frame
+  bool spot = false;       // runs on the scene's textured-spotlight twin (NAME-spot)
+  int spot_steps = 0;      // textured: min = max steps (0: the pass's own 16..150 rule)
 };
+
+// The textured spotlight runs with the exact gobo (blur level 0): the path tracer computes
+// single scattering through the sharp texture, and the blur is the paper's stand-in for
+// multiple scattering, an approximation the error column would otherwise mostly measure.
+TexturedSpotSettings bench_spot_settings(const Variant& v) {
+  TexturedSpotSettings s;
+  s.blur_level = 0;
+  if (v.spot_steps > 0) {
+    s.min_steps = s.max_steps = v.spot_steps;
+    s.lit_rate = 1.0f;
+  }
+  return s;
+}
 
 std::vector<Variant> variants() {
   std::vector<Variant> v = {{"none", VolumetricMethod::kNone},
                             {"brute 150", VolumetricMethod::kBrute, 150},
                             {"hybrid 50", VolumetricMethod::kHybrid},
+                            {"textured ≤150", VolumetricMethod::kTextured, 150, true, false, true},
                             {"march", VolumetricMethod::kMarch}};
   for (int n : kBruteSweep)
     if (n != 150) v.push_back({"brute " + std::to_string(n), VolumetricMethod::kBrute, n, false});
+  v.push_back({"textured " + std::to_string(kConvergedSteps), VolumetricMethod::kTextured, 150, false, true, true,
+               kConvergedSteps});
   v.push_back(
       {"brute " + std::to_string(kConvergedSteps), VolumetricMethod::kBrute, kConvergedSteps, false, true});
   return v;
 }
 
 struct Run {
+  bool ran = false;  // false: a spot variant on a scene without a textured-spotlight twin
   double frame_us = 0, volumetric_us = 0;
+  double reference_noise = 0;  // of the reference the error is measured against
   ReferenceError error;   // against the path tracer
   double step_error = 0;  // relative RMSE against brute kConvergedSteps of the same pipeline
   std::string used;       // the method the light actually took (hybrid may fall back to brute)
@@ -202,7 +227,7 @@ Run run_variant(RealtimePipeline& pipeline, const Variant& v, int frames, const 
   } else {
     HybridSettings hs;
     hs.brute_samples = v.brute_samples;
-    auto owned = std::make_unique<HybridScatterer>(pipeline.scene(), v.method, hs);
+    auto owned = std::make_unique<HybridScatterer>(pipeline.scene(), v.method, hs, bench_spot_settings(v));
     scatterer = owned.get();
     pipeline.set_scatterer(std::move(owned));
   }
@@ -216,6 +241,7 @@ Run run_variant(RealtimePipeline& pipeline, const Variant& v, int frames, const 
     }
   }
   Run run;
+  run.ran = true;
   run.frame_us = median(total);
   run.volumetric_us = median(volumetric);
   run.image = to_image(frame->color);
@@ -309,7 +335,8 @@ std::string markdown(const BenchTableOptions& o, const std::vector<int>& scales,
     std::string row = "|" + cell(r.name) + cell(r.triangles ? with_commas(r.triangles) : "?");
     for (size_t si = 0; si < scales.size(); ++si)
       for (size_t vi = 0; vi < vs.size(); ++vi)
-        if (vs[vi].in_main_table) row += cell(fmt("%.1f", 1e6 / r.runs[si][vi].frame_us));
+        if (vs[vi].in_main_table)
+          row += cell(r.runs[si][vi].ran ? fmt("%.1f", 1e6 / r.runs[si][vi].frame_us) : "–");
     line(row);
   }
   // corrected: also the error with the reference's noise taken out in quadrature, in parentheses.
@@ -329,12 +356,18 @@ std::string markdown(const BenchTableOptions& o, const std::vector<int>& scales,
       for (size_t si = 0; si < scales.size(); ++si) {
         std::string row = "|" + cell(r.name) + cell(low(scales[si]));
         if (corrected) row += cell(percent(r.reference_noise));
-        const double noise = r.reference_noise;
         for (size_t vi = 0; vi < vs.size(); ++vi) {
           const Run& run = r.runs[si][vi];
+          if (!run.ran) {
+            row += cell("–");
+            continue;
+          }
+          const double noise = run.reference_noise;
           std::string c = format(get(run));
-          if (corrected)
+          if (corrected) {
             c += " (" + format(std::sqrt(std::max(0.0, get(run) * get(run) - noise * noise))) + ")";
+            if (vs[vi].spot) c += " [spot ref. noise " + percent(noise) + "]";
+          }
           // A hybrid that fell back to brute (open occluder) must not pass for the hybrid.
           if (run.used != volumetric_method_name(vs[vi].method)) c += " (ran " + run.used + ")";
           row += cell(c);
@@ -350,8 +383,10 @@ std::string markdown(const BenchTableOptions& o, const std::vector<int>& scales,
           "removed in quadrature, sqrt(e² - noise²)):",
       [](const Run& r) { return r.error.relative_rmse; }, percent, true);
   error_table(
-      "Step error: relative RMSE against brute force with " + std::to_string(kConvergedSteps) +
-          " steps in the same pipeline (same shadow map, gather and upsampling; no reference noise):",
+      "Step error: relative RMSE against the same pipeline (same shadow map, gather and upsampling; no "
+      "reference noise) with " +
+          std::to_string(kConvergedSteps) +
+          " steps: brute force for the point-light columns, the textured pass for the spot:",
       [](const Run& r) { return r.step_error; }, percent3, false);
   line("");
   std::string sweep;
@@ -428,21 +463,44 @@ int run_bench_table(const BenchTableOptions& o) {
     const Reference reference = render_reference(desc.at_time(0.0f), o.resolution, o.reference_spp);
     r.reference_noise = reference.noise;
     r.reference_spp = reference.spp;
+    // The textured column runs on the scene's spot-light twin, with its own reference.
+    std::optional<SceneDesc> spot_desc;
+    Reference spot_reference;
+    if (find_builtin(names[i] + "-spot")) {
+      spot_desc = black_surfaces(load_scene(names[i] + "-spot"));
+      std::fprintf(stderr, "bench-table: %s-spot: reference...\n", names[i].c_str());
+      spot_reference = render_reference(spot_desc->at_time(0.0f), o.resolution, o.reference_spp);
+    }
     for (int scale : scales) {
-      RealtimeSettings s = realtime_settings(desc);
-      s.resolution = {o.resolution, o.resolution};
-      s.scale = scale;
-      s.temporal = false;
-      RealtimePipeline pipeline(desc, s);
+      const auto make_pipeline = [&](const SceneDesc& d) {
+        RealtimeSettings s = realtime_settings(d);
+        s.resolution = {o.resolution, o.resolution};
+        s.scale = scale;
+        s.temporal = false;
+        return std::make_unique<RealtimePipeline>(d, s);
+      };
+      const auto pipeline = make_pipeline(desc);
+      const auto spot_pipeline = spot_desc ? make_pipeline(*spot_desc) : nullptr;
       std::vector<Run> runs;
       for (const Variant& v : vs) {
-        runs.push_back(run_variant(pipeline, v, o.frames, reference.image));
-        std::fprintf(stderr, "bench-table: %s scale %d %-9s %8.2f ms, rRMSE %.2f %%\n", names[i].c_str(),
+        if (v.spot && !spot_pipeline) {
+          runs.emplace_back();
+          continue;
+        }
+        const Reference& ref = v.spot ? spot_reference : reference;
+        runs.push_back(run_variant(v.spot ? *spot_pipeline : *pipeline, v, o.frames, ref.image));
+        runs.back().reference_noise = ref.noise;
+        std::fprintf(stderr, "bench-table: %s scale %d %-13s %8.2f ms, rRMSE %.2f %%\n", names[i].c_str(),
                      scale, v.label.c_str(), runs.back().frame_us / 1000.0,
                      runs.back().error.relative_rmse * 100.0);
       }
-      const size_t converged = vs.size() - 1;  // variants() puts it last
-      for (Run& run : runs) run.step_error = reference_error(run.image, runs[converged].image).relative_rmse;
+      // Step errors against the converged run of the same scene (point: brute, spot: textured).
+      for (size_t vi = 0; vi < vs.size(); ++vi) {
+        if (!runs[vi].ran) continue;
+        for (size_t ci = 0; ci < vs.size(); ++ci)
+          if (vs[ci].converged && vs[ci].spot == vs[vi].spot)
+            runs[vi].step_error = reference_error(runs[vi].image, runs[ci].image).relative_rmse;
+      }
       r.runs.push_back(std::move(runs));
     }
     if (!o.output.empty()) {
@@ -450,8 +508,9 @@ int run_bench_table(const BenchTableOptions& o) {
       for (const auto& runs : r.runs) {
         std::vector<const Image*> row;
         for (size_t vi = 0; vi < vs.size(); ++vi)
-          if (vs[vi].in_main_table) row.push_back(&runs[vi].image);
+          if (vs[vi].in_main_table && runs[vi].ran) row.push_back(&runs[vi].image);
         row.push_back(&reference.image);
+        if (spot_desc) row.push_back(&spot_reference.image);
         rows.push_back(row);
       }
       const std::string png =
@@ -478,7 +537,7 @@ int run_bench_table(const BenchTableOptions& o) {
     });
     std::string pngs;
     for (const std::string& n : names) pngs += " " + std::filesystem::path(n).stem().string() + ".png";
-    std::printf("-> %s, per scene (rows: scales; columns: none, brute 150, hybrid 50, march, reference):%s\n",
+    std::printf("-> %s, per scene (rows: scales; columns: none, brute 150, hybrid 50, textured, march, reference, spot reference):%s\n",
                 path.c_str(), pngs.c_str());
   }
   return 0;
