@@ -471,13 +471,15 @@ TEST_F(Cli, BenchTableWymanWritesTheTableAndAStrip) {
       run("bench-table wyman --res 64 --scenes wyman-20k --frames 1 --reference-spp 4 -o " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* want : {"| wyman-20k | 20,480 |", "none @64²", "brute 150 @64²", "hybrid 50 @16²",
-                           "march @16²", "brute 25", "brute 2000", "speed-up (frame)"})
+                           "textured ≤150 @16²", "march @16²", "brute 25", "brute 2000", "textured 2000",
+                           "spot ref. noise", "speed-up (frame)"})
     EXPECT_NE(r.out.find(want), std::string::npos) << want << "\n" << r.out;
   const std::string md = slurp(out / "table.md");
   EXPECT_NE(md.find("| wyman-20k | 20,480 |"), std::string::npos) << md;
-  // Two rows (scales 1 and 4) of five 64-pixel panels (none, brute, hybrid, march, reference), 4-pixel gaps.
+  // Two rows (scales 1 and 4) of seven 64-pixel panels (none, brute, hybrid, textured on the
+  // -spot twin, march, reference, spot reference), 4-pixel gaps.
   const auto [w, h] = png_size(out / "wyman-20k.png");
-  EXPECT_EQ(w, 5u * 64u + 4u * 4u);
+  EXPECT_EQ(w, 7u * 64u + 6u * 4u);
   EXPECT_EQ(h, 2u * 64u + 4u);
 }
 

@@ -59,6 +59,26 @@ void collect_hit(const RTCFilterFunctionNArguments* args) {
   args->valid[0] = 0;
 }
 
+// A shadow query that defers some geometries' hits to the caller: they are recorded and
+// rejected, so traversal goes on; any other hit ends it.
+struct DeferContext {
+  RTCIntersectContext context;  // must be first: Embree hands us a pointer to it
+  const std::vector<uint8_t>* deferred;
+  std::vector<SurfaceHit>* out;
+};
+
+void defer_hit(const RTCFilterFunctionNArguments* args) {
+  auto* ctx = reinterpret_cast<DeferContext*>(args->context);
+  const uint32_t geom = RTCHitN_geomID(args->hit, args->N, 0);
+  if (geom >= ctx->deferred->size() || !(*ctx->deferred)[geom]) return;  // blocks
+  SurfaceHit h;
+  h.t = RTCRayN_tfar(args->ray, args->N, 0);
+  h.geom_id = geom;
+  h.prim_id = RTCHitN_primID(args->hit, args->N, 0);
+  ctx->out->push_back(h);
+  args->valid[0] = 0;
+}
+
 // Shadow rays ignore geometry that does not cast shadows.
 void skip_for_shadows(const RTCFilterFunctionNArguments* args) { args->valid[0] = 0; }
 
@@ -272,6 +292,19 @@ bool EmbreeScene::occluded(const Ray& ray) const {
   rtcInitIntersectContext(&context);
   RTCRay r = to_embree(ray).ray;
   rtcOccluded1(impl_->scene, &context, &r);
+  return r.tfar < 0.0f;
+}
+
+bool EmbreeScene::occluded(const Ray& ray, const std::vector<uint8_t>& deferred,
+                           std::vector<SurfaceHit>& deferred_hits) const {
+  if (!valid_ray(ray)) return true;
+  DeferContext ctx;
+  rtcInitIntersectContext(&ctx.context);
+  ctx.context.filter = defer_hit;
+  ctx.deferred = &deferred;
+  ctx.out = &deferred_hits;
+  RTCRay r = to_embree(ray).ray;
+  rtcOccluded1(impl_->scene, &ctx.context, &r);
   return r.tfar < 0.0f;
 }
 

@@ -56,6 +56,7 @@ struct ConvexCheck {
   bool operator()(const SphereVolumeShape&) const { return true; }
   bool operator()(const BoxVolumeShape&) const { return true; }
   bool operator()(const MeshVolumeShape&) const { return false; }
+  bool operator()(const UnboundedVolumeShape&) const { return false; }
 };
 
 bool inside(const VolumeShape& shape, Vec3 p) {

@@ -111,17 +111,62 @@ std::optional<SurfaceHit> nearest_opaque_hit(const Scene& scene, const Ray& ray,
   return std::nullopt;
 }
 
+// Phase 1 with the medium stack: the nearest hit that is seen. Off null surfaces are crossed as
+// above; priority surfaces whose crossing the rules call false are crossed and queued in
+// scratch.pending (applied to the stack once the path is known to get past them). Returns the
+// first Off non-null surface or real priority crossing, whose crossing is NOT applied (a
+// dielectric may reflect).
+std::optional<SurfaceHit> nearest_visible_hit(const Scene& scene, const Ray& ray, const PathSettings& settings,
+                                              PathScratch& scratch, PathCounters& counters) {
+  scratch.pending.clear();
+  scratch.work.assign(scratch.stack);
+  Ray probe = ray;
+  for (int crossings = 0; crossings <= settings.max_null_crossings; ++crossings) {
+    ++counters.rays;
+    const auto hit = scene.surfaces().intersect(probe);
+    if (!hit) return std::nullopt;
+    if (const auto entry = scene.medium_entry(hit->geom_id)) {
+      if (scratch.work.peek(*entry).real) return hit;
+      scratch.work.cross(*entry);
+      scratch.pending.push_back({hit->t, *entry});
+    } else if (!std::holds_alternative<NullBsdf>(scene.material(*hit).bsdf)) {
+      return hit;
+    }
+    probe.tmin = hit->t + std::max(1e-4f, hit->t * 1e-5f);
+  }
+  return std::nullopt;
+}
+
+// The queued false crossings before t_limit join the path's stack; the queue empties.
+void apply_pending(PathScratch& scratch, float t_limit) {
+  for (const PendingCrossing& p : scratch.pending)
+    if (p.t < t_limit) scratch.stack.cross(p.entry);
+  scratch.pending.clear();
+}
+
+// n_inside / n_outside of a dielectric hit for DielectricBsdf (inside: the side ng points
+// away from). A priority surface's two sides hold the media the stack rules give before and
+// after the crossing; an Off surface's inside is its own IOR against the ray's current medium.
+float interface_eta(const MediumStack& stack, const std::optional<MediumEntry>& entry, float material_ior,
+                    bool front_face) {
+  if (!entry) return material_ior / stack.current().ior;
+  const MediumStack::Crossing c = stack.peek(*entry);
+  return front_face ? c.after.ior / c.before.ior : c.before.ior / c.after.ior;
+}
+
 enum class SegmentOutcome { kScattered, kPassed, kAbsorbed };
 
 // Phases 2 and 3 for the medium in front of the next surface (or to infinity).
+// `medium`: the scene medium the stack puts the segment in (-1: none). On kScattered,
+// *event_t is the collision's distance along the old ray.
 SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, const Sampler& sampler,
                                 const PathSettings& settings, PathState& state, PathSample& out,
-                                PathScratch& scratch, PathCounters& counters) {
+                                PathScratch& scratch, PathCounters& counters, int medium, float* event_t) {
   TransmittanceRecord& record = scratch.record;
   Ray segment = ray;
   segment.tmax = t_surface;
   march(scene.volumes(), segment, march_jitter(scene, sampler, state.depth), scratch.march_settings,
-        scratch.march, record);
+        scratch.march, record, medium);
   if (record.empty()) return SegmentOutcome::kPassed;
   if (state.depth == 0) counters.camera_march_steps += record.steps().size();
   out.radiance += state.throughput * record.emission();
@@ -156,6 +201,7 @@ SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, c
   state.throughput *= step.sigma_s * record.transmittance(collision->t) / collision->pdf;
   if (state.throughput.is_black()) return SegmentOutcome::kAbsorbed;
   const Vec3 x = ray.at(collision->t);
+  *event_t = collision->t;
   const MixedPhaseSample ps = sample_mixed_phase(
       record, step, ray.direction, sampler.get_1d(bounce(state.depth, sample_dim::kPhaseLobe)),
       sampler.get_2d(bounce(state.depth, sample_dim::kPhaseDirection)));
@@ -181,29 +227,49 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
                       PathCounters& counters, PathScratch& scratch) {
   PathSample out;
   PathState state;
-  const bool has_volumes = !scene.volumes().empty();
+  // Scenes without priority surfaces take exactly the paths they took before nested media.
+  const bool nested = scene.has_priority_objects();
+  const bool has_volumes = !scene.volumes().empty() || scene.volumes().has_media();
+  if (nested) {
+    scratch.stack.assign(scene.camera_stack());
+    scratch.pending.clear();
+  }
+  int boundary_crossings = 0;  // real crossings of priority null surfaces (medium boundaries)
   for (;;) {
     // A degenerate computation upstream (a NaN direction or weight) ends the path here
     // rather than poisoning the pixel; the film drops non-finite samples too.
     if (!is_finite(ray.direction) || !state.throughput.is_finite()) break;
-    const auto hit = nearest_opaque_hit(scene, ray, settings, counters);
+    const auto hit = nested ? nearest_visible_hit(scene, ray, settings, scratch, counters)
+                            : nearest_opaque_hit(scene, ray, settings, counters);
     if (has_volumes) {
-      const SegmentOutcome outcome = integrate_medium(scene, ray, hit ? hit->t : kInfinity, sampler, settings,
-                                                      state, out, scratch, counters);
+      float event_t = kInfinity;
+      const SegmentOutcome outcome =
+          integrate_medium(scene, ray, hit ? hit->t : kInfinity, sampler, settings, state, out, scratch, counters,
+                           nested ? scratch.stack.current().medium : -1, &event_t);
       if (state.depth == 0 && !hit) out.alpha = 1.0f - scratch.record.transmittance_end().average();
       if (outcome == SegmentOutcome::kAbsorbed) break;
       if (outcome == SegmentOutcome::kScattered) {
+        if (nested) apply_pending(scratch, event_t);
         ++state.depth;
         if (!russian_roulette(state, sampler, settings)) break;
         continue;
       }
     }
+    if (nested) apply_pending(scratch, kInfinity);
     if (!hit) {
       out.radiance += state.throughput * escaped(scene, state, ray.direction);
       break;
     }
     const SurfaceInteraction si = scene.interaction(ray, *hit);
     const Vec3 wo = -ray.direction;
+    const std::optional<MediumEntry> entry = nested ? scene.medium_entry(hit->geom_id) : std::nullopt;
+    if (entry && std::holds_alternative<NullBsdf>(si.material->bsdf)) {
+      // A medium boundary the rules make real: the ray's medium changes, nothing is seen.
+      scratch.stack.cross(*entry);
+      if (++boundary_crossings > settings.max_null_crossings) break;
+      ray = {offset_ray_origin(si.p, si.ng, ray.direction), ray.direction, 0.0f, kInfinity};
+      continue;
+    }
     if (state.depth == 0) record_first_hit(out, si, hit->t);
     out.radiance += state.throughput * emitted(scene, state, si, wo);
     if (!state.may_start_event(settings.max_depth)) break;
@@ -212,13 +278,20 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
       out.radiance +=
           state.throughput * surface_direct_light(scene, si, wo, sampler, state.depth, scratch, counters);
 
-    const auto bs =
-        bsdf_sample(si.material->bsdf, si.ns, wo, sampler.get_1d(bounce(state.depth, sample_dim::kBsdfLobe)),
-                    sampler.get_2d(bounce(state.depth, sample_dim::kBsdfDirection)));
+    // A dielectric refracts with the IORs of the media actually on either side.
+    const Bsdf* bsdf = &si.material->bsdf;
+    Bsdf interface;
+    if (const auto* d = std::get_if<DielectricBsdf>(bsdf); d && nested) {
+      interface = DielectricBsdf{interface_eta(scratch.stack, entry, d->ior, dot(si.ng, wo) > 0.0f)};
+      bsdf = &interface;
+    }
+    const auto bs = bsdf_sample(*bsdf, si.ns, wo, sampler.get_1d(bounce(state.depth, sample_dim::kBsdfLobe)),
+                                sampler.get_2d(bounce(state.depth, sample_dim::kBsdfDirection)));
     if (!bs || bs->weight.is_black()) break;
     // Reject directions the shading normal allows but the geometry does not (light leaks).
     const bool transmits = dot(si.ng, bs->wi) * dot(si.ng, wo) < 0.0f;
-    if (transmits && !std::holds_alternative<DielectricBsdf>(si.material->bsdf)) break;
+    if (transmits && !std::holds_alternative<DielectricBsdf>(*bsdf)) break;
+    if (transmits && entry) scratch.stack.cross(*entry);
     state.throughput *= bs->weight;
     state.specular_bounce = bs->specular;
     state.scatter_pdf = bs->pdf;

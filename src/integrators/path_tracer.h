@@ -1,7 +1,9 @@
 // The volumetric path tracer: the three phases of the seed (Kulla, "Volume Rendering
 // Techniques at Imageworks") for every segment of a path:
-//   1. medium tracking: the nearest opaque surface (null surfaces are crossed without
-//      restarting anything), then the volume primitives' intervals up to it;
+//   1. medium tracking: the nearest surface that is seen (null surfaces, and priority surfaces
+//      the medium stack calls false hits, are crossed without restarting anything), then the
+//      volume primitives' intervals up to it, plus the medium the stack puts the ray in
+//      (media/medium_stack.h: nested dielectrics, camera in a medium, clipping volumes);
 //   2. decoupled ray marching of those intervals into a TransmittanceRecord, gathering
 //      emission on the way;
 //   3. importance sampling: next-event estimation in the medium (equiangular and density
@@ -57,11 +59,25 @@ struct PathCounters {
   uint64_t camera_march_steps = 0;  // steps stored in camera rays' records
 };
 
+// A crossing of a priority surface that the stack rules made a false hit (nothing seen), at
+// ray parameter t of the current segment; applied to the path's stack once the path is known
+// to have got past it.
+struct PendingCrossing {
+  float t;
+  MediumEntry entry;
+};
+
 // Per-thread buffers, reused from path to path (no allocation per ray once grown).
 struct PathScratch {
   MarchSettings march_settings;
   MarchScratch march;
   TransmittanceRecord record;
+  // Nested dielectrics (scenes with priority surfaces only): the path's medium stack, the
+  // false hits of the current segment, and a working copy for probes and shadow rays.
+  MediumStack stack;
+  std::vector<PendingCrossing> pending;
+  MediumStack work;
+  std::vector<SurfaceHit> shadow_hits;
 };
 
 // The position of heterogeneous march steps for this path vertex (constant when no

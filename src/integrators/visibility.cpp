@@ -1,5 +1,6 @@
 #include "integrators/visibility.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "raymarch/march.h"
@@ -9,13 +10,57 @@ namespace caligo {
 // Shadow rays stop this fraction short of an area-light sample so they do not hit the light.
 constexpr float kShadowEpsilon = 1e-4f;
 
+namespace {
+
+RGB nested_transmittance(const Scene& scene, const Ray& shadow, bool casts_shadows, float jitter,
+                         float segment_t, PathScratch& scratch, PathCounters& counters) {
+  MediumStack& stack = scratch.work;
+  stack.assign(scratch.stack);
+  for (const PendingCrossing& p : scratch.pending)
+    if (p.t < segment_t) stack.cross(p.entry);
+  std::vector<SurfaceHit>& hits = scratch.shadow_hits;
+  hits.clear();
+  if (casts_shadows) {
+    ++counters.rays;
+    if (scene.surfaces().occluded(shadow, scene.shadow_deferred(), hits)) return RGB(0.0f);
+  }
+  std::sort(hits.begin(), hits.end(), [](const SurfaceHit& a, const SurfaceHit& b) {
+    return a.t != b.t ? a.t < b.t : a.geom_id < b.geom_id;
+  });
+  // Embree may report one crossing twice (a primitive split across BVH leaves).
+  hits.erase(std::unique(hits.begin(), hits.end(),
+                         [](const SurfaceHit& a, const SurfaceHit& b) {
+                           return a.geom_id == b.geom_id && a.prim_id == b.prim_id && a.t == b.t;
+                         }),
+             hits.end());
+  RGB tr(1.0f);
+  Ray stretch = shadow;
+  for (size_t i = 0; i <= hits.size(); ++i) {
+    stretch.tmax = i < hits.size() ? hits[i].t : shadow.tmax;
+    if (stretch.tmax > stretch.tmin)
+      tr *= march_transmittance(scene.volumes(), stretch, jitter, scratch.march_settings, scratch.march,
+                                stack.current().medium);
+    if (tr.is_black()) return RGB(0.0f);
+    if (i < hits.size()) {
+      if (const auto entry = scene.medium_entry(hits[i].geom_id)) stack.cross(*entry);
+      stretch.tmin = hits[i].t;
+    }
+  }
+  return tr;
+}
+
+}  // namespace
+
 RGB light_transmittance(const Scene& scene, Vec3 origin, Vec3 sampled_from, const LightSample& ls,
-                        bool casts_shadows, float jitter, PathScratch& scratch, PathCounters& counters) {
+                        bool casts_shadows, float jitter, PathScratch& scratch, PathCounters& counters,
+                        float segment_t) {
   Ray shadow{origin, ls.wi, 0.0f, kInfinity};
   if (std::isfinite(ls.distance)) {
     shadow.direction = sampled_from + ls.wi * ls.distance - origin;
     shadow.tmax = 1.0f - kShadowEpsilon;
   }
+  if (scene.has_priority_objects())
+    return nested_transmittance(scene, shadow, casts_shadows, jitter, segment_t, scratch, counters);
   if (casts_shadows) {
     ++counters.rays;
     if (scene.surfaces().occluded(shadow)) return RGB(0.0f);

@@ -42,7 +42,8 @@ RGB scattered_light(const Scene& scene, const Ray& ray, const TransmittanceRecor
   if (!ls || ls->radiance.is_black() || !(ls->pdf > 0.0f)) return RGB(0.0f);
   const RGB phase = mixed_phase_eval(record, step, ray.direction, ls->wi);
   if (phase.is_black()) return RGB(0.0f);
-  const RGB tr = light_transmittance(scene, x, x, *ls, scene.casts_shadows(light_index), jitter, scratch, counters);
+  const RGB tr =
+      light_transmittance(scene, x, x, *ls, scene.casts_shadows(light_index), jitter, scratch, counters, t);
   if (tr.is_black()) return RGB(0.0f);
   const float light_pdf_sa = pick_pmf * ls->pdf;
   const float w =

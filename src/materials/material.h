@@ -1,7 +1,6 @@
-// Surface materials: a closed set of simple BSDFs as a std::variant.
-//
-// Later stages give a material an interior medium and a priority (nested dielectrics);
-// those fields live in Material, not in the BSDF alternatives.
+// Surface materials: a closed set of simple BSDFs as a std::variant, and what a surface says
+// about the space it encloses (nested dielectrics, media/medium_stack.h): an interior medium,
+// its IOR and a priority. Those live in Material, not in the BSDF alternatives.
 //
 // To add a BSDF: define its struct, add it to `Bsdf`, and overload the functions in bsdf.h.
 #pragma once
@@ -18,8 +17,10 @@ struct DiffuseBsdf {
   RGB reflectance{0.8f};
 };
 
-// A smooth interface between the outside (IOR 1) and a dielectric of the given IOR:
-// Fresnel-weighted specular reflection and refraction.
+// A smooth interface: Fresnel-weighted specular reflection and refraction. `ior` is the
+// ratio n_inside / n_outside across it (inside: the side the normal points away from). In a
+// Material it is the IOR relative to vacuum (Material::ior); the path tracer replaces it by
+// the ratio of the two media actually on either side of each hit.
 struct DielectricBsdf {
   float ior = 1.5f;
 };
@@ -38,6 +39,13 @@ struct Material {
   Bsdf bsdf;
   RGB emission;  // radiance leaving the front face, W m^-2 sr^-1; black for non-emitters
   bool two_sided_emission = false;
+  // Nested dielectrics. priority 0 (Off): the surface is always seen and never enters the
+  // medium stack (the classic behaviour; a dielectric then refracts against the medium the
+  // ray is in). Otherwise (smaller is higher; only dielectric and null materials) the surface
+  // bounds `interior` (an index into the scene's media, -1: vacuum) of IOR `ior`.
+  int priority = 0;
+  int interior = -1;
+  float ior = 1.0f;  // relative to vacuum; a dielectric's equals its DielectricBsdf::ior
 };
 
 }  // namespace caligo

@@ -57,10 +57,10 @@ int steps_for_span(const VolumeScene& volumes, const Span& span, std::span<const
 // false.
 template <typename StepFn>
 void for_each_step(const VolumeScene& volumes, const Ray& ray, float jitter, const MarchSettings& settings,
-                   MarchScratch& scratch, StepFn&& step) {
+                   MarchScratch& scratch, int medium, StepFn&& step) {
   scratch.volume.skip_empty_blocks = settings.skip_empty_blocks;
   scratch.volume.constant_blocks_one_step = settings.constant_blocks_one_step;
-  volumes.intervals(ray, scratch.volume);
+  volumes.intervals(ray, scratch.volume, medium);
   const auto& intervals = scratch.volume.intervals;
   const bool one_primitive =
       std::all_of(intervals.begin(), intervals.end(),
@@ -109,10 +109,10 @@ float primitive_step_size(const VolumePrimitive& primitive, const MarchSettings&
 }
 
 void march(const VolumeScene& volumes, const Ray& ray, float jitter, const MarchSettings& settings,
-           MarchScratch& scratch, TransmittanceRecord& out) {
+           MarchScratch& scratch, TransmittanceRecord& out, int medium) {
   out.clear();
-  if (volumes.empty()) return;
-  for_each_step(volumes, ray, jitter, settings, scratch,
+  if (volumes.empty() && medium < 0) return;
+  for_each_step(volumes, ray, jitter, settings, scratch, medium,
                 [&](float a, float b, float t_shade, std::span<const uint32_t> prims, float scale) {
                   const StepCoefficients c =
                       shade_span(volumes, prims, ray.at(t_shade), scale, scratch.volume, &scratch.lobes);
@@ -125,11 +125,11 @@ void march(const VolumeScene& volumes, const Ray& ray, float jitter, const March
 }
 
 RGB march_transmittance(const VolumeScene& volumes, const Ray& ray, float jitter,
-                        const MarchSettings& settings, MarchScratch& scratch) {
-  if (volumes.empty()) return RGB(1.0f);
+                        const MarchSettings& settings, MarchScratch& scratch, int medium) {
+  if (volumes.empty() && medium < 0) return RGB(1.0f);
   RGB optical_depth;
   bool opaque = false;
-  for_each_step(volumes, ray, jitter, settings, scratch,
+  for_each_step(volumes, ray, jitter, settings, scratch, medium,
                 [&](float a, float b, float t_shade, std::span<const uint32_t> prims, float scale) {
                   optical_depth +=
                       shade_span(volumes, prims, ray.at(t_shade), scale, scratch.volume, nullptr).sigma_t *

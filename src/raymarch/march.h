@@ -45,12 +45,14 @@ struct MarchScratch {
 };
 
 // Marches [ray.tmin, ray.tmax] (tmax: the nearest opaque surface, or infinity) into `out`.
+// `medium`: the scene medium the ray travels in (media/medium_stack.h; -1: none), which adds to
+// the volume primitives over the whole segment (smoke under water).
 void march(const VolumeScene& volumes, const Ray& ray, float jitter, const MarchSettings& settings,
-           MarchScratch& scratch, TransmittanceRecord& out);
+           MarchScratch& scratch, TransmittanceRecord& out, int medium = -1);
 
 // Transmittance along [ray.tmin, ray.tmax] with the same step rules, without a record (shadow rays).
 RGB march_transmittance(const VolumeScene& volumes, const Ray& ray, float jitter,
-                        const MarchSettings& settings, MarchScratch& scratch);
+                        const MarchSettings& settings, MarchScratch& scratch, int medium = -1);
 
 // The step size used for a primitive: its own, or the automatic one (a voxel for grids, a
 // fraction of the bounds otherwise) times its step_scale; infinity if homogeneous.

@@ -85,6 +85,11 @@ ObjectSpaceShape object_space_shape(const VolumeShape& shape) {
     ObjectSpaceShape operator()(const MeshVolumeShape& m) const {
       return from(false, Mat4::identity(), m.mesh->bounds().lo, m.mesh->bounds().hi);
     }
+    // Surface-bounded media never reach the real-time pipeline (it reads the scene's volume
+    // primitives only); described as the box of all finite space.
+    ObjectSpaceShape operator()(const UnboundedVolumeShape&) const {
+      return from(false, Mat4::identity(), Vec3(-1e30f), Vec3(1e30f));
+    }
     static ObjectSpaceShape from(bool sphere, const Mat4& world_to_object, Vec3 lo, Vec3 hi) {
       ObjectSpaceShape out;
       out.sphere = sphere;

@@ -1,5 +1,6 @@
 #include "scene/scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -104,16 +105,61 @@ std::unique_ptr<Scene> Scene::build(const SceneDesc& desc) {
   for (const ShapeDesc& shape : desc.shapes) scene->add_shape(shape);
   for (size_t i = 0; i < desc.lights.size(); ++i) scene->add_light_geometry(int(i));
   scene->surfaces_.commit();
-  scene->volumes_ = VolumeScene(desc.volumes);
+  // The media materials enclose, as unbounded primitives beside the volume primitives.
+  std::vector<VolumePrimitive> media;
+  scene->interior_slot_.assign(desc.media.size(), -1);
+  for (const Material& m : desc.materials) {
+    if (m.priority == kPriorityOff || m.interior < 0 || scene->interior_slot_[size_t(m.interior)] >= 0) continue;
+    scene->interior_slot_[size_t(m.interior)] = int(media.size());
+    media.push_back({UnboundedVolumeShape{}, desc.media[size_t(m.interior)].shader, m.interior});
+  }
+  scene->volumes_ = VolumeScene(desc.volumes, std::move(media));
   scene->finish_lights();
+  if (scene->has_priority_objects_) scene->camera_stack_ = scene->stack_at(desc.camera.position);
   return scene;
+}
+
+std::optional<MediumEntry> Scene::medium_entry(uint32_t geom_id) const {
+  const Material& m = materials_[size_t(geometry_[geom_id].material)];
+  if (m.priority == kPriorityOff) return std::nullopt;
+  return MediumEntry{geom_id, m.priority, {m.interior >= 0 ? interior_slot_[size_t(m.interior)] : -1, m.ior}};
+}
+
+MediumStack Scene::stack_at(Vec3 p) const {
+  MediumStack stack;
+  if (!has_priority_objects_) return stack;
+  std::vector<SurfaceHit> hits;
+  surfaces_.all_hits(Ray{p, Vec3(0, 1, 0), 0.0f, kInfinity}, hits);
+  // Each object's first crossing (hits are sorted by t); leaving through it means inside.
+  struct Inside {
+    float t;
+    MediumEntry entry;
+  };
+  std::vector<Inside> inside;
+  std::vector<uint8_t> seen(geometry_.size(), 0);
+  for (const SurfaceHit& h : hits) {
+    if (seen[h.geom_id]) continue;
+    seen[h.geom_id] = 1;
+    const auto entry = medium_entry(h.geom_id);
+    if (entry && h.ng.y > 0.0f) inside.push_back({h.t, *entry});
+  }
+  // Outermost (farthest first crossing) entered first, as a ray from outside would.
+  std::sort(inside.begin(), inside.end(), [](const Inside& a, const Inside& b) { return a.t > b.t; });
+  for (const Inside& i : inside) stack.cross(i.entry);
+  return stack;
 }
 
 int Scene::add_geometry(uint32_t geom_id, GeometryInfo info) {
   if (geom_id != geometry_.size()) throw std::logic_error("Embree geometry ids must be dense");
   geometry_.push_back(info);
-  surfaces_.set_casts_shadows(geom_id,
-                              !std::holds_alternative<NullBsdf>(materials_[size_t(info.material)].bsdf));
+  const Material& m = materials_[size_t(info.material)];
+  const bool null = std::holds_alternative<NullBsdf>(m.bsdf);
+  // Priority surfaces are seen by every shadow query (plain occluded() treats them as
+  // blockers); the path tracer's shadow rays defer the ones listed here to the medium stack.
+  const bool priority = m.priority != kPriorityOff;
+  has_priority_objects_ = has_priority_objects_ || priority;
+  surfaces_.set_casts_shadows(geom_id, priority || !null);
+  shadow_deferred_.push_back(priority && (null || desc_.render.priority_shadows) ? 1 : 0);
   return int(geom_id);
 }
 

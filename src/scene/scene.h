@@ -12,6 +12,7 @@
 #include "geometry/embree_scene.h"
 #include "lights/light.h"
 #include "materials/material.h"
+#include "media/medium_stack.h"
 #include "scene/camera.h"
 #include "scene/scene_desc.h"
 #include "volumes/volume_scene.h"
@@ -52,6 +53,22 @@ class Scene {
   }
 
   SurfaceInteraction interaction(const Ray& ray, const SurfaceHit& hit) const;
+
+  // Nested dielectrics (media/medium_stack.h). The stack entry of a hit surface whose material
+  // has a priority (its inside medium is a slot of volumes()' media), or nullopt for priority Off.
+  std::optional<MediumEntry> medium_entry(uint32_t geom_id) const;
+  // True when some surface has a priority: paths then carry a medium stack.
+  bool has_priority_objects() const { return has_priority_objects_; }
+  // Per geometry: 1 when shadow rays defer its hits to the stack (priority null boundaries, and
+  // priority dielectrics with RenderDefaults::priority_shadows) instead of being blocked.
+  const std::vector<uint8_t>& shadow_deferred() const { return shadow_deferred_; }
+  // The media around the camera at build time: one probe ray from the camera straight up
+  // (+Y) through every surface; an object whose first crossing along it leaves it (the ray
+  // meets its front face first) contains the camera. Works for open surfaces such as a
+  // water plane whose normal points out of the water.
+  const MediumStack& camera_stack() const { return camera_stack_; }
+  // The same probe from any point.
+  MediumStack stack_at(Vec3 p) const;
   const Material& material(const SurfaceHit& hit) const {
     return materials_[size_t(geometry_[hit.geom_id].material)];
   }
@@ -79,6 +96,10 @@ class Scene {
   std::vector<Light> lights_;
   std::vector<int> infinite_lights_;
   DiscreteDistribution light_selection_;
+  std::vector<int> interior_slot_;  // per SceneDesc medium: its slot in volumes_' media, or -1
+  std::vector<uint8_t> shadow_deferred_;
+  bool has_priority_objects_ = false;
+  MediumStack camera_stack_;
 };
 
 }  // namespace caligo

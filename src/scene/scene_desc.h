@@ -76,6 +76,17 @@ struct RenderDefaults {
   int max_depth = 8;             // surface bounces
   int max_volume_bounces = 128;  // scattering events inside media
   uint64_t seed = 0;
+  // Shadow rays pass through dielectrics of priority other than Off, attenuated by the media
+  // the priority rules put them in (approximate caustics; lights inside glass or water).
+  // Off: those dielectrics block shadow rays like any other. Null medium boundaries never block.
+  bool priority_shadows = false;
+};
+
+// A named entry of the scene's "media" table: what volume primitives are filled with
+// (VolumePrimitive::medium) and what surfaces enclose (Material::interior).
+struct NamedMedium {
+  std::string name;
+  VolumeShader shader;
 };
 
 struct SphereShape {
@@ -119,6 +130,7 @@ struct SceneDesc {
   // Per light, same order. May be shorter than `lights` (scenes built in code): read it
   // through options(i), which gives the defaults for a light without an entry.
   std::vector<LightOptions> light_options;
+  std::vector<NamedMedium> media;
   std::vector<VolumePrimitive> volumes;
 
   const LightOptions& options(size_t light) const {

@@ -5,14 +5,10 @@
 #include <vector>
 
 #include "scene/json_reader.h"
+#include "scene/scene_desc.h"
 #include "volumes/volume.h"
 
 namespace caligo {
-
-struct NamedMedium {
-  std::string name;
-  VolumeShader shader;
-};
 
 // "media": {"fog": {...}, ...}
 std::vector<NamedMedium> parse_media(const JsonCursor& c);

@@ -51,6 +51,10 @@ struct HullInterval {
     const Bounds3 b = m.mesh->bounds();
     return box_interval(Transform(), b.lo, b.hi, ray);
   }
+  // A ray escaping the scene inside a medium ends at a finite 1e30: sigma * t stays finite
+  // (0 for a channel the medium does not attenuate, where sigma * inf would be NaN) and the
+  // transmittance there is exactly 0 or 1, as at infinity.
+  std::optional<Stretch> operator()(const UnboundedVolumeShape&) const { return clip(ray, -kInfinity, 1.0e30f); }
 };
 
 // The stretches of the ray inside the shape, into context.mesh_intervals (reused scratch).
@@ -63,6 +67,7 @@ struct InsideStretches {
     context.mesh_intervals.clear();
     m.mesh->intervals(ray, context.mesh_hits, context.mesh_intervals);
   }
+  void operator()(const UnboundedVolumeShape& u) const { one(HullInterval{ray}(u)); }
   void one(std::optional<Stretch> s) const {
     context.mesh_intervals.clear();
     if (s) context.mesh_intervals.push_back(*s);
@@ -80,6 +85,7 @@ struct UnitCoordinates {
   Vec3 operator()(const SphereVolumeShape& s) const { return s.sphere.object_to_world.inverse_point(p); }
   Vec3 operator()(const BoxVolumeShape& b) const { return box_unit(b.object_to_world.inverse_point(p), b.lo, b.hi); }
   Vec3 operator()(const MeshVolumeShape& m) const { return box_unit(p, m.mesh->bounds().lo, m.mesh->bounds().hi); }
+  Vec3 operator()(const UnboundedVolumeShape&) const { return Vec3(0.0f); }  // constant fields only
 };
 
 struct FieldDensity {
@@ -100,6 +106,9 @@ struct ShapeBounds {
   Bounds3 operator()(const SphereVolumeShape& s) const { return s.sphere.world_bounds(); }
   Bounds3 operator()(const BoxVolumeShape& b) const { return b.object_to_world.bounds({b.lo, b.hi}); }
   Bounds3 operator()(const MeshVolumeShape& m) const { return m.mesh->bounds(); }
+  Bounds3 operator()(const UnboundedVolumeShape&) const {
+    return {Vec3(-kInfinity), Vec3(kInfinity)};
+  }
 };
 
 struct FieldIsConstant {

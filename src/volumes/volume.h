@@ -34,7 +34,11 @@ struct SphereVolumeShape {
 struct MeshVolumeShape {
   std::shared_ptr<const MeshVolume> mesh;
 };
-using VolumeShape = std::variant<SphereVolumeShape, BoxVolumeShape, MeshVolumeShape>;
+// Everywhere along the ray: the interior medium of a surface (materials/material.h), whose
+// extent the medium stack tracks (media/medium_stack.h), not a shape. Only homogeneous media
+// (constant field, no noise) take this shape: there is no object space to place a field in.
+struct UnboundedVolumeShape {};
+using VolumeShape = std::variant<SphereVolumeShape, BoxVolumeShape, MeshVolumeShape, UnboundedVolumeShape>;
 
 // Density multipliers over the primitive.
 struct ConstantDensity {};
@@ -83,7 +87,8 @@ struct VolumeShader {
 
 struct VolumePrimitive {
   VolumeShape shape;
-  VolumeShader shader;
+  VolumeShader shader;  // the scene medium's, copied next to the shape for the hot loop
+  int medium = -1;      // index into the scene's media table (-1: made in code)
 };
 
 // The ray's parametric overlap with the shape's convex hull (the mesh's bounding box for a
