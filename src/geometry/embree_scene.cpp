@@ -75,6 +75,8 @@ void defer_hit(const RTCFilterFunctionNArguments* args) {
   h.t = RTCRayN_tfar(args->ray, args->N, 0);
   h.geom_id = geom;
   h.prim_id = RTCHitN_primID(args->hit, args->N, 0);
+  h.ng = {RTCHitN_Ng_x(args->hit, args->N, 0), RTCHitN_Ng_y(args->hit, args->N, 0),
+          RTCHitN_Ng_z(args->hit, args->N, 0)};
   ctx->out->push_back(h);
   args->valid[0] = 0;
 }
@@ -303,8 +305,13 @@ bool EmbreeScene::occluded(const Ray& ray, const std::vector<uint8_t>& deferred,
   ctx.context.filter = defer_hit;
   ctx.deferred = &deferred;
   ctx.out = &deferred_hits;
+  const size_t first = deferred_hits.size();
   RTCRay r = to_embree(ray).ray;
   rtcOccluded1(impl_->scene, &ctx.context, &r);
+  for (size_t i = first; i < deferred_hits.size(); ++i) {
+    SurfaceHit& h = deferred_hits[i];
+    h.ng = impl_->geometric_normal(h.geom_id, h.prim_id, h.ng);
+  }
   return r.tfar < 0.0f;
 }
 

@@ -47,7 +47,7 @@ class EmbreeScene {
   // True when something that casts shadows lies on the ray within [tmin, tmax).
   bool occluded(const Ray& ray) const;
   // The same, except that hits on geometry g with deferred[g] != 0 do not block: they are
-  // appended to `deferred_hits` (unsorted, t and geom_id only) for the caller to resolve
+  // appended to `deferred_hits` (unsorted; t, ids and geometric normal) for the caller to resolve
   // (shadow rays through nested media). When it returns true the list is incomplete.
   bool occluded(const Ray& ray, const std::vector<uint8_t>& deferred, std::vector<SurfaceHit>& deferred_hits) const;
   // Every surface crossing in [tmin, tmax), sorted by t. `out` is cleared first; reuse it

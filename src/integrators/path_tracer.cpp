@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/sampling.h"
+#include "integrators/interface_eta.h"
 #include "integrators/visibility.h"
 #include "integrators/volume_direct.h"
 #include "lights/light_sample.h"
@@ -27,6 +28,12 @@ struct PathState {
   // surfaces or media, and a long chain of scattering in fog costs a path one surface bounce.
   int volume_runs = 0;
   bool in_volume_run = false;
+  // Real crossings of medium boundaries (priority null surfaces): not events, but each starts a
+  // new segment whose free-flight and NEE samples must not reuse the previous segment's.
+  int boundary_crossings = 0;
+
+  // The sampler's vertex index: events plus boundary crossings (= depth without nested media).
+  int vertex() const { return depth + boundary_crossings; }
 
   // Whether the path may have another event of max_depth's count (a surface bounce or the
   // start of a volume run).
@@ -83,7 +90,7 @@ RGB surface_direct_light(const Scene& scene, const SurfaceInteraction& si, Vec3 
 bool russian_roulette(PathState& state, const Sampler& sampler, const PathSettings& settings) {
   if (state.depth < settings.russian_roulette_depth) return true;
   const float survive = std::min(1.0f, state.throughput.max_component());
-  if (sampler.get_1d(bounce(state.depth, sample_dim::kRussianRoulette)) >= survive) return false;
+  if (sampler.get_1d(bounce(state.vertex(), sample_dim::kRussianRoulette)) >= survive) return false;
   state.throughput *= 1.0f / survive;
   return true;
 }
@@ -144,16 +151,6 @@ void apply_pending(PathScratch& scratch, float t_limit) {
   scratch.pending.clear();
 }
 
-// n_inside / n_outside of a dielectric hit for DielectricBsdf (inside: the side ng points
-// away from). A priority surface's two sides hold the media the stack rules give before and
-// after the crossing; an Off surface's inside is its own IOR against the ray's current medium.
-float interface_eta(const MediumStack& stack, const std::optional<MediumEntry>& entry, float material_ior,
-                    bool front_face) {
-  if (!entry) return material_ior / stack.current().ior;
-  const MediumStack::Crossing c = stack.peek(*entry);
-  return front_face ? c.after.ior / c.before.ior : c.before.ior / c.after.ior;
-}
-
 enum class SegmentOutcome { kScattered, kPassed, kAbsorbed };
 
 // Phases 2 and 3 for the medium in front of the next surface (or to infinity).
@@ -165,7 +162,7 @@ SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, c
   TransmittanceRecord& record = scratch.record;
   Ray segment = ray;
   segment.tmax = t_surface;
-  march(scene.volumes(), segment, march_jitter(scene, sampler, state.depth), scratch.march_settings,
+  march(scene.volumes(), segment, march_jitter(scene, sampler, state.vertex()), scratch.march_settings,
         scratch.march, record, medium);
   if (record.empty()) return SegmentOutcome::kPassed;
   if (state.depth == 0) counters.camera_march_steps += record.steps().size();
@@ -180,17 +177,17 @@ SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, c
     // light but cost two shadow rays: next-event estimation runs with a probability that
     // follows the segment's scattering probability, and is reweighted (unbiased roulette).
     const float nee_probability = std::min(1.0f, settings.volume_nee_scale * record.scatter_weight_total());
-    const float u = sampler.get_1d(bounce(state.depth, sample_dim::kVolumeNeeRoulette));
+    const float u = sampler.get_1d(bounce(state.vertex(), sample_dim::kVolumeNeeRoulette));
     if (nee_probability > 0.0f && u < nee_probability)
       out.radiance += state.throughput *
-                      volume_direct_light(scene, ray, record, sampler, state.depth,
+                      volume_direct_light(scene, ray, record, sampler, state.vertex(),
                                           settings.distance_sampling, scratch, counters) /
                       nee_probability;
   }
 
   const auto collision =
-      record.sample_free_flight(sampler.get_1d(bounce(state.depth, sample_dim::kFreeFlightChannel)),
-                                sampler.get_1d(bounce(state.depth, sample_dim::kFreeFlightDistance)));
+      record.sample_free_flight(sampler.get_1d(bounce(state.vertex(), sample_dim::kFreeFlightChannel)),
+                                sampler.get_1d(bounce(state.vertex(), sample_dim::kFreeFlightDistance)));
   if (!collision) {
     const RGB t_end = record.transmittance_end();
     state.throughput *= t_end / t_end.average();
@@ -203,8 +200,8 @@ SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, c
   const Vec3 x = ray.at(collision->t);
   *event_t = collision->t;
   const MixedPhaseSample ps = sample_mixed_phase(
-      record, step, ray.direction, sampler.get_1d(bounce(state.depth, sample_dim::kPhaseLobe)),
-      sampler.get_2d(bounce(state.depth, sample_dim::kPhaseDirection)));
+      record, step, ray.direction, sampler.get_1d(bounce(state.vertex(), sample_dim::kPhaseLobe)),
+      sampler.get_2d(bounce(state.vertex(), sample_dim::kPhaseDirection)));
   state.throughput *= ps.weight;
   if (state.throughput.is_black()) return SegmentOutcome::kAbsorbed;
   state.specular_bounce = false;
@@ -234,7 +231,6 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
     scratch.stack.assign(scene.camera_stack());
     scratch.pending.clear();
   }
-  int boundary_crossings = 0;  // real crossings of priority null surfaces (medium boundaries)
   for (;;) {
     // A degenerate computation upstream (a NaN direction or weight) ends the path here
     // rather than poisoning the pixel; the film drops non-finite samples too.
@@ -266,7 +262,7 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
     if (entry && std::holds_alternative<NullBsdf>(si.material->bsdf)) {
       // A medium boundary the rules make real: the ray's medium changes, nothing is seen.
       scratch.stack.cross(*entry);
-      if (++boundary_crossings > settings.max_null_crossings) break;
+      if (++state.boundary_crossings > settings.max_null_crossings) break;
       ray = {offset_ray_origin(si.p, si.ng, ray.direction), ray.direction, 0.0f, kInfinity};
       continue;
     }
@@ -276,7 +272,7 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
 
     if (!is_specular(si.material->bsdf))
       out.radiance +=
-          state.throughput * surface_direct_light(scene, si, wo, sampler, state.depth, scratch, counters);
+          state.throughput * surface_direct_light(scene, si, wo, sampler, state.vertex(), scratch, counters);
 
     // A dielectric refracts with the IORs of the media actually on either side.
     const Bsdf* bsdf = &si.material->bsdf;
@@ -285,8 +281,8 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
       interface = DielectricBsdf{interface_eta(scratch.stack, entry, d->ior, dot(si.ng, wo) > 0.0f)};
       bsdf = &interface;
     }
-    const auto bs = bsdf_sample(*bsdf, si.ns, wo, sampler.get_1d(bounce(state.depth, sample_dim::kBsdfLobe)),
-                                sampler.get_2d(bounce(state.depth, sample_dim::kBsdfDirection)));
+    const auto bs = bsdf_sample(*bsdf, si.ns, wo, sampler.get_1d(bounce(state.vertex(), sample_dim::kBsdfLobe)),
+                                sampler.get_2d(bounce(state.vertex(), sample_dim::kBsdfDirection)));
     if (!bs || bs->weight.is_black()) break;
     // Reject directions the shading normal allows but the geometry does not (light leaks).
     const bool transmits = dot(si.ng, bs->wi) * dot(si.ng, wo) < 0.0f;

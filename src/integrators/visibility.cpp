@@ -27,10 +27,14 @@ RGB nested_transmittance(const Scene& scene, const Ray& shadow, bool casts_shado
   std::sort(hits.begin(), hits.end(), [](const SurfaceHit& a, const SurfaceHit& b) {
     return a.t != b.t ? a.t < b.t : a.geom_id < b.geom_id;
   });
-  // Embree may report one crossing twice (a primitive split across BVH leaves).
+  // One crossing can come back twice: the same primitive split across BVH leaves, or a ray
+  // through the edge two triangles share. Two hits on one surface at the same t facing the same
+  // way are one crossing; facing opposite ways (grazing a silhouette) they stay two, in and out.
+  const Vec3 d = shadow.direction;
   hits.erase(std::unique(hits.begin(), hits.end(),
-                         [](const SurfaceHit& a, const SurfaceHit& b) {
-                           return a.geom_id == b.geom_id && a.prim_id == b.prim_id && a.t == b.t;
+                         [&](const SurfaceHit& a, const SurfaceHit& b) {
+                           return a.geom_id == b.geom_id && std::abs(b.t - a.t) <= 1e-6f * (1.0f + std::abs(a.t)) &&
+                                  (dot(a.ng, d) < 0.0f) == (dot(b.ng, d) < 0.0f);
                          }),
              hits.end());
   RGB tr(1.0f);
