@@ -230,6 +230,36 @@ TEST_F(Cli, BadCommandLinesExitWithTwo) {
   }
 }
 
+// --priority MATERIAL=LEVEL changes a medium-bounding material's priority before the build:
+// priority-cubes rendered both ways differs (the overlap turns from red to green).
+TEST_F(Cli, PriorityOverrideChangesTheImage) {
+  const fs::path red = dir_ / "red.exr", green = dir_ / "green.exr", same = dir_ / "same.exr";
+  const std::string base = "render priority-cubes --res 24x16 --spp 2 -q ";
+  ASSERT_EQ(run(base + "-o " + red.string()).exit_code, 0);
+  const RunResult g = run(base + "--priority green=very_high --priority red=200 -o " + green.string());
+  ASSERT_EQ(g.exit_code, 0) << g.err;
+  ASSERT_EQ(run(base + "--priority red=high -o " + same.string()).exit_code, 0);
+  EXPECT_EQ(run("compare " + red.string() + " " + same.string() + " --max-rmse 0").exit_code, 0);
+  EXPECT_EQ(run("compare " + red.string() + " " + green.string() + " --max-rmse 1e-9").exit_code, 1);
+
+  const fs::path exr = dir_ / "x.exr";
+  for (const auto& [args, expected] : std::vector<std::pair<std::string, std::string>>{
+           {"--priority blue=high", "\"blue\" is not a material that bounds a medium (they are: red, green)"},
+           {"--priority ground=high", "\"ground\" is not a material that bounds a medium"},
+           {"--priority green=highest", "expected a level (off, very_high, high, normal, low, very_low"},
+           {"--priority green=-5", "expected a level"},
+           {"--priority green=100001", "expected a level"},
+           {"--priority green=off", "has an interior medium, so its priority cannot be off"},
+           {"--priority green", "expected MATERIAL=LEVEL"},
+       }) {
+    const RunResult r = run("render priority-cubes -q " + args + " -o " + exr.string());
+    EXPECT_EQ(r.exit_code, 2) << args << ": " << r.err;
+    EXPECT_NE(r.err.find("--priority"), std::string::npos) << args << ": " << r.err;
+    EXPECT_NE(r.err.find(expected), std::string::npos) << args << ": " << r.err;
+    EXPECT_FALSE(fs::exists(exr)) << args;
+  }
+}
+
 }  // namespace
 
 // ---- caligo realtime ----

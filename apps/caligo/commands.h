@@ -26,6 +26,7 @@ struct RenderOptions {
   std::optional<std::string> distance_sampling;
   float time = 0.0f;  // seconds: the camera on its path and the lights on their keys at this time
   float exposure = 0.0f;
+  std::vector<std::string> priorities;  // --priority MATERIAL=LEVEL, applied in order
   bool list_builtins = false;
   bool quiet = false;
 };

@@ -1,7 +1,9 @@
 // caligo render [SCENE.json | BUILTIN] [-o out.exr] [--spp N] [--res WxH] [--threads N] [--seed S]
+//               [--priority MATERIAL=LEVEL ...]
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <optional>
 #include <filesystem>
 #include <string>
 
@@ -12,6 +14,7 @@
 #include "image/tonemap.h"
 #include "render/render.h"
 #include "scene/builtins.h"
+#include "scene/material_priority.h"
 #include "scene/scene_parser.h"
 
 namespace caligo {
@@ -32,6 +35,11 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                   "Distance sampling for light in media: mis (default), density or equiangular");
   cmd->add_option("--time", o.time, "Render the scene at this time in seconds (camera path, light keys)");
   cmd->add_option("--exposure", o.exposure, "Exposure of the PNG preview, in stops");
+  cmd->add_option("--priority", o.priorities,
+                  "MATERIAL=LEVEL: set a medium-bounding material's priority (an integer, or off, very_high, "
+                  "high, normal, low, very_low); repeatable")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   cmd->add_flag("--list-builtins", o.list_builtins, "List the built-in scenes and exit");
   cmd->add_flag("-q,--quiet", o.quiet, "No progress output");
 }
@@ -108,6 +116,37 @@ void print_summary(const std::string& scene, const RenderSettings& s, const Rend
                s.threads > 0 ? s.threads : int(std::thread::hardware_concurrency()), output.c_str());
 }
 
+// --priority MATERIAL=LEVEL. Only materials that already bound a medium may change (the scene
+// checked that their shapes are closed or marked open); a material with an interior medium
+// may not be turned off.
+void apply_priority(const std::string& arg, SceneDesc& desc) {
+  const size_t eq = arg.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == arg.size())
+    throw InputError(kCommandLine, "--priority: expected MATERIAL=LEVEL, got \"" + arg + "\"");
+  const std::string name = arg.substr(0, eq), level_text = arg.substr(eq + 1);
+  std::string bounding;
+  Material* material = nullptr;
+  for (Material& m : desc.materials) {
+    if (m.priority != kPriorityOff) bounding += (bounding.empty() ? "" : ", ") + m.name;
+    if (m.name == name) material = &m;
+  }
+  const std::string known = bounding.empty() ? "the scene has none" : "they are: " + bounding;
+  if (!material || material->priority == kPriorityOff)
+    throw InputError(kCommandLine, "--priority: \"" + name + "\" is not a material that bounds a medium (" +
+                                       known + ")");
+  std::optional<int> level = priority_from_name(level_text);
+  if (!level && !level_text.empty() && level_text.find_first_not_of("0123456789") == std::string::npos &&
+      level_text.size() <= 6 && std::stoi(level_text) <= kMaxPriority)
+    level = std::stoi(level_text);
+  if (!level)
+    throw InputError(kCommandLine, "--priority " + arg + ": expected a level (" + priority_names() +
+                                       " or an integer in [0, " + std::to_string(kMaxPriority) + "])");
+  if (*level == kPriorityOff && material->interior >= 0)
+    throw InputError(kCommandLine, "--priority " + arg + ": material \"" + name +
+                                       "\" has an interior medium, so its priority cannot be off");
+  material->priority = *level;
+}
+
 int list_builtins() {
   for (const BuiltinScene& b : builtin_scenes())
     std::printf("%-18s %s\n", b.name.c_str(), b.description.c_str());
@@ -119,7 +158,8 @@ int list_builtins() {
 int run_render(const RenderOptions& o) {
   if (o.list_builtins) return list_builtins();
   if (!(o.time >= 0.0f && o.time <= 1e6f)) throw InputError(kCommandLine, "--time: expected seconds in [0, 1e6]");
-  const SceneDesc desc = load_scene(o.scene).at_time(o.time);
+  SceneDesc desc = load_scene(o.scene).at_time(o.time);
+  for (const std::string& p : o.priorities) apply_priority(p, desc);
   const RenderSettings settings = settings_from(o, desc);
   const std::filesystem::path exr = o.output.empty() ? default_output(o.scene) : o.output;
   check_output(exr);

@@ -9,6 +9,7 @@
 #include "core/parallel.h"
 #include "lights/light_sample.h"
 #include "materials/bsdf.h"
+#include "media/medium_stack.h"
 #include "raymarch/spans.h"
 
 namespace caligo {
@@ -34,21 +35,90 @@ RGB in_channel(int channel, float value) {
   return {channel == 0 ? value : 0.0f, channel == 1 ? value : 0.0f, channel == 2 ? value : 0.0f};
 }
 
-// The nearest surface hit that is not a null surface (those are invisible to transport).
-std::optional<SurfaceHit> nearest_opaque_hit(const Scene& scene, Ray ray) {
-  for (int crossings = 0; crossings < kMaxNullCrossings; ++crossings) {
-    const auto hit = scene.surfaces().intersect(ray);
-    if (!hit || !std::holds_alternative<NullBsdf>(scene.material(*hit).bsdf)) return hit;
-    ray.tmin = hit->t + std::max(1e-4f, hit->t * 1e-5f);
+// A priority surface the path crossed on its way to the surface it sees, at ray parameter t:
+// a false hit by the medium stack's rules (or, for single scattering, a real null boundary).
+struct Crossed {
+  float t;
+  MediumEntry entry;
+};
+
+// Applies the crossings before t_limit to the stack (false hits leave its medium unchanged).
+void cross_before(MediumStack& stack, const std::vector<Crossed>& crossed, float t_limit) {
+  for (const Crossed& c : crossed)
+    if (c.t < t_limit) stack.cross(c.entry);
+}
+
+// The surface a path in the media of `stack` sees next along `ray`, walking every crossing in
+// order (EmbreeScene::all_hits): Off null surfaces are invisible; priority surfaces whose
+// crossing the rules call false are passed and listed in `crossed` (not applied to `stack`).
+// The seen surface's own crossing is not applied either: a dielectric may reflect.
+std::optional<SurfaceHit> nearest_seen_hit(const Scene& scene, const Ray& ray, const MediumStack& stack,
+                                           std::vector<Crossed>& crossed) {
+  thread_local std::vector<SurfaceHit> hits;
+  crossed.clear();
+  scene.surfaces().all_hits(ray, hits);
+  MediumStack walk = stack;
+  for (const SurfaceHit& h : hits) {
+    const auto entry = scene.medium_entry(h.geom_id);
+    if (!entry) {
+      if (!std::holds_alternative<NullBsdf>(scene.material(h).bsdf)) return h;
+      continue;
+    }
+    if (walk.peek(*entry).real) return h;
+    walk.cross(*entry);
+    crossed.push_back({h.t, *entry});
   }
   return std::nullopt;
 }
 
-// True when no shadow-casting surface lies between `origin` and the light sample.
-bool unoccluded(const Scene& scene, int light, Vec3 origin, const LightSample& ls) {
-  if (!scene.casts_shadows(light)) return true;
+// A stretch [t0, t1) of a ray in one medium of the stack (a scene medium slot, -1: vacuum).
+struct MediumRun {
+  float t0, t1;
+  int medium;
+};
+
+enum class Blocking {
+  kNone,    // no surface blocks (the stretch of a path the caller knows to be clear)
+  kShadow,  // a shadow ray's: Off non-null surfaces block, priority dielectrics block unless the
+            // scene's render.priority_shadows, null surfaces never do
+};
+
+// The stretches of `ray` within [ray.tmin, ray.tmax) starting in the media of `stack`, or
+// nullopt when a surface blocks it. Each crossing of a priority surface updates the stack (no
+// Fresnel, no refraction); each stretch lies in the medium the rules give it.
+std::optional<std::vector<MediumRun>> medium_runs(const Scene& scene, const Ray& ray, MediumStack stack,
+                                                  Blocking blocking) {
+  thread_local std::vector<SurfaceHit> hits;
+  scene.surfaces().all_hits(ray, hits);
+  std::vector<MediumRun> runs;
+  float t0 = ray.tmin;
+  for (const SurfaceHit& h : hits) {
+    const bool null = std::holds_alternative<NullBsdf>(scene.material(h).bsdf);
+    const auto entry = scene.medium_entry(h.geom_id);
+    if (blocking == Blocking::kShadow &&
+        ((!entry && !null) || (entry && !null && !scene.desc().render.priority_shadows)))
+      return std::nullopt;
+    if (!entry) continue;
+    runs.push_back({t0, h.t, stack.current().medium});
+    stack.cross(*entry);
+    t0 = h.t;
+  }
+  runs.push_back({t0, ray.tmax, stack.current().medium});
+  return runs;
+}
+
+// A shadow ray's stretches (Blocking::kShadow). A light that casts no shadows sees the
+// origin's medium along the whole ray, as in production.
+std::optional<std::vector<MediumRun>> shadow_runs(const Scene& scene, const Ray& ray, bool casts_shadows,
+                                                  const MediumStack& stack) {
+  if (!casts_shadows) return std::vector<MediumRun>{{ray.tmin, ray.tmax, stack.current().medium}};
+  return medium_runs(scene, ray, stack, Blocking::kShadow);
+}
+
+// The shadow ray from `origin` to a light sample: unit direction, stopping short of the light.
+Ray shadow_ray(Vec3 origin, const LightSample& ls) {
   const float tmax = std::isfinite(ls.distance) ? ls.distance * (1.0f - kShadowEpsilon) : kInfinity;
-  return !scene.surfaces().occluded(Ray{origin, ls.wi, 0.0f, tmax});
+  return Ray{origin, ls.wi, 0.0f, tmax};
 }
 
 // One majorant interval of a primitive along a ray, [t0, t1) (half-open, so a point on the
@@ -70,8 +140,9 @@ VolumeContext& context() {
   return c;
 }
 
-// The media along one ray within [ray.tmin, t_max]: every primitive's majorant intervals,
-// their hull [t_lo, t_hi], and (for tracking in one channel) the piecewise-constant majorant
+// The media along one ray within [ray.tmin, t_max]: every primitive's majorant intervals
+// (and, for `medium` >= 0, the stack medium the ray is in, over the whole stretch), their hull
+// [t_lo, t_hi], and (for tracking in one channel) the piecewise-constant majorant
 // over the hull, from the intervals' own bounds (so a grid's empty blocks are skipped and its
 // dense ones get a tight bound).
 struct Segment {
@@ -84,12 +155,12 @@ struct Segment {
   bool contains(const Stretch& s, float t) const { return t >= s.t0 && t < s.t1; }
 };
 
-Segment make_segment(const Scene& scene, const Ray& ray, float t_max, int channel = 0) {
+Segment make_segment(const Scene& scene, const Ray& ray, float t_max, int channel = 0, int medium = -1) {
   Segment seg{ray, {}};
   Ray clipped = ray;
   clipped.tmax = t_max;
   VolumeContext& ctx = context();
-  scene.volumes().intervals(clipped, ctx);
+  scene.volumes().intervals(clipped, ctx, medium);
   for (const VolumeInterval& iv : ctx.intervals) {
     seg.stretches.push_back({iv.t0, iv.t1, &scene.volumes().primitive(iv.primitive)});
     seg.t_lo = std::min(seg.t_lo, iv.t0);
@@ -131,13 +202,102 @@ ChannelCoefficients coefficients(const Segment& seg, float t, int channel) {
   return c;
 }
 
+// Optical depth along `ray` over [ray.tmin, t_max] of the volume primitives and the stack
+// medium `medium` (-1: none), by the midpoint rule on each majorant interval (primitives add,
+// so this equals integrating their sum; per-interval stretches keep a homogeneous primitive
+// exact instead of blurring its boundary across a step). An unbounded medium over an unbounded
+// ray has infinite depth in every channel where it extinguishes.
+RGB optical_depth(const Scene& scene, const Ray& ray, float t_max, int steps, int medium) {
+  Ray clipped = ray;
+  clipped.tmax = t_max;
+  const float metres_per_t = length(ray.direction);
+  VolumeContext& ctx = context();
+  scene.volumes().intervals(clipped, ctx, medium);
+  RGB depth;
+  // Shading uses only the context's grid accessors, never its interval list.
+  for (const VolumeInterval& iv : ctx.intervals) {
+    const VolumePrimitive& p = scene.volumes().primitive(iv.primitive);
+    if (!std::isfinite(iv.t1)) {  // only stack media are unbounded, and they are homogeneous
+      const RGB sigma_t = shade_volume(p, ray.at(iv.t0), ctx).sigma_t();
+      depth += RGB(sigma_t.r > 0.0f ? kInfinity : 0.0f, sigma_t.g > 0.0f ? kInfinity : 0.0f,
+                   sigma_t.b > 0.0f ? kInfinity : 0.0f);
+      continue;
+    }
+    const float dt = (iv.t1 - iv.t0) / float(steps);
+    RGB sum;
+    for (int i = 0; i < steps; ++i) sum += shade_volume(p, ray.at(iv.t0 + (float(i) + 0.5f) * dt), ctx).sigma_t();
+    depth += sum * (dt * metres_per_t);
+  }
+  return depth;
+}
+
+// exp(-optical depth) over the stretches of `ray`, each in its own stack medium.
+RGB transmittance_of_runs(const Scene& scene, const Ray& ray, const std::vector<MediumRun>& runs, int steps) {
+  RGB depth;
+  for (const MediumRun& run : runs) {
+    if (!(run.t1 > run.t0)) continue;
+    Ray stretch = ray;
+    stretch.tmin = run.t0;
+    depth += optical_depth(scene, stretch, run.t1, steps, run.medium);
+  }
+  return exp_negative(depth);
+}
+
 // ---- single scattering ----
+
+// `stack` after every crossing of a priority surface by `ray` within [ray.tmin, t).
+MediumStack stack_along(const Scene& scene, const Ray& ray, float t, MediumStack stack) {
+  if (!scene.has_priority_objects()) return stack;
+  thread_local std::vector<SurfaceHit> hits;
+  Ray clipped = ray;
+  clipped.tmax = t;
+  scene.surfaces().all_hits(clipped, hits);
+  for (const SurfaceHit& h : hits)
+    if (const auto entry = scene.medium_entry(h.geom_id)) stack.cross(*entry);
+  return stack;
+}
+
+// Where a single-scattering camera ray ends, and the media up to there. It ends at the first
+// surface that is not a null surface (Off surfaces of any other kind, priority dielectrics
+// whose crossing is real); false hits and real null boundaries are crossed. The segment holds
+// the volume primitives' intervals up to the end and each stretch's stack medium (no majorant
+// pieces: uniform distance sampling needs none).
+Segment single_scattering_segment(const Scene& scene, const Ray& ray, const MediumStack& camera_stack) {
+  thread_local std::vector<SurfaceHit> hits;
+  scene.surfaces().all_hits(ray, hits);
+  MediumStack stack = camera_stack;
+  std::vector<MediumRun> runs;
+  float t0 = ray.tmin, t_end = kInfinity;
+  for (const SurfaceHit& h : hits) {
+    const bool null = std::holds_alternative<NullBsdf>(scene.material(h).bsdf);
+    const auto entry = scene.medium_entry(h.geom_id);
+    if (!entry && null) continue;
+    if (!entry || (!null && stack.peek(*entry).real)) {
+      t_end = h.t;
+      break;
+    }
+    runs.push_back({t0, h.t, stack.current().medium});
+    stack.cross(*entry);
+    t0 = h.t;
+  }
+  runs.push_back({t0, t_end, stack.current().medium});
+  Segment seg = make_segment(scene, ray, t_end);
+  for (const MediumRun& run : runs) {
+    if (run.medium < 0 || !(run.t1 > run.t0)) continue;
+    const uint32_t id = uint32_t(scene.volumes().primitives().size()) + uint32_t(run.medium);
+    seg.stretches.push_back({run.t0, run.t1, &scene.volumes().primitive(id)});
+    seg.t_lo = std::min(seg.t_lo, run.t0);
+    seg.t_hi = std::max(seg.t_hi, run.t1);
+  }
+  return seg;
+}
 
 // The light of every light scattered once at x(t) towards the ray origin, including the
 // transmittance back to the origin, before dividing by the distance pdf.
-RGB scattered_once(const Scene& scene, const Segment& seg, float t, Pcg32& rng) {
+RGB scattered_once(const Scene& scene, const Segment& seg, float t, const MediumStack& camera_stack, Pcg32& rng) {
   const Ray& ray = seg.ray;
   const Vec3 x = ray.at(t);
+  const MediumStack stack_at_x = stack_along(scene, ray, t, camera_stack);
   RGB in_scattered;
   for (size_t i = 0; i < scene.lights().size(); ++i) {
     const Light& light = scene.lights()[i];
@@ -146,14 +306,16 @@ RGB scattered_once(const Scene& scene, const Segment& seg, float t, Pcg32& rng) 
       const auto ls = sample_light(light, x, next_2d(rng));
       if (!ls || ls->radiance.is_black() || !(ls->pdf > 0.0f)) continue;
       const RGB f = scattering_times_phase(seg, t, ray.direction, ls->wi);
-      if (f.is_black() || !unoccluded(scene, int(i), x, *ls)) continue;
-      const RGB tr =
-          reference_transmittance(scene, Ray{x, ls->wi, 0.0f, kInfinity}, ls->distance, kTransmittanceSteps);
+      if (f.is_black()) continue;
+      const Ray shadow = shadow_ray(x, *ls);
+      const auto runs = shadow_runs(scene, shadow, scene.casts_shadows(int(i)), stack_at_x);
+      if (!runs) continue;
+      const RGB tr = transmittance_of_runs(scene, shadow, *runs, kTransmittanceSteps);
       in_scattered += f * tr * ls->radiance * (1.0f / (ls->pdf * float(n)));
     }
   }
   if (in_scattered.is_black()) return in_scattered;
-  return in_scattered * reference_transmittance(scene, ray, t, kTransmittanceSteps);
+  return in_scattered * reference_transmittance(scene, ray, t, kTransmittanceSteps, camera_stack);
 }
 
 // ---- delta tracking, one channel ----
@@ -191,22 +353,31 @@ float ratio_tracking(const Segment& seg, int channel, Pcg32& rng) {
   float tr = 1.0f;
   walk_tentative_collisions(seg, rng, [&](float t, float majorant) {
     tr *= 1.0f - coefficients(seg, t, channel).sigma_t / majorant;
-    return true;
+    return tr != 0.0f;  // an unbounded medium's stretch ends only here
   });
   return tr;
 }
 
-// Light arriving at `origin` from a light sample: surfaces block, media attenuate.
-float light_transmittance(const Scene& scene, int light, Vec3 origin, const LightSample& ls, int channel,
-                          Pcg32& rng) {
-  if (!unoccluded(scene, light, origin, ls)) return 0.0f;
-  return ratio_tracking(make_segment(scene, Ray{origin, ls.wi, 0.0f, kInfinity}, ls.distance, channel),
-                        channel, rng);
+// Light arriving at `origin`, in the media of `stack`, from a light sample: surfaces block as
+// shadow_runs says, each stretch is ratio-tracked in its own medium.
+float light_transmittance(const Scene& scene, int light, Vec3 origin, const LightSample& ls,
+                          const MediumStack& stack, int channel, Pcg32& rng) {
+  const Ray shadow = shadow_ray(origin, ls);
+  const auto runs = shadow_runs(scene, shadow, scene.casts_shadows(light), stack);
+  if (!runs) return 0.0f;
+  float tr = 1.0f;
+  for (const MediumRun& run : *runs) {
+    if (!(run.t1 > run.t0)) continue;
+    tr *= ratio_tracking(make_segment(scene, Ray{origin, ls.wi, run.t0, kInfinity}, run.t1, channel, run.medium),
+                         channel, rng);
+    if (tr == 0.0f) break;
+  }
+  return tr;
 }
 
 // Next-event estimation at a medium collision: every light, one sample each.
-float medium_direct_light(const Scene& scene, const Segment& seg, float t, float sigma_s, int channel,
-                          Pcg32& rng) {
+float medium_direct_light(const Scene& scene, const Segment& seg, float t, float sigma_s,
+                          const MediumStack& stack, int channel, Pcg32& rng) {
   const Vec3 x = seg.ray.at(t);
   float sum = 0.0f;
   for (size_t i = 0; i < scene.lights().size(); ++i) {
@@ -214,7 +385,8 @@ float medium_direct_light(const Scene& scene, const Segment& seg, float t, float
     if (!ls || ls->radiance.is_black() || !(ls->pdf > 0.0f)) continue;
     const float phase = scattering_times_phase(seg, t, seg.ray.direction, ls->wi)[channel] / sigma_s;
     if (!(phase > 0.0f)) continue;
-    sum += phase * ls->radiance[channel] * light_transmittance(scene, int(i), x, *ls, channel, rng) / ls->pdf;
+    sum += phase * ls->radiance[channel] * light_transmittance(scene, int(i), x, *ls, stack, channel, rng) /
+           ls->pdf;
   }
   return sum;
 }
@@ -237,8 +409,8 @@ Vec3 sample_phase_mixture(const Segment& seg, float t, float sigma_s, int channe
   return phase_sample(*chosen, seg.ray.direction, next_2d(rng)).wi;
 }
 
-float surface_direct_light(const Scene& scene, const SurfaceInteraction& si, Vec3 wo, int channel,
-                           Pcg32& rng) {
+float surface_direct_light(const Scene& scene, const SurfaceInteraction& si, Vec3 wo, const MediumStack& stack,
+                           int channel, Pcg32& rng) {
   float sum = 0.0f;
   for (size_t i = 0; i < scene.lights().size(); ++i) {
     const auto ls = sample_light(scene.lights()[i], si.p, next_2d(rng));
@@ -247,21 +419,21 @@ float surface_direct_light(const Scene& scene, const SurfaceInteraction& si, Vec
     const float f = bsdf_eval(si.material->bsdf, si.ns, wo, ls->wi)[channel] * abs_dot(si.ns, ls->wi);
     if (!(f > 0.0f)) continue;
     const Vec3 origin = offset_ray_origin(si.p, si.ng, ls->wi);
-    sum += f * ls->radiance[channel] * light_transmittance(scene, int(i), origin, *ls, channel, rng) / ls->pdf;
+    sum += f * ls->radiance[channel] * light_transmittance(scene, int(i), origin, *ls, stack, channel, rng) /
+           ls->pdf;
   }
   return sum;
 }
 
-// What the ladder does at each kind of surface: diffuse ones scatter, black ones absorb, null
-// ones never get here (nearest_opaque_hit crosses them), dielectrics are out of its scope.
-struct ScattersDiffusely {
-  bool operator()(const DiffuseBsdf&) const { return true; }
-  bool operator()(const BlackBsdf&) const { return false; }
-  bool operator()(const NullBsdf&) const { return false; }
-  bool operator()(const DielectricBsdf&) const {
-    throw std::invalid_argument("reference_delta_tracking: dielectrics are not supported");
-  }
-};
+// n_inside / n_outside of a dielectric hit (inside: the side ng points away from). A priority
+// surface separates the media the stack rules put before and after its crossing; an Off
+// surface is its own IOR against the medium the ray is in (the stack never holds it).
+float dielectric_eta(const MediumStack& stack, const std::optional<MediumEntry>& entry, float material_ior,
+                     bool front_face) {
+  if (!entry) return material_ior / stack.current().ior;
+  const MediumStack::Crossing c = stack.peek(*entry);
+  return front_face ? c.after.ior / c.before.ior : c.before.ior / c.after.ior;
+}
 
 RGB environment(const Scene& scene, Vec3 w) {
   RGB sum;
@@ -277,77 +449,100 @@ RGB surface_emission(const SurfaceInteraction& si, Vec3 wo) {
 }  // namespace
 
 RGB reference_transmittance(const Scene& scene, const Ray& ray, float t_max, int steps) {
+  return exp_negative(optical_depth(scene, ray, t_max, steps, -1));
+}
+
+RGB reference_transmittance(const Scene& scene, const Ray& ray, float t_max, int steps, const MediumStack& stack) {
   Ray clipped = ray;
   clipped.tmax = t_max;
-  const float metres_per_t = length(ray.direction);
-  VolumeContext& ctx = context();
-  scene.volumes().intervals(clipped, ctx);
-  RGB depth;
-  // Shading uses only the context's grid accessors, never its interval list.
-  for (const VolumeInterval& iv : ctx.intervals) {
-    const VolumePrimitive& p = scene.volumes().primitive(iv.primitive);
-    const float dt = (iv.t1 - iv.t0) / float(steps);
-    RGB sum;
-    for (int i = 0; i < steps; ++i) sum += shade_volume(p, ray.at(iv.t0 + (float(i) + 0.5f) * dt), ctx).sigma_t();
-    depth += sum * (dt * metres_per_t);
-  }
-  return exp_negative(depth);
+  return transmittance_of_runs(scene, ray, *medium_runs(scene, clipped, stack, Blocking::kNone), steps);
 }
 
 RGB reference_single_scattering(const Scene& scene, const Ray& ray, int samples, Pcg32& rng) {
-  const auto hit = nearest_opaque_hit(scene, ray);
-  const Segment seg = make_segment(scene, ray, hit ? hit->t : kInfinity);
+  const MediumStack& camera_stack = scene.camera_stack();
+  const Segment seg = single_scattering_segment(scene, ray, camera_stack);
   if (seg.empty() || samples <= 0) return RGB(0.0f);
   const float length = seg.t_hi - seg.t_lo;
+  if (!std::isfinite(length))
+    throw std::invalid_argument("reference_single_scattering: the ray runs to infinity inside a medium");
   RGB sum;
   for (int i = 0; i < samples; ++i)
-    sum += scattered_once(scene, seg, seg.t_lo + rng.next_float() * length, rng);
+    sum += scattered_once(scene, seg, seg.t_lo + rng.next_float() * length, camera_stack, rng);
   return sum * (length / float(samples));  // the uniform pdf is 1 / length
 }
 
 RGB reference_delta_tracking(const Scene& scene, const Ray& camera_ray, ReferenceLimits limits, Pcg32& rng) {
   const int channel = std::min(int(rng.next_float() * 3.0f), 2);
   float radiance = 0.0f, throughput = 1.0f;
-  bool direct = true;  // no scattering yet: the camera sees what this ray reaches
+  // Emission the ray reaches counts only when the ray left the camera or a specular event;
+  // after a diffuse or phase event next-event estimation has already counted it.
+  bool count_emission = true;
+  MediumStack stack = scene.camera_stack();
+  std::vector<Crossed> crossed;  // false hits in front of the seen surface
   Ray ray = camera_ray;
-  int surface_bounces = 0, volume_bounces = 0;
+  int surface_bounces = 0, volume_bounces = 0, boundary_crossings = 0;
   int volume_runs = 0;  // runs of consecutive volume events count once against max_surface_bounces
   bool in_volume_run = false;
   while (throughput > 0.0f) {
-    const auto hit = nearest_opaque_hit(scene, ray);
-    const Segment seg = make_segment(scene, ray, hit ? hit->t : kInfinity, channel);
+    const auto hit = nearest_seen_hit(scene, ray, stack, crossed);
+    const Segment seg = make_segment(scene, ray, hit ? hit->t : kInfinity, channel, stack.current().medium);
     if (const auto t = sample_collision(seg, channel, rng)) {
       const ChannelCoefficients c = coefficients(seg, *t, channel);
       // Absorbed (probability sigma_a / sigma_t), or out of scattering events.
       if (rng.next_float() * c.sigma_t >= c.sigma_s || volume_bounces >= limits.max_volume_bounces ||
           (!in_volume_run && surface_bounces + volume_runs >= limits.max_surface_bounces))
         break;
-      radiance += throughput * medium_direct_light(scene, seg, *t, c.sigma_s, channel, rng);
+      cross_before(stack, crossed, *t);
+      radiance += throughput * medium_direct_light(scene, seg, *t, c.sigma_s, stack, channel, rng);
       ray = Ray{ray.at(*t), sample_phase_mixture(seg, *t, c.sigma_s, channel, rng), 0.0f, kInfinity};
       ++volume_bounces;
       if (!in_volume_run) ++volume_runs;
       in_volume_run = true;
-      direct = false;
+      count_emission = false;
       continue;
     }
+    cross_before(stack, crossed, kInfinity);
     if (!hit) {
-      if (direct) radiance += throughput * environment(scene, ray.direction)[channel];
+      if (count_emission) radiance += throughput * environment(scene, ray.direction)[channel];
       break;
     }
     const SurfaceInteraction si = scene.interaction(ray, *hit);
     const Vec3 wo = -ray.direction;
-    if (direct) radiance += throughput * surface_emission(si, wo)[channel];
-    const bool diffuse = std::visit(ScattersDiffusely{}, si.material->bsdf);
-    if (!diffuse || surface_bounces + volume_runs >= limits.max_surface_bounces) break;
-    radiance += throughput * surface_direct_light(scene, si, wo, channel, rng);
-    const float u_lobe = rng.next_float();
-    const auto bs = bsdf_sample(si.material->bsdf, si.ns, wo, u_lobe, next_2d(rng));
-    if (!bs || dot(si.ng, bs->wi) * dot(si.ng, wo) <= 0.0f) break;
+    const std::optional<MediumEntry> entry = scene.medium_entry(hit->geom_id);
+    const Bsdf& bsdf = si.material->bsdf;
+    if (std::holds_alternative<NullBsdf>(bsdf)) {
+      // A priority null surface whose crossing is real (Off ones are never seen): the medium
+      // changes, nothing else happens.
+      stack.cross(*entry);
+      if (++boundary_crossings > kMaxNullCrossings) break;
+      ray = Ray{offset_ray_origin(si.p, si.ng, ray.direction), ray.direction, 0.0f, kInfinity};
+      continue;
+    }
+    if (count_emission) radiance += throughput * surface_emission(si, wo)[channel];
+    if (surface_bounces + volume_runs >= limits.max_surface_bounces) break;
+    std::optional<BsdfSample> bs;
+    if (const auto* d = std::get_if<DielectricBsdf>(&bsdf)) {
+      // Specular: no next-event estimation, so emission the new ray reaches counts.
+      const Bsdf interface = DielectricBsdf{dielectric_eta(stack, entry, d->ior, dot(si.ng, wo) > 0.0f)};
+      const float u_lobe = rng.next_float();
+      bs = bsdf_sample(interface, si.ns, wo, u_lobe, next_2d(rng));
+      if (!bs) break;
+      // Only a transmitted path gets past the surface (and a priority surface's medium with it).
+      if (entry && dot(si.ng, bs->wi) * dot(si.ng, wo) < 0.0f) stack.cross(*entry);
+      count_emission = true;
+    } else if (std::holds_alternative<DiffuseBsdf>(bsdf)) {
+      radiance += throughput * surface_direct_light(scene, si, wo, stack, channel, rng);
+      const float u_lobe = rng.next_float();
+      bs = bsdf_sample(bsdf, si.ns, wo, u_lobe, next_2d(rng));
+      if (!bs || dot(si.ng, bs->wi) * dot(si.ng, wo) <= 0.0f) break;
+      count_emission = false;
+    } else {
+      break;  // black surfaces absorb
+    }
     throughput *= bs->weight[channel];
     ray = Ray{offset_ray_origin(si.p, si.ng, bs->wi), bs->wi, 0.0f, kInfinity};
     ++surface_bounces;
     in_volume_run = false;
-    direct = false;
   }
   return in_channel(channel, 3.0f * radiance);
 }

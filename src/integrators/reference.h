@@ -13,6 +13,17 @@
 //   3. reference_delta_tracking: all orders of scattering by scalar delta tracking in one
 //      colour channel, next-event estimation with ratio tracking.
 //
+// Nested media (media/medium_stack.h, scenes with priority surfaces): every rung starts a
+// camera ray in Scene::camera_stack() and walks each ray's surface crossings in order
+// (EmbreeScene::all_hits) with its own copy of the stack, applying the MediumStack rules
+// itself: priority surfaces whose crossing is false are crossed without interaction, real
+// priority null surfaces change the medium and are crossed, a dielectric's crossing joins the
+// stack only when the sampled direction transmits. The medium the stack puts a stretch in is
+// a homogeneous unbounded primitive (VolumeScene::intervals' `medium`), tracked like any other.
+// Shadow rays carry a copy of the stack: Off non-null surfaces block, priority dielectrics
+// block unless RenderDefaults::priority_shadows, null surfaces never do, and each stretch
+// between priority crossings is attenuated by the medium the rules give it (no Fresnel).
+//
 // Conventions of all three: rays have unit directions (t is in metres); overlapping volume
 // primitives add their coefficients, and the phase function at a point is the exact
 // per-channel mixture sum_i sigma_s,i phase_i / sigma_s. (Production weights the lobes by
@@ -27,6 +38,7 @@
 #include "core/ray.h"
 #include "core/rgb.h"
 #include "core/rng.h"
+#include "media/medium_stack.h"
 #include "scene/scene.h"
 
 namespace caligo {
@@ -37,6 +49,12 @@ namespace caligo {
 // a homogeneous primitive exact instead of blurring its boundary across a step).
 // Surfaces are ignored: visibility is the caller's business.
 RGB reference_transmittance(const Scene& scene, const Ray& ray, float t_max, int steps);
+// The same through nested media: the ray starts in the media of `stack`, and each priority
+// surface it crosses within [ray.tmin, t_max) updates a copy of it by the rules; each stretch
+// between crossings adds the medium the rules give it to the volume primitives. No surface
+// blocks (visibility is still the caller's business). A stretch of an unbounded medium that
+// runs to infinity has transmittance 0 in every channel the medium extinguishes.
+RGB reference_transmittance(const Scene& scene, const Ray& ray, float t_max, int steps, const MediumStack& stack);
 
 // The single-scattered medium radiance arriving at ray.origin along -ray.direction, and
 // nothing else: no surface shading, no surface or environment emission seen directly, no
@@ -44,6 +62,13 @@ RGB reference_transmittance(const Scene& scene, const Ray& ray, float t_max, int
 // block it, media attenuate it); the path ends at the nearest non-null surface. Averages
 // `samples` uniform distance samples over the ray's stretch of the volume intervals; area and
 // environment lights get a few light samples each per distance sample, delta lights one.
+// Nested media: the ray starts in Scene::camera_stack(); it crosses false hits and real
+// priority null boundaries (the medium changes there) and ends at the first other surface it
+// sees, a real dielectric crossing included: no refraction, so light seen through glass is not
+// single-scattered light of this estimator. Distance samples cover the stack media of each
+// stretch too, and shadow rays follow the shadow rules above from the stack at the sample.
+// Throws std::invalid_argument when the ray runs to infinity inside a medium (no uniform
+// distance pdf exists there).
 RGB reference_single_scattering(const Scene& scene, const Ray& ray, int samples, Pcg32& rng);
 
 // How many scattering events a reference path may have, counted as the production integrator
@@ -59,13 +84,20 @@ struct ReferenceLimits {
 // skipped, each run of blocks tracked with its own bound).
 // One colour channel is traced per call, chosen uniformly: the result holds 3x the estimate
 // in that channel and zero in the others, so its expectation is the full RGB radiance and
-// chromatic media need no spectral MIS. Every light is reached by next-event estimation only
-// (all lights, one sample each, ratio-tracking transmittance), so emission from surfaces and
-// the environment counts only when the camera ray sees it directly, before any scattering.
+// chromatic media need no spectral MIS.
+// Lights are reached two ways, never both for one path vertex, so nothing counts twice:
+//   - after a diffuse surface event or a phase-function event, by next-event estimation only
+//     (all lights, one sample each, ratio-tracking transmittance along the shadow rules);
+//   - emission on hit (area lights, emissive surfaces, the environment) counts only when the
+//     ray that reaches it left the camera or a specular (dielectric) event, which next-event
+//     estimation cannot sample. Light through glass onto a diffuse surface (caustics) is
+//     therefore found only by paths that hit the light after the glass.
 // Diffuse surfaces scatter (NEE plus cosine sampling), null surfaces are crossed, black
-// surfaces absorb; volume emission is ignored.
-// Throws std::invalid_argument when the path meets a dielectric: specular transport would
-// need the emission-on-hit this estimator leaves out.
+// surfaces absorb; dielectrics reflect or refract by bsdf_sample (Fresnel-chosen, weight 1 or
+// 1/eta^2) with the IOR ratio of the media on either side as production computes it: for a
+// priority surface the stack's media before and after the crossing (MediumStack::peek), for an
+// Off one its IOR over the current medium's. Each dielectric event counts as a surface bounce.
+// Volume emission is ignored.
 RGB reference_delta_tracking(const Scene& scene, const Ray& ray, ReferenceLimits limits, Pcg32& rng);
 
 enum class ReferenceEstimator { kSingleScattering, kDeltaTracking };

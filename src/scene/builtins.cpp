@@ -223,6 +223,138 @@ const char* const kWymanSpot = R"({"type": "spot", "position": [0.6, 4.2, -0.4],
      "inner_angle": 26, "outer_angle": 32, "color": [1, 1, 1], "intensity": 300, "shadow_map_size": 1024,
      "gobo": {"generate": {"kind": "stained_glass", "resolution": 256, "seed": 1}}})";
 
+// ---- Nested dielectrics (media/medium_stack.h) ----
+
+// Two overlapping boxes of absorbing media bounded by null surfaces with priorities: red is
+// high (100), green normal (200), so the overlap is red. `caligo render priority-cubes
+// --priority green=very_high` makes it green. The boxes float 1 cm above the ground so no
+// boundary is coplanar with it.
+constexpr const char* kPriorityCubes = R"json({
+  "camera": {"position": [0.4, 2.0, 4.2], "look_at": [0, 0.55, 0], "fov": 38, "resolution": [256, 192]},
+  "render": {"spp": 32, "max_depth": 8, "max_volume_bounces": 8},
+  "materials": {
+    "ground": {"type": "diffuse", "reflectance": 0.8},
+    "red": {"type": "null", "interior": "red", "priority": "high"},
+    "green": {"type": "null", "interior": "green", "priority": "normal"}
+  },
+  "media": {"red": {"sigma_a": [0.2, 3, 3]},
+            "green": {"sigma_a": [3, 0.2, 3]}},
+  "shapes": [
+    {"type": "rectangle", "corner": [-10, 0, 10], "edge1": [20, 0, 0], "edge2": [0, 0, -20], "material": "ground"},
+    {"type": "box", "min": [-1.2, 0.01, -0.6], "max": [0.3, 1.2, 0.6], "material": "red"},
+    {"type": "box", "min": [-0.3, 0.01, -0.6], "max": [1.2, 1.2, 0.6], "material": "green",
+     "transform": [{"rotate": {"angle": 20, "axis": [0, 1, 0]}}, {"translate": [0, 0, -0.3]}]}
+  ],
+  "lights": [
+    {"type": "quad", "corner": [-1, 3.5, -1], "edge1": [2, 0, 0], "edge2": [0, 0, 2], "radiance": 4},
+    {"type": "environment", "color": [0.8, 0.9, 1], "radiance": 0.4}
+  ]
+})json";
+
+// A square glass (dielectric 1.5, priority high) on a table: a 5 mm bottom slab and four 4 mm
+// walls, closed boxes of one material that merge (equal priorities) into one glass; they
+// overlap rather than touch so that no two faces are coplanar. The water (1.33, priority
+// normal, faintly blue-green) is a box overlapping the walls and the bottom by half a
+// millimetre, so it refracts glass -> water with no air gap; an ice cube (1.31, priority very
+// high, faintly cloudy) floats in it. Units: metres (the glass is 8 cm wide, 12 cm tall).
+constexpr const char* kGlassOfWater = R"json({
+  "camera": {"position": [0.05, 0.16, 0.36], "look_at": [0, 0.06, 0], "fov": 30, "resolution": [200, 256]},
+  "render": {"spp": 64, "max_depth": 32, "max_volume_bounces": 16, "priority_shadows": true},
+  "materials": {
+    "table": {"type": "diffuse", "reflectance": [0.75, 0.7, 0.6]},
+    "wall": {"type": "diffuse", "reflectance": 0.6},
+    "glass": {"type": "dielectric", "ior": 1.5, "priority": "high"},
+    "water": {"type": "dielectric", "ior": 1.33, "priority": "normal", "interior": "water"},
+    "ice": {"type": "dielectric", "ior": 1.31, "priority": "very_high", "interior": "ice"}
+  },
+  "media": {"water": {"sigma_a": [3, 0.8, 1.0], "sigma_s": 0.2},
+            "ice": {"sigma_s": 25, "sigma_a": 0.2, "phase": {"type": "hg", "g": 0.6}}},
+  "shapes": [
+    {"type": "rectangle", "corner": [-1, -0.0005, 1], "edge1": [2, 0, 0], "edge2": [0, 0, -2], "material": "table"},
+    {"type": "rectangle", "corner": [-1, -0.0005, -0.3], "edge1": [2, 0, 0], "edge2": [0, 1, 0], "material": "wall"},
+    {"type": "box", "min": [-0.0399, 0, -0.0399], "max": [0.0399, 0.005, 0.0399], "material": "glass"},
+    {"type": "box", "min": [-0.04, 0.0005, -0.04], "max": [-0.036, 0.12, 0.04], "material": "glass"},
+    {"type": "box", "min": [0.036, 0.0005, -0.04], "max": [0.04, 0.12, 0.04], "material": "glass"},
+    {"type": "box", "min": [-0.0365, 0.0005, -0.0399], "max": [0.0365, 0.1199, -0.036], "material": "glass"},
+    {"type": "box", "min": [-0.0365, 0.0005, 0.036], "max": [0.0365, 0.1199, 0.0399], "material": "glass"},
+    {"type": "box", "min": [-0.0365, 0.0045, -0.0365], "max": [0.0365, 0.09, 0.0365], "material": "water"},
+    {"type": "box", "min": [-0.01, -0.01, -0.01], "max": [0.01, 0.01, 0.01], "material": "ice",
+     "transform": [{"rotate": {"angle": 25, "axis": [0, 1, 0]}}, {"rotate": {"angle": 12, "axis": [1, 0, 0]}},
+                   {"translate": [0.006, 0.085, 0.004]}]}
+  ],
+  "lights": [
+    {"type": "quad", "corner": [-0.25, 0.45, -0.2], "edge1": [0.5, 0, 0], "edge2": [0, 0.15, 0.3], "radiance": 12},
+    {"type": "environment", "color": [0.9, 0.95, 1], "radiance": 0.3}
+  ]
+})json";
+
+// A pool: a 100 m water plane at y = 0 (open, normal up, so the water is below it) over a
+// sandy floor 3 m down, with rocks on the floor and a half-submerged buoy; sun and sky.
+// Shadow rays pass the water surface (priority_shadows), so the sun lights the floor.
+// `camera` is the camera's JSON; `extra` adds shapes (the split view's clipping box).
+std::string pool_scene(const char* camera, const char* extra) {
+  return std::string(R"json({
+  "camera": )json") + camera + R"json(,
+  "render": {"spp": 32, "max_depth": 12, "max_volume_bounces": 8, "priority_shadows": true},
+  "materials": {
+    "water": {"type": "dielectric", "ior": 1.33, "priority": "normal", "interior": "pool"},
+    "clip": {"type": "null", "priority": "very_high"},
+    "sand": {"type": "diffuse", "reflectance": [0.75, 0.65, 0.45]},
+    "rock": {"type": "diffuse", "reflectance": [0.35, 0.33, 0.3]},
+    "buoy": {"type": "diffuse", "reflectance": [0.9, 0.3, 0.05]}
+  },
+  "media": {"pool": {"sigma_a": [0.35, 0.06, 0.08], "sigma_s": 0.04}},
+  "shapes": [
+    {"type": "rectangle", "corner": [-50, 0, 50], "edge1": [100, 0, 0], "edge2": [0, 0, -100],
+     "material": "water", "open": true},
+    {"type": "rectangle", "corner": [-50, -3, 50], "edge1": [100, 0, 0], "edge2": [0, 0, -100], "material": "sand"},
+    {"type": "sphere", "center": [-1.2, -2.6, -5], "radius": 0.7, "material": "rock"},
+    {"type": "sphere", "center": [1.5, -2.8, -7], "radius": 0.9, "material": "rock"},
+    {"type": "sphere", "center": [0.3, -2.9, -3], "radius": 0.3, "material": "rock"},
+    {"type": "sphere", "center": [0.6, 0, -4], "radius": 0.4, "material": "buoy"})json" + extra + R"json(
+  ],
+  "lights": [
+    {"type": "directional", "direction": [-0.3, -1, -0.5], "angular_radius": 0.27, "color": [1, 0.95, 0.85],
+     "irradiance": 3},
+    {"type": "environment", "color": [0.45, 0.65, 1], "radiance": 0.5}
+  ]
+})json";
+}
+
+const char* const kUnderwaterCamera =
+    R"({"position": [0, -1.6, 1], "look_at": [0, 1, -3], "fov": 55, "resolution": [256, 192]})";
+const char* const kAboveWaterCamera =
+    R"({"position": [0, 2, 3], "look_at": [0, -1.5, -4], "fov": 50, "resolution": [256, 192]})";
+// 2 cm below the water line, inside the clipping box: the box's front face is the "window".
+const char* const kSplitCamera =
+    R"({"position": [0, -0.02, 0.5], "look_at": [0, -0.02, -4], "fov": 55, "resolution": [256, 256]})";
+const char* const kSplitBox =
+    R"(,
+    {"type": "box", "min": [-1, -1, -0.2], "max": [1, 1, 1], "material": "clip"})";
+
+// Subsurface scattering as a dense medium inside a dielectric: the COLLADA duck (closed, about
+// 1.6 m long) as a 1.4 dielectric around a waxy medium (albedo 0.9-0.99, extinction 25 per
+// metre: a mean free path of 4 cm), lit from behind by a quad light so thin parts glow. Shadow
+// rays pass the duck's surface (priority_shadows), so light reaches the medium by next-event
+// estimation, not only by paths that happen to refract out onto the light.
+constexpr const char* kSss = R"json({
+  "camera": {"position": [0.9, 1.3, 3.4], "look_at": [0.1, 0.85, 0], "fov": 38, "resolution": [256, 192]},
+  "render": {"spp": 32, "max_depth": 64, "max_volume_bounces": 256, "priority_shadows": true},
+  "materials": {
+    "floor": {"type": "diffuse", "reflectance": 0.5},
+    "wax": {"type": "dielectric", "ior": 1.4, "priority": "normal", "interior": "wax"}
+  },
+  "media": {"wax": {"albedo": [0.99, 0.96, 0.9], "extinction": 25, "phase": {"type": "hg", "g": 0.2}}},
+  "shapes": [
+    {"type": "rectangle", "corner": [-5, 0.09, -5], "edge1": [0, 0, 10], "edge2": [10, 0, 0], "material": "floor"},
+    {"type": "mesh", "file": "/usr/share/assimp/models/Collada/duck.dae", "material": "wax"}
+  ],
+  "lights": [
+    {"type": "quad", "corner": [-0.8, 0.3, -1.6], "edge1": [1.8, 0, 0], "edge2": [0, 1.6, 0.3], "radiance": 12},
+    {"type": "environment", "radiance": 0.04}
+  ]
+})json";
+
 const std::vector<BuiltinScene>& all_builtins() {
   static const std::vector<BuiltinScene> scenes = {
       {"default",
@@ -249,6 +381,27 @@ const std::vector<BuiltinScene>& all_builtins() {
        kFire},
       {"mesh-volume", "the COLLADA duck from assimp-testmodels filled with smoke (a closed-mesh volume, even/odd counting)",
        kMeshVolume},
+      {"priority-cubes",
+       "two overlapping boxes of red and green absorbing media bounded by null surfaces; red has the higher "
+       "priority, so the overlap is red (--priority green=very_high makes it green)",
+       kPriorityCubes},
+      {"glass-of-water",
+       "nested dielectrics: a square glass (five merged glass boxes, priority high) of slightly blue-green water "
+       "(a box overlapping the walls, priority normal) with a floating ice cube (priority very high)",
+       kGlassOfWater},
+      {"underwater",
+       "a pool seen from below the surface: an open water plane (priority normal, absorbing and scattering) over "
+       "a sandy floor, sun and sky",
+       pool_scene(kUnderwaterCamera, "")},
+      {"underwater-above", "the underwater pool seen from above the surface", pool_scene(kAboveWaterCamera, "")},
+      {"underwater-split",
+       "the underwater pool seen from the water line: the camera sits in a clipping box (null, priority very "
+       "high, vacuum) whose front face shows above and below the water at once",
+       pool_scene(kSplitCamera, kSplitBox)},
+      {"sss",
+       "subsurface scattering: the COLLADA duck as a 1.4 dielectric around a dense waxy medium (albedo ~0.97, "
+       "25 per metre), lit from behind",
+       kSss},
       {"wyman-20k", "Wyman & Ramsey: a point light in fog over a ground plane, a 20,480-triangle sphere occluder",
        wyman_scene("sphere", 20000, kWymanSphere, kWymanPoint)},
       {"wyman-70k", "Wyman & Ramsey: a point light in fog, a 70,688-triangle torus-knot occluder",

@@ -12,8 +12,11 @@
 #include <nlohmann/json.hpp>
 
 #include "core/math.h"
+#include "geometry/mesh_closure.h"
+#include "scene/mesh_loader.h"
 #include "scene/json_reader.h"
 #include "scene/light_parser.h"
+#include "scene/material_priority.h"
 #include "scene/shared_readers.h"
 #include "scene/transform_parser.h"
 #include "scene/volume_parser.h"
@@ -26,6 +29,7 @@ namespace fs = std::filesystem;
 constexpr double kMaxResolution = 16384;
 constexpr double kMaxSpp = 1'000'000;
 constexpr double kMaxDepth = 10'000;
+// Dielectrics and null boundaries alike: 1 (vacuum) to 10, beyond any real material.
 constexpr double kMaxIor = 10;
 constexpr double kMaxFrames = 100'000;
 
@@ -108,13 +112,14 @@ CameraDesc parse_camera(const JsonCursor& c) {
 
 RenderDefaults parse_render(const JsonCursor& c) {
   ObjectReader r(c, "the render settings");
-  r.allow({"spp", "max_depth", "max_volume_bounces", "seed"});
+  r.allow({"spp", "max_depth", "max_volume_bounces", "seed", "priority_shadows"});
   RenderDefaults render;
   render.spp = int(r.integer_or("spp", render.spp, Range::closed(1, kMaxSpp)));
   render.max_depth = int(r.integer_or("max_depth", render.max_depth, Range::closed(0, kMaxDepth)));
   render.max_volume_bounces =
       int(r.integer_or("max_volume_bounces", render.max_volume_bounces, Range::closed(0, kMaxDepth)));
   if (auto seed = r.optional("seed")) render.seed = seed->unsigned_integer();
+  render.priority_shadows = r.boolean_or("priority_shadows", render.priority_shadows);
   r.finish();
   return render;
 }
@@ -145,38 +150,77 @@ RealtimeDefaults parse_realtime(const JsonCursor& c) {
 
 // ---- materials ----
 
-Material parse_material(const JsonCursor& c, const std::string& name) {
+// "priority": an integer in [0, kMaxPriority] or a level's name.
+int read_priority(const JsonCursor& c) {
+  if (c.is_string()) {
+    if (const auto level = priority_from_name(c.string())) return *level;
+    c.fail("unknown priority " + c.describe() + "; valid names: " + priority_names() +
+           ", or an integer in [0, " + std::to_string(kMaxPriority) + "]");
+  }
+  if (!c.is_number())
+    c.fail("expected a priority: an integer in [0, " + std::to_string(kMaxPriority) + "] or one of " +
+           priority_names() + ", got " + c.describe());
+  return int(c.integer(Range::closed(0, kMaxPriority)));
+}
+
+// The nested-dielectric keys (media/medium_stack.h): "priority" and "interior".
+void read_bounded_medium(ObjectReader& r, const std::string& type, const std::vector<NamedMedium>& media,
+                         Material& m) {
+  const auto priority = r.optional("priority");
+  if (priority) m.priority = read_priority(*priority);
+  const auto interior = r.optional("interior");
+  if (interior) {
+    m.interior = find_medium(*interior, media);
+    const NamedMedium& medium = media[size_t(m.interior)];
+    if (!is_homogeneous(medium.shader))
+      interior->fail("medium \"" + medium.name +
+                     "\" has a falloff or noise, but a surface's interior medium must be homogeneous "
+                     "(constant density); only volume primitives may use it");
+  }
+  if ((interior || m.priority != kPriorityOff) && type != "dielectric" && type != "null")
+    (interior ? *interior : *priority)
+        .fail(std::string(type == "emissive" ? "an " : "a ") + type + " material cannot bound a medium: only dielectric and null surfaces bound media");
+  if (interior && !priority) m.priority = kPriorityNormal;
+  if (interior && m.priority == kPriorityOff)
+    priority->fail("expected a priority other than off for a material with an \"interior\" (off objects "
+                   "never enter the medium stack), got " + priority->describe());
+}
+
+Material parse_material(const JsonCursor& c, const std::string& name, const std::vector<NamedMedium>& media) {
   ObjectReader r(c, "a material");
   const std::string type = r.choice("type", {"diffuse", "dielectric", "emissive", "null"});
   r.set_what("a " + type + " material");
   Material m;
   m.name = name;
   if (type == "diffuse") {
-    r.allow({"type", "reflectance", "emission", "two_sided"});
+    r.allow({"type", "reflectance", "emission", "two_sided", "priority", "interior"});
     m.bsdf = DiffuseBsdf{r.rgb("reflectance", Range::closed(0, 1))};
     m.emission = r.rgb_or("emission", RGB(0.0f));
     m.two_sided_emission = r.boolean_or("two_sided", false);
   } else if (type == "dielectric") {
-    r.allow({"type", "ior"});
-    m.bsdf = DielectricBsdf{r.number_or("ior", 1.5f, Range::closed(1, kMaxIor))};
+    r.allow({"type", "ior", "priority", "interior"});
+    m.ior = r.number_or("ior", 1.5f, Range::closed(1, kMaxIor));
+    m.bsdf = DielectricBsdf{m.ior};
   } else if (type == "emissive") {
-    r.allow({"type", "radiance", "color", "two_sided"});
+    r.allow({"type", "radiance", "color", "two_sided", "priority", "interior"});
     m.bsdf = BlackBsdf{};
     const RGB color = r.rgb_or("color", RGB(1.0f));
     m.emission = color * r.rgb("radiance");
     m.two_sided_emission = r.boolean_or("two_sided", false);
   } else {
-    r.allow({"type"});
+    r.allow({"type", "ior", "priority", "interior"});
     m.bsdf = NullBsdf{};
+    m.ior = r.number_or("ior", 1.0f, Range::closed(1, kMaxIor));
   }
+  read_bounded_medium(r, type, media, m);
   r.finish();
   return m;
 }
 
-std::vector<Material> parse_materials(const JsonCursor& c) {
+std::vector<Material> parse_materials(const JsonCursor& c, const std::vector<NamedMedium>& media) {
   std::vector<Material> materials;
   for (const auto& [name, m] : named_definitions(c, "material", "materials"))
-    materials.push_back(parse_material(m, name));
+    materials.push_back(parse_material(m, name, media));
   return materials;
 }
 
@@ -201,22 +245,22 @@ MeshFileShape read_mesh(ObjectReader& r, const std::string& base_dir) {
 
 ShapeGeometry read_geometry(ObjectReader& r, const std::string& type, const std::string& base_dir) {
   if (type == "sphere") {
-    r.allow({"type", "center", "radius", "material", "transform"});
+    r.allow({"type", "center", "radius", "material", "transform", "open"});
     const Vec3 center = r.vec3("center");
     return SphereShape{center, r.number("radius", size_range())};
   }
   if (type == "box") {
-    r.allow({"type", "min", "max", "material", "transform"});
+    r.allow({"type", "min", "max", "material", "transform", "open"});
     const BoxCorners box = read_box_corners(r);
     return BoxShape{box.min, box.max};
   }
   if (type == "rectangle") {
-    r.allow({"type", "corner", "edge1", "edge2", "material", "transform"});
+    r.allow({"type", "corner", "edge1", "edge2", "material", "transform", "open"});
     RectangleShape rect;
     read_parallelogram(r, rect.corner, rect.edge1, rect.edge2);
     return rect;
   }
-  r.allow({"type", "file", "generate", "skip_degenerate", "material", "transform"});
+  r.allow({"type", "file", "generate", "skip_degenerate", "material", "transform", "open"});
   if (const auto g = r.optional("generate")) {
     if (r.has("file")) r.fail("a mesh takes either \"file\" or \"generate\", not both");
     ObjectReader gr(*g, "a generated mesh");
@@ -232,6 +276,30 @@ ShapeGeometry read_geometry(ObjectReader& r, const std::string& type, const std:
   return read_mesh(r, base_dir);
 }
 
+// The open-surface rule: a surface whose material has a priority bounds a medium, so it must be
+// closed unless the scene says "open": true (a water plane: the medium lies behind its normal).
+// Spheres, boxes and generated meshes are closed; a rectangle is open; a mesh file is loaded
+// now and its edges counted (mesh_closure.h).
+void check_closed(const ObjectReader& r, const ShapeDesc& shape, const Material& material) {
+  if (material.priority == kPriorityOff) return;
+  const std::string bounds = "material \"" + material.name + "\" bounds a medium but ";
+  const std::string fix = "; close it or mark the shape \"open\": true";
+  if (std::holds_alternative<RectangleShape>(shape.geometry)) r.fail(bounds + "a rectangle is open" + fix);
+  const auto* file = std::get_if<MeshFileShape>(&shape.geometry);
+  if (!file) return;
+  const TriangleMesh mesh = load_mesh(file->path, shape.where,
+                                      file->skip_degenerate ? DegenerateTriangles::kRemove : DegenerateTriangles::kReject);
+  const MeshClosure c = check_closure(mesh);
+  if (c.boundary_edges > 0)
+    r.fail(bounds + "this mesh is open (" + std::to_string(c.boundary_edges) + " boundary edges)" + fix);
+  if (c.non_manifold_edges > 0)
+    r.fail(bounds + "this mesh is not a closed surface (" + std::to_string(c.non_manifold_edges) +
+           " edges shared by more than two triangles)" + fix);
+  if (c.misoriented_edges > 0)
+    r.fail(bounds + "this mesh is inconsistently oriented (" + std::to_string(c.misoriented_edges) +
+           " edges whose two triangles wind the same way); fix its winding or mark the shape \"open\": true");
+}
+
 ShapeDesc parse_shape(const JsonCursor& c, const std::vector<Material>& materials,
                       const std::string& base_dir) {
   ObjectReader r(c, "a shape");
@@ -242,6 +310,8 @@ ShapeDesc parse_shape(const JsonCursor& c, const std::vector<Material>& material
   shape.geometry = read_geometry(r, type, base_dir);
   shape.material = find_material(r.required("material"), materials);
   if (auto t = r.optional("transform")) shape.transform = parse_transform(*t);
+  const bool open = r.boolean_or("open", false);
+  if (!open) check_closed(r, shape, materials[size_t(shape.material)]);
   r.finish();
   return shape;
 }
@@ -258,7 +328,9 @@ SceneDesc parse_scene_text(const std::string& json_text, const std::string& file
   scene.camera = parse_camera(r.required("camera"));
   if (auto c = r.optional("render")) scene.render = parse_render(*c);
   if (auto c = r.optional("realtime")) scene.realtime = parse_realtime(*c);
-  if (auto c = r.optional("materials")) scene.materials = parse_materials(*c);
+  // Media first: materials name their interior medium.
+  if (auto c = r.optional("media")) scene.media = parse_media(*c);
+  if (auto c = r.optional("materials")) scene.materials = parse_materials(*c, scene.media);
   if (auto c = r.optional("shapes"))
     for (const JsonCursor& s : c->elements("an array of shapes"))
       scene.shapes.push_back(parse_shape(s, scene.materials, base_dir));
@@ -270,11 +342,9 @@ SceneDesc parse_scene_text(const std::string& json_text, const std::string& file
       scene.light_options.push_back(std::move(parsed.options));
     }
   }
-  std::vector<NamedMedium> media;
-  if (auto c = r.optional("media")) media = parse_media(*c);
   if (auto c = r.optional("volumes"))
     for (const JsonCursor& v : c->elements("an array of volumes"))
-      scene.volumes.push_back(parse_volume(v, media, base_dir));
+      scene.volumes.push_back(parse_volume(v, scene.media, base_dir));
   r.finish();
   return scene;
 }

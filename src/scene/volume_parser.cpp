@@ -115,12 +115,6 @@ VolumeShader parse_medium(const JsonCursor& c) {
   return s;
 }
 
-const VolumeShader& find_medium(const JsonCursor& c, const std::vector<NamedMedium>& media) {
-  std::vector<std::string> names;
-  for (const NamedMedium& m : media) names.push_back(m.name);
-  return media[find_definition(c, names, "medium", "media")].shader;
-}
-
 VolumeShape parse_volume_shape(ObjectReader& r, const std::string& type, const Transform& placement) {
   if (type == "sphere") {
     const Vec3 center = r.vec3("center");
@@ -219,6 +213,12 @@ void check_channels(const ObjectReader& r, const VolumeShader& shader) {
 
 }  // namespace
 
+int find_medium(const JsonCursor& c, const std::vector<NamedMedium>& media) {
+  std::vector<std::string> names;
+  for (const NamedMedium& m : media) names.push_back(m.name);
+  return int(find_definition(c, names, "medium", "media"));
+}
+
 std::vector<NamedMedium> parse_media(const JsonCursor& c) {
   std::vector<NamedMedium> media;
   for (const auto& [name, m] : named_definitions(c, "medium", "media"))
@@ -243,8 +243,9 @@ VolumePrimitive parse_volume(const JsonCursor& c, const std::vector<NamedMedium>
     r.allow({"type", "file", "dimensions", "voxel_size", "origin", "filter", "medium", "transform"});
   Transform placement;
   if (auto t = r.optional("transform")) placement = parse_transform(*t);
-  const VolumeShader& medium = find_medium(r.required("medium"), media);
   VolumePrimitive v;
+  v.medium = find_medium(r.required("medium"), media);
+  const VolumeShader& medium = media[size_t(v.medium)].shader;
   v.shader = medium;
   if (type == "mesh") {
     v.shape = parse_mesh_volume(r, placement, base_dir);

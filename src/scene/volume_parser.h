@@ -12,9 +12,12 @@ namespace caligo {
 
 // "media": {"fog": {...}, ...}
 std::vector<NamedMedium> parse_media(const JsonCursor& c);
+// The index in `media` of the medium named by the string `c` holds; a located error listing
+// the defined media otherwise.
+int find_medium(const JsonCursor& c, const std::vector<NamedMedium>& media);
 // One element of "volumes": a sphere, box or closed mesh filled with a named medium, or a
 // grid (VDB/NanoVDB file, raw dense array or the generator) giving that medium's density.
-// Files are read now, relative to `base_dir`.
+// Files are read now, relative to `base_dir`. Sets VolumePrimitive::medium to the medium's index.
 VolumePrimitive parse_volume(const JsonCursor& c, const std::vector<NamedMedium>& media,
                              const std::string& base_dir);
 
