@@ -76,13 +76,15 @@ RGB surface_direct_light(const Scene& scene, const SurfaceInteraction& si, Vec3 
   if (!ls || ls->radiance.is_black() || !(ls->pdf > 0.0f)) return RGB(0.0f);
   const RGB f = bsdf_eval(si.material->bsdf, si.ns, wo, ls->wi) * abs_dot(si.ns, ls->wi);
   if (f.is_black() || dot(si.ng, ls->wi) * dot(si.ng, wo) <= 0.0f) return RGB(0.0f);
+  bool through_interface = false;
   const RGB tr = light_transmittance(scene, offset_ray_origin(si.p, si.ng, ls->wi), si.p, *ls,
                                      scene.casts_shadows(index), march_jitter(scene, sampler, depth), scratch,
-                                     counters);
+                                     counters, kInfinity, &through_interface);
   if (tr.is_black()) return RGB(0.0f);
   const float light_pdf_sa = pick_pmf * ls->pdf;
-  const float weight =
-      ls->delta ? 1.0f : power_heuristic(1, light_pdf_sa, 1, bsdf_pdf(si.material->bsdf, si.ns, wo, ls->wi));
+  const float weight = ls->delta || through_interface
+                           ? 1.0f
+                           : power_heuristic(1, light_pdf_sa, 1, bsdf_pdf(si.material->bsdf, si.ns, wo, ls->wi));
   return f * tr * ls->radiance * (weight / light_pdf_sa);
 }
 

@@ -115,10 +115,15 @@ std::optional<std::vector<MediumRun>> shadow_runs(const Scene& scene, const Ray&
   return medium_runs(scene, ray, stack, Blocking::kShadow);
 }
 
-// The shadow ray from `origin` to a light sample: unit direction, stopping short of the light.
-Ray shadow_ray(Vec3 origin, const LightSample& ls) {
-  const float tmax = std::isfinite(ls.distance) ? ls.distance * (1.0f - kShadowEpsilon) : kInfinity;
-  return Ray{origin, ls.wi, 0.0f, tmax};
+// The shadow ray from `origin` (possibly offset off the surface the sample was taken at,
+// `sampled_from`) to a light sample: unit direction, aimed at the sampled point and stopping
+// short of it. The distance is measured from the origin: the sample's own distance, taken from
+// `sampled_from`, would let a ray from an offset origin reach the light's surface.
+Ray shadow_ray(Vec3 origin, Vec3 sampled_from, const LightSample& ls) {
+  if (!std::isfinite(ls.distance)) return Ray{origin, ls.wi, 0.0f, kInfinity};
+  const Vec3 to_light = sampled_from + ls.wi * ls.distance - origin;
+  const float d = length(to_light);
+  return Ray{origin, to_light / d, 0.0f, d * (1.0f - kShadowEpsilon)};
 }
 
 // One majorant interval of a primitive along a ray, [t0, t1) (half-open, so a point on the
@@ -307,7 +312,7 @@ RGB scattered_once(const Scene& scene, const Segment& seg, float t, const Medium
       if (!ls || ls->radiance.is_black() || !(ls->pdf > 0.0f)) continue;
       const RGB f = scattering_times_phase(seg, t, ray.direction, ls->wi);
       if (f.is_black()) continue;
-      const Ray shadow = shadow_ray(x, *ls);
+      const Ray shadow = shadow_ray(x, x, *ls);
       const auto runs = shadow_runs(scene, shadow, scene.casts_shadows(int(i)), stack_at_x);
       if (!runs) continue;
       const RGB tr = transmittance_of_runs(scene, shadow, *runs, kTransmittanceSteps);
@@ -360,15 +365,15 @@ float ratio_tracking(const Segment& seg, int channel, Pcg32& rng) {
 
 // Light arriving at `origin`, in the media of `stack`, from a light sample: surfaces block as
 // shadow_runs says, each stretch is ratio-tracked in its own medium.
-float light_transmittance(const Scene& scene, int light, Vec3 origin, const LightSample& ls,
+float light_transmittance(const Scene& scene, int light, Vec3 origin, Vec3 sampled_from, const LightSample& ls,
                           const MediumStack& stack, int channel, Pcg32& rng) {
-  const Ray shadow = shadow_ray(origin, ls);
+  const Ray shadow = shadow_ray(origin, sampled_from, ls);
   const auto runs = shadow_runs(scene, shadow, scene.casts_shadows(light), stack);
   if (!runs) return 0.0f;
   float tr = 1.0f;
   for (const MediumRun& run : *runs) {
     if (!(run.t1 > run.t0)) continue;
-    tr *= ratio_tracking(make_segment(scene, Ray{origin, ls.wi, run.t0, kInfinity}, run.t1, channel, run.medium),
+    tr *= ratio_tracking(make_segment(scene, Ray{origin, shadow.direction, run.t0, kInfinity}, run.t1, channel, run.medium),
                          channel, rng);
     if (tr == 0.0f) break;
   }
@@ -385,7 +390,7 @@ float medium_direct_light(const Scene& scene, const Segment& seg, float t, float
     if (!ls || ls->radiance.is_black() || !(ls->pdf > 0.0f)) continue;
     const float phase = scattering_times_phase(seg, t, seg.ray.direction, ls->wi)[channel] / sigma_s;
     if (!(phase > 0.0f)) continue;
-    sum += phase * ls->radiance[channel] * light_transmittance(scene, int(i), x, *ls, stack, channel, rng) /
+    sum += phase * ls->radiance[channel] * light_transmittance(scene, int(i), x, x, *ls, stack, channel, rng) /
            ls->pdf;
   }
   return sum;
@@ -419,7 +424,7 @@ float surface_direct_light(const Scene& scene, const SurfaceInteraction& si, Vec
     const float f = bsdf_eval(si.material->bsdf, si.ns, wo, ls->wi)[channel] * abs_dot(si.ns, ls->wi);
     if (!(f > 0.0f)) continue;
     const Vec3 origin = offset_ray_origin(si.p, si.ng, ls->wi);
-    sum += f * ls->radiance[channel] * light_transmittance(scene, int(i), origin, *ls, stack, channel, rng) /
+    sum += f * ls->radiance[channel] * light_transmittance(scene, int(i), origin, si.p, *ls, stack, channel, rng) /
            ls->pdf;
   }
   return sum;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <variant>
 
 #include "raymarch/march.h"
 
@@ -13,7 +14,7 @@ constexpr float kShadowEpsilon = 1e-4f;
 namespace {
 
 RGB nested_transmittance(const Scene& scene, const Ray& shadow, bool casts_shadows, float jitter,
-                         float segment_t, PathScratch& scratch, PathCounters& counters) {
+                         float segment_t, PathScratch& scratch, PathCounters& counters, bool* through_interface) {
   MediumStack& stack = scratch.work;
   stack.assign(scratch.stack);
   for (const PendingCrossing& p : scratch.pending)
@@ -47,6 +48,8 @@ RGB nested_transmittance(const Scene& scene, const Ray& shadow, bool casts_shado
     if (tr.is_black()) return RGB(0.0f);
     if (i < hits.size()) {
       if (const auto entry = scene.medium_entry(hits[i].geom_id)) stack.cross(*entry);
+      if (through_interface && std::holds_alternative<DielectricBsdf>(scene.material(hits[i]).bsdf))
+        *through_interface = true;
       stretch.tmin = hits[i].t;
     }
   }
@@ -57,14 +60,15 @@ RGB nested_transmittance(const Scene& scene, const Ray& shadow, bool casts_shado
 
 RGB light_transmittance(const Scene& scene, Vec3 origin, Vec3 sampled_from, const LightSample& ls,
                         bool casts_shadows, float jitter, PathScratch& scratch, PathCounters& counters,
-                        float segment_t) {
+                        float segment_t, bool* through_interface) {
+  if (through_interface) *through_interface = false;
   Ray shadow{origin, ls.wi, 0.0f, kInfinity};
   if (std::isfinite(ls.distance)) {
     shadow.direction = sampled_from + ls.wi * ls.distance - origin;
     shadow.tmax = 1.0f - kShadowEpsilon;
   }
   if (scene.has_priority_objects())
-    return nested_transmittance(scene, shadow, casts_shadows, jitter, segment_t, scratch, counters);
+    return nested_transmittance(scene, shadow, casts_shadows, jitter, segment_t, scratch, counters, through_interface);
   if (casts_shadows) {
     ++counters.rays;
     if (scene.surfaces().occluded(shadow)) return RGB(0.0f);

@@ -42,13 +42,15 @@ RGB scattered_light(const Scene& scene, const Ray& ray, const TransmittanceRecor
   if (!ls || ls->radiance.is_black() || !(ls->pdf > 0.0f)) return RGB(0.0f);
   const RGB phase = mixed_phase_eval(record, step, ray.direction, ls->wi);
   if (phase.is_black()) return RGB(0.0f);
-  const RGB tr =
-      light_transmittance(scene, x, x, *ls, scene.casts_shadows(light_index), jitter, scratch, counters, t);
+  bool through_interface = false;
+  const RGB tr = light_transmittance(scene, x, x, *ls, scene.casts_shadows(light_index), jitter, scratch,
+                                     counters, t, &through_interface);
   if (tr.is_black()) return RGB(0.0f);
   const float light_pdf_sa = pick_pmf * ls->pdf;
   const float w =
-      ls->delta ? 1.0f
-                : power_heuristic(1, light_pdf_sa, 1, mixed_phase_pdf(record, step, ray.direction, ls->wi));
+      ls->delta || through_interface
+          ? 1.0f
+          : power_heuristic(1, light_pdf_sa, 1, mixed_phase_pdf(record, step, ray.direction, ls->wi));
   return step.sigma_s * record.transmittance(t) * tr * ls->radiance * phase * (w / light_pdf_sa);
 }
 

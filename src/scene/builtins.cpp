@@ -272,12 +272,12 @@ constexpr const char* kGlassOfWater = R"json({
   "shapes": [
     {"type": "rectangle", "corner": [-1, -0.0005, 1], "edge1": [2, 0, 0], "edge2": [0, 0, -2], "material": "table"},
     {"type": "rectangle", "corner": [-1, -0.0005, -0.3], "edge1": [2, 0, 0], "edge2": [0, 1, 0], "material": "wall"},
-    {"type": "box", "min": [-0.0399, 0, -0.0399], "max": [0.0399, 0.005, 0.0399], "material": "glass"},
+    {"type": "box", "min": [-0.0398, 0, -0.0398], "max": [0.0398, 0.005, 0.0398], "material": "glass"},
     {"type": "box", "min": [-0.04, 0.0005, -0.04], "max": [-0.036, 0.12, 0.04], "material": "glass"},
     {"type": "box", "min": [0.036, 0.0005, -0.04], "max": [0.04, 0.12, 0.04], "material": "glass"},
     {"type": "box", "min": [-0.0365, 0.0005, -0.0399], "max": [0.0365, 0.1199, -0.036], "material": "glass"},
     {"type": "box", "min": [-0.0365, 0.0005, 0.036], "max": [0.0365, 0.1199, 0.0399], "material": "glass"},
-    {"type": "box", "min": [-0.0365, 0.0045, -0.0365], "max": [0.0365, 0.09, 0.0365], "material": "water"},
+    {"type": "box", "min": [-0.0364, 0.0045, -0.0364], "max": [0.0364, 0.09, 0.0364], "material": "water"},
     {"type": "box", "min": [-0.01, -0.01, -0.01], "max": [0.01, 0.01, 0.01], "material": "ice",
      "transform": [{"rotate": {"angle": 25, "axis": [0, 1, 0]}}, {"rotate": {"angle": 12, "axis": [1, 0, 0]}},
                    {"translate": [0.006, 0.085, 0.004]}]}
