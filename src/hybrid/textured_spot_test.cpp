@@ -281,14 +281,20 @@ TEST(TexturedSpot, TwoColourGoboGivesColouredShaftsOnTheirSides) {
               1.0, 0.02);
 }
 
-// (4) An occluder in the cone: agreement with a 400-step brute-force march of the same model.
-TEST(TexturedSpot, ShadowedSpotMatchesBruteForceMarch) {
-  const Scene s = make_scene({testing::box_mesh({-0.6f, 3.0f, -0.6f}, {0.4f, 3.4f, 0.4f})});
+// A 30-degree spot through a 16x16 colour-gradient gobo (both occluder tests).
+SpotLight gradient_spot() {
   SpotLight spot = make_spot(30.0f, 22.0f);
   std::vector<RGB> px(16 * 16);
   for (int y = 0; y < 16; ++y)
     for (int x = 0; x < 16; ++x) px[size_t(y * 16 + x)] = RGB(0.2f + 0.05f * x, 1.0f - 0.05f * y, 0.5f);
   spot.gobo.image = std::make_shared<const GoboImage>(16, 16, px);
+  return spot;
+}
+
+// (4) An occluder in the cone: agreement with a 400-step brute-force march of the same model.
+TEST(TexturedSpot, ShadowedSpotMatchesBruteForceMarch) {
+  const Scene s = make_scene({testing::box_mesh({-0.6f, 3.0f, -0.6f}, {0.4f, 3.4f, 0.4f})});
+  const SpotLight spot = gradient_spot();
   const auto map = render_shadow_map(s.raster, Light{spot}, 512, s.raster.bounds());
   ASSERT_TRUE(map);
   const auto& table = AirlightTable::shared();
@@ -317,11 +323,7 @@ TEST(TexturedSpot, ShadowedSpotMatchesBruteForceMarch) {
 TEST(TexturedSpot, ShadowVolumeSegmentsMatchBruteForceMarch) {
   const TriangleMesh box = testing::box_mesh({-0.6f, 3.0f, -0.6f}, {0.4f, 3.4f, 0.4f});
   const Scene s = make_scene({box});
-  SpotLight spot = make_spot(30.0f, 22.0f);
-  std::vector<RGB> px(16 * 16);
-  for (int y = 0; y < 16; ++y)
-    for (int x = 0; x < 16; ++x) px[size_t(y * 16 + x)] = RGB(0.2f + 0.05f * x, 1.0f - 0.05f * y, 0.5f);
-  spot.gobo.image = std::make_shared<const GoboImage>(16, 16, px);
+  const SpotLight spot = gradient_spot();
   const auto map = render_shadow_map(s.raster, Light{spot}, 512, s.raster.bounds());
   ASSERT_TRUE(map);
   const ShadowVolume volume = build_shadow_volume(MeshEdges(box), spot.position, 40.0f);
