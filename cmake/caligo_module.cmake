@@ -26,3 +26,23 @@ function(caligo_test name)
   caligo_target_options(${name}_test)
   add_test(NAME ${name} COMMAND ${name}_test)
 endfunction()
+
+# caligo_plugin(name SOURCES ... DEPS ...): a module (name.so, no "lib" prefix) that keeps a
+# heavy optional library (OpenImageIO, OpenVDB, assimp) out of every process that does not use
+# it; core/module_loader.h loads it on first use. All plugins go next to the caligo executable;
+# that folder is also compiled into the loader as a fallback, so test binaries elsewhere in the
+# build tree find them. Static libraries linked in (position-independent ones) stay private
+# to the plugin (--exclude-libs). Symbols keep default visibility: with -fvisibility=hidden the
+# plugin's instantiations of OpenVDB templates would hide some static members (once flags)
+# while others, under OPENVDB_API classes, are still bound by libopenvdb, and
+# openvdb::initialize() then crashes on the mix.
+set(CALIGO_PLUGIN_DIR "${PROJECT_BINARY_DIR}/apps/caligo")
+function(caligo_plugin name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_library(${name} MODULE ${ARG_SOURCES})
+  set_target_properties(${name} PROPERTIES PREFIX "" LIBRARY_OUTPUT_DIRECTORY "${CALIGO_PLUGIN_DIR}")
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/src)
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS})
+  target_link_options(${name} PRIVATE -Wl,--exclude-libs,ALL)
+  caligo_target_options(${name})
+endfunction()

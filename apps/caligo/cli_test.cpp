@@ -36,10 +36,13 @@ class Cli : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  RunResult run(const std::string& args) const {
+  RunResult run(const std::string& args) const { return run_with_env("", args); }
+
+  // `env` is prepended to the command line ("NAME=value ...").
+  RunResult run_with_env(const std::string& env, const std::string& args) const {
     const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
     const std::string command =
-        std::string(CALIGO_BINARY) + " " + args + " >" + out.string() + " 2>" + err.string();
+        env + " " + std::string(CALIGO_BINARY) + " " + args + " >" + out.string() + " 2>" + err.string();
     const int status = std::system(command.c_str());
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
   }
@@ -258,6 +261,25 @@ TEST_F(Cli, PriorityOverrideChangesTheImage) {
     EXPECT_NE(r.err.find(expected), std::string::npos) << args << ": " << r.err;
     EXPECT_FALSE(fs::exists(exr)) << args;
   }
+}
+
+// --light-sampler: the three strategies render; power and tree make different images of a
+// scene with many lights (two lights and a sky in `default`); anything else is exit 2.
+TEST_F(Cli, LightSamplerOption) {
+  const fs::path tree = dir_ / "tree.exr", power = dir_ / "power.exr", uniform = dir_ / "uniform.exr";
+  const std::string base = "render default --res 24x16 --spp 2 -q ";
+  ASSERT_EQ(run(base + "-o " + tree.string()).exit_code, 0);
+  ASSERT_EQ(run(base + "--light-sampler power -o " + power.string()).exit_code, 0);
+  ASSERT_EQ(run(base + "--light-sampler uniform -o " + uniform.string()).exit_code, 0);
+  const fs::path explicit_tree = dir_ / "tree2.exr";
+  ASSERT_EQ(run(base + "--light-sampler tree -o " + explicit_tree.string()).exit_code, 0);
+  EXPECT_EQ(run("compare " + tree.string() + " " + explicit_tree.string() + " --max-rmse 0").exit_code, 0);
+  EXPECT_EQ(run("compare " + tree.string() + " " + power.string() + " --max-rmse 1e-9").exit_code, 1);
+  const fs::path bad = dir_ / "bad.exr";
+  const RunResult r = run(base + "--light-sampler bvh -o " + bad.string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--light-sampler: expected tree, power or uniform, got \"bvh\""), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(bad));
 }
 
 }  // namespace
@@ -534,4 +556,54 @@ TEST_F(Cli, BenchTableRejectsBadOptions) {
     EXPECT_NE(r.err.find(c.where), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(dir_ / "out" / "table.md"));
   }
+}
+
+// Process start-up: OpenImageIO (~260 shared libraries, ~100 MB), OpenVDB and assimp are
+// plugins (caligo_oiio.so, caligo_vdb.so, caligo_assimp.so) loaded only by runs that use them.
+// The dynamic loader's own log (LD_DEBUG=files) lists every object a run maps, at start-up
+// or by dlopen: the cause of slow start-up is checked, not a noisy wall time.
+namespace {
+
+const char* const kHeavyLibraries[] = {"libOpenImageIO", "libopenvdb", "libassimp",
+                                       "caligo_oiio.so", "caligo_vdb.so", "caligo_assimp.so"};
+
+// The file names of the objects the dynamic loader mapped, from LD_DEBUG=files lines such as
+// "  1234:	file=libtbb.so.12 [0];  needed by ..." (paths reduced to their last component).
+std::vector<std::string> loaded_objects(const std::string& ld_debug_log) {
+  std::vector<std::string> names;
+  std::istringstream lines(ld_debug_log);
+  for (std::string line; std::getline(lines, line);) {
+    const size_t at = line.find("file=");
+    if (at == std::string::npos) continue;
+    const std::string file = line.substr(at + 5, line.find_first_of(" \t", at + 5) - at - 5);
+    names.push_back(fs::path(file).filename().string());
+  }
+  return names;
+}
+
+bool any_named(const std::vector<std::string>& names, const std::string& part) {
+  return std::any_of(names.begin(), names.end(),
+                     [&](const std::string& n) { return n.find(part) != std::string::npos; });
+}
+
+}  // namespace
+
+TEST_F(Cli, HeavyLibrariesAreLoadedOnlyByRunsThatUseThem) {
+  for (const std::string args : {std::string("--help"), "render default --res 16x16 --spp 1 -q -o " +
+                                                            (dir_ / "small.exr").string()}) {
+    const RunResult r = run_with_env("LD_DEBUG=files", args);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::vector<std::string> loaded = loaded_objects(r.err);
+    ASSERT_TRUE(any_named(loaded, "libtbb")) << "no loader log for: " << args;  // the log is there
+    for (const char* heavy : kHeavyLibraries) EXPECT_FALSE(any_named(loaded, heavy)) << heavy << " in: " << args;
+  }
+  EXPECT_TRUE(fs::exists(dir_ / "small.png"));  // the PNG preview needs no OpenImageIO
+
+  // The same log sees the plugins when a run needs them.
+  const RunResult vdb = run_with_env("LD_DEBUG=files", "generate cloud --res 16 -q -o " + (dir_ / "c.vdb").string());
+  ASSERT_EQ(vdb.exit_code, 0) << vdb.err;
+  const std::vector<std::string> with_vdb = loaded_objects(vdb.err);
+  EXPECT_TRUE(any_named(with_vdb, "caligo_vdb.so"));
+  EXPECT_TRUE(any_named(with_vdb, "libopenvdb"));
+  EXPECT_FALSE(any_named(with_vdb, "libOpenImageIO"));
 }

@@ -1,5 +1,5 @@
 // caligo render [SCENE.json | BUILTIN] [-o out.exr] [--spp N] [--res WxH] [--threads N] [--seed S]
-//               [--priority MATERIAL=LEVEL ...]
+//               [--priority MATERIAL=LEVEL ...] [--light-sampler tree|power|uniform]
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -33,6 +33,10 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                   "Maximum scattering events in media (overrides the scene)");
   cmd->add_option("--distance-sampling", o.distance_sampling,
                   "Distance sampling for light in media: mis (default), density or equiangular");
+  cmd->add_option("--light-sampler", o.light_sampler,
+                  "How next-event estimation picks a light: tree (light tree: importance at the receiver), "
+                  "power (in proportion to power, the same everywhere) or uniform")
+      ->default_str(light_sampler_name(RenderSettings{}.light_sampler));
   cmd->add_option("--time", o.time, "Render the scene at this time in seconds (camera path, light keys)");
   cmd->add_option("--exposure", o.exposure, "Exposure of the PNG preview, in stops");
   cmd->add_option("--priority", o.priorities,
@@ -90,6 +94,12 @@ RenderSettings settings_from(const RenderOptions& o, const SceneDesc& desc) {
     else
       throw InputError(kCommandLine,
                        "--distance-sampling: expected mis, density or equiangular, got \"" + d + "\"");
+  }
+  if (o.light_sampler) {
+    const auto kind = light_sampler_from_name(*o.light_sampler);
+    if (!kind)
+      throw InputError(kCommandLine, "--light-sampler: expected tree, power or uniform, got \"" + *o.light_sampler + "\"");
+    s.light_sampler = *kind;
   }
   return s;
 }

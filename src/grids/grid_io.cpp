@@ -89,10 +89,6 @@ ChannelQuery optional_query(const char* channel, const std::optional<std::string
 
 }  // namespace
 
-void throw_grid_file_error(const std::string& path, const SourceLocation& where, const std::string& what) {
-  throw InputError(where, path + ": " + what);
-}
-
 GridFileFormat grid_file_format(const std::string& path, const SourceLocation& where) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw_grid_file_error(path, where, "no such grid file");

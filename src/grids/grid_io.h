@@ -2,7 +2,8 @@
 // works on NanoVDB, as Cycles does: OpenVDB grids are converted on load), dense raw float
 // arrays made sparse on load, grid files written (by the generator), and a vdb_print-like
 // description of a file. No OpenVDB or NanoVDB header is included here: only
-// grid_vdb_read.cpp and grid_vdb_write.cpp compile OpenVDB.
+// grid_vdb_read.cpp and grid_vdb_write.cpp compile OpenVDB, and they form the caligo_vdb.so
+// plugin, loaded by the first call that needs OpenVDB (vdb_plugin.h).
 //
 // Every problem with a file (missing, unreadable, wrong magic, truncated or corrupt, missing
 // grid, wrong grid type, absurd size) is an InputError that names the file and `where` (the

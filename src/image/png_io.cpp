@@ -1,12 +1,13 @@
 #include "image/png_io.h"
 
-#include <OpenImageIO/imageio.h>
+#include <png.h>
 
-#include <algorithm>
-#include <memory>
+#include <csetjmp>
+#include <cstdio>
 #include <stdexcept>
 
 #include "core/atomic_file.h"
+#include "image/oiio_plugin.h"
 
 namespace caligo {
 
@@ -23,33 +24,59 @@ void check_buffer(int width, int height, const std::vector<uint8_t>& rgb8) {
   }
 }
 
+// libpng reports errors through a callback that must not return: it records the message and
+// longjmps back to write_rows, which owns nothing that needs a destructor.
+struct PngErrors {
+  char message[256] = "";
+};
+
+void on_png_error(png_structp png, png_const_charp message) {
+  auto* errors = static_cast<PngErrors*>(png_get_error_ptr(png));
+  std::snprintf(errors->message, sizeof errors->message, "%s", message);
+  png_longjmp(png, 1);
+}
+
+void on_png_warning(png_structp, png_const_charp) {}
+
+// Returns an empty string on success, else libpng's message. Plain C control flow only:
+// setjmp/longjmp must not skip C++ destructors.
+std::string write_rows(std::FILE* file, int width, int height, const uint8_t* rgb8) {
+  PngErrors errors;
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &errors, on_png_error, on_png_warning);
+  if (png == nullptr) return "out of memory";
+  png_infop info = png_create_info_struct(png);
+  if (info == nullptr) {
+    png_destroy_write_struct(&png, nullptr);
+    return "out of memory";
+  }
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    return errors.message;
+  }
+  png_init_io(png, file);
+  png_set_IHDR(png, info, png_uint_32(width), png_uint_32(height), 8, PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_write_info(png, info);
+  for (int y = 0; y < height; ++y) png_write_row(png, rgb8 + size_t(y) * size_t(width) * 3);
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
+  return "";
+}
+
 void write_png_now(const std::string& file, const std::string& path, int width, int height,
                    const std::vector<uint8_t>& rgb8) {
-  // Ask for the PNG codec by name rather than by the file's extension: the temporary name keeps
-  // ".png" today, but write_png must write a PNG whatever the names look like.
-  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create("png");
-  if (!out) throw std::runtime_error("cannot write PNG file " + path + ": " + OIIO::geterror());
-  OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
-  bool ok = out->open(file, spec) && out->write_image(OIIO::TypeDesc::UINT8, rgb8.data()) && out->close();
-  if (!ok) throw std::runtime_error("cannot write PNG file " + path + ": " + out->geterror());
+  std::FILE* out = std::fopen(file.c_str(), "wb");
+  if (out == nullptr) throw std::runtime_error("cannot write PNG file " + path + ": cannot create " + file);
+  std::string error = write_rows(out, width, height, rgb8.data());
+  if (std::fclose(out) != 0 && error.empty()) error = "cannot finish writing " + file;
+  if (!error.empty()) throw std::runtime_error("cannot write PNG file " + path + ": " + error);
 }
 
 void write_gif_now(const std::string& file, const std::string& path, int width, int height,
                    const std::vector<std::vector<uint8_t>>& frames, float fps) {
-  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create("gif");
-  if (!out) throw std::runtime_error("cannot write GIF file " + path + ": " + OIIO::geterror());
-  OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
-  const int rate[2] = {std::max(1, int(fps + 0.5f)), 1};
-  spec.attribute("FramesPerSecond", OIIO::TypeRational, rate);
-  spec.attribute("gif:LoopCount", 0);  // loop forever
-  const std::vector<OIIO::ImageSpec> specs(frames.size(), spec);
-  bool ok = out->open(file, int(specs.size()), specs.data());
-  for (size_t i = 0; ok && i < frames.size(); ++i) {
-    if (i > 0) ok = out->open(file, spec, OIIO::ImageOutput::AppendSubimage);
-    ok = ok && out->write_image(OIIO::TypeDesc::UINT8, frames[i].data());
-  }
-  ok = ok && out->close();
-  if (!ok) throw std::runtime_error("cannot write GIF file " + path + ": " + out->geterror());
+  std::string error;
+  if (!oiio_plugin("needed to write GIF files").write_gif(file, width, height, frames, fps, &error))
+    throw std::runtime_error("cannot write GIF file " + path + ": " + error);
 }
 
 }  // namespace

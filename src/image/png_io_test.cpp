@@ -1,5 +1,5 @@
-// The PNG preview through OpenImageIO: bytes written are the bytes read back, atomically.
-// (This binary links OpenImageIO; the other image tests do not.)
+// The PNG preview through libpng, read back by OpenImageIO (an independent decoder): bytes
+// written are the bytes read back, atomically. (This binary links OpenImageIO; others do not.)
 #include "image/png_io.h"
 
 #include <gtest/gtest.h>

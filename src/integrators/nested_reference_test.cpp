@@ -143,10 +143,12 @@ MeanEstimate image_mean(const Scene& scene, int spp, Sample&& sample) {
 struct Limits {
   int max_depth = 16;           // production max_depth = the ladder's max_surface_bounces
   int max_volume_bounces = 256;
+  bool absorption_by_weight = true;
 };
 
 MeanEstimate production_mean(const Scene& scene, int spp, Limits limits, uint64_t seed = 1) {
   PathSettings settings;
+  settings.absorption_by_weight = limits.absorption_by_weight;
   settings.max_depth = limits.max_depth;
   settings.max_volume_bounces = limits.max_volume_bounces;
   return image_mean(scene, spp, [&](const Camera& camera, int x, int y, int s) {

@@ -18,8 +18,18 @@ using sample_dim::bounce;
 struct PathState {
   RGB throughput{1.0f};
   bool specular_bounce = true;  // the camera ray counts as specular: no MIS on what it sees
+  // Only specular events so far (the camera ray, mirrors, glass): what a ray sees now is what
+  // the camera sees, so an environment with visible = false shows black to it.
+  bool camera_view = true;
   float scatter_pdf = 0.0f;     // solid-angle pdf of the direction that produced the current ray
   Vec3 scatter_origin;          // where that direction was sampled
+  // The light choice next-event estimation made at that vertex, whose pmf the MIS weight of a
+  // light hit needs: at a surface, pmf(scatter_origin, scatter_normal); after scattering in a
+  // medium, pmf_segment(scatter_segment), the segment volume NEE chose its light for.
+  const LightSampler* light_sampler = nullptr;
+  Vec3 scatter_normal;
+  bool scattered_in_medium = false;
+  Ray scatter_segment;
   int depth = 0;                // scattering events so far (surface and volume)
   int surface_bounces = 0;
   int volume_bounces = 0;
@@ -40,16 +50,31 @@ struct PathState {
   bool may_start_event(int max_depth) const { return surface_bounces + volume_runs < max_depth; }
 };
 
+// The probability that next-event estimation at the previous vertex chose `light`.
+float light_choice_pmf(const PathState& state, int light) {
+  return state.scattered_in_medium
+             ? state.light_sampler->pmf_segment(state.scatter_segment, light)
+             : state.light_sampler->pmf(state.scatter_origin, state.scatter_normal, light);
+}
+
 float mis_weight_for_hit(const Scene& scene, const PathState& state, int light, Vec3 wi, Vec3 p, Vec3 n) {
   if (state.specular_bounce) return 1.0f;
-  const float light_pdf_sa = scene.light_selection_pmf(light) *
-                             light_pdf(scene.lights()[size_t(light)], state.scatter_origin, wi, p, n);
+  const float light_pdf_sa =
+      light_choice_pmf(state, light) * light_pdf(scene.lights()[size_t(light)], state.scatter_origin, wi, p, n);
   return power_heuristic(1, state.scatter_pdf, 1, light_pdf_sa);
+}
+
+// Cycles' camera-ray visibility of the world, extended through specular chains (see
+// EnvironmentLight::visible): NEE never reaches those rays, so lighting is unchanged.
+bool hidden_from_view(const Light& light, const PathState& state) {
+  const auto* env = std::get_if<EnvironmentLight>(&light);
+  return env && !env->visible && state.camera_view;
 }
 
 RGB escaped(const Scene& scene, const PathState& state, Vec3 w) {
   RGB sum;
   for (int i : scene.infinite_lights()) {
+    if (hidden_from_view(scene.lights()[size_t(i)], state)) continue;
     const RGB le = escaped_radiance(scene.lights()[size_t(i)], w);
     if (!le.is_black()) sum += le * mis_weight_for_hit(scene, state, i, w, {}, {});
   }
@@ -64,13 +89,18 @@ RGB emitted(const Scene& scene, const PathState& state, const SurfaceInteraction
   return si.material->emission * mis_weight_for_hit(scene, state, si.light, -wo, si.p, si.ng);
 }
 
-// Next-event estimation at a surface: one light chosen in proportion to power, one point on it.
-RGB surface_direct_light(const Scene& scene, const SurfaceInteraction& si, Vec3 wo, const Sampler& sampler,
-                         int depth, PathScratch& scratch, PathCounters& counters) {
-  const DiscreteDistribution& selection = scene.light_selection();
-  if (selection.empty()) return RGB(0.0f);
-  float pick_pmf = 0.0f;
-  const int index = selection.sample(sampler.get_1d(bounce(depth, sample_dim::kLightSelect)), &pick_pmf);
+// The normal surface light choice uses: light is only taken from the side wo is on (the
+// geometric test below), so lights behind the surface get no share.
+Vec3 light_choice_normal(const SurfaceInteraction& si, Vec3 wo) { return face_forward(si.ng, wo); }
+
+// Next-event estimation at a surface: one light chosen by the light sampler, one point on it.
+RGB surface_direct_light(const Scene& scene, const LightSampler& lights, const SurfaceInteraction& si, Vec3 wo,
+                         const Sampler& sampler, int depth, PathScratch& scratch, PathCounters& counters) {
+  const LightChoice choice =
+      lights.sample(si.p, light_choice_normal(si, wo), sampler.get_1d(bounce(depth, sample_dim::kLightSelect)));
+  if (choice.light < 0) return RGB(0.0f);
+  const int index = choice.light;
+  const float pick_pmf = choice.pmf;
   const Light& light = scene.lights()[size_t(index)];
   const auto ls = sample_light(light, si.p, sampler.get_2d(bounce(depth, sample_dim::kLightPosition)));
   if (!ls || ls->radiance.is_black() || !(ls->pdf > 0.0f)) return RGB(0.0f);
@@ -182,20 +212,46 @@ SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, c
     const float u = sampler.get_1d(bounce(state.vertex(), sample_dim::kVolumeNeeRoulette));
     if (nee_probability > 0.0f && u < nee_probability)
       out.radiance += state.throughput *
-                      volume_direct_light(scene, ray, record, sampler, state.vertex(),
+                      volume_direct_light(scene, *state.light_sampler, ray, record, sampler, state.vertex(),
                                           settings.distance_sampling, scratch, counters) /
                       nee_probability;
   }
 
-  const auto collision =
-      record.sample_free_flight(sampler.get_1d(bounce(state.vertex(), sample_dim::kFreeFlightChannel)),
-                                sampler.get_1d(bounce(state.vertex(), sample_dim::kFreeFlightDistance)));
-  if (!collision) {
+  // Absorption by weight, not by chance (PathSettings::absorption_by_weight; implicit capture):
+  // of the three fates of a path in the segment -- scatter (probability S = avg_c of the integral
+  // of sigma_s,c T_c), pass (P = avg_c T_c at the end) or be absorbed (the rest) -- only the first
+  // two are sampled, in proportion S : P, and both carry the surviving fraction S + P as weight.
+  // A collision is drawn with density proportional to avg_c sigma_s,c T_c (the sampler light
+  // connections use); passing carries the record's exact T. A purely absorbing medium (S = 0)
+  // has zero variance; albedo 1 (S + P = 1) is exactly free-flight sampling. Sampling pass
+  // against S alone (pass weight T / (1 - S)) was worse in dense, bright media: its passes carry
+  // tiny weights that Russian roulette then turns into noise (3x the standard error on `sss`).
+  // A path that may not scatter again just takes T.
+  const float u = sampler.get_1d(bounce(state.vertex(), sample_dim::kFreeFlightDistance));
+  const float u_channel = sampler.get_1d(bounce(state.vertex(), sample_dim::kFreeFlightChannel));
+  std::optional<DistanceSample> collision;
+  if (settings.absorption_by_weight) {
     const RGB t_end = record.transmittance_end();
-    state.throughput *= t_end / t_end.average();
-    return SegmentOutcome::kPassed;
+    const float scatter = may_scatter ? record.scatter_weight_total() : 0.0f, pass = t_end.average();
+    const float survive = scatter + pass;
+    const float p_scatter = survive > 0.0f ? scatter / survive : 0.0f;
+    if (!(u < p_scatter)) {
+      state.throughput *= p_scatter > 0.0f ? t_end * (survive / pass) : t_end;
+      return state.throughput.is_black() ? SegmentOutcome::kAbsorbed : SegmentOutcome::kPassed;
+    }
+    collision = record.sample_scatter_density(u_channel, u / p_scatter);
+    if (!collision) return SegmentOutcome::kAbsorbed;  // p_scatter > 0 implies a collision
+    // The collision's density is p_scatter x pdf = avg_c sigma_s,c(t) T_c(t) / survive.
+    collision->pdf *= p_scatter;
+  } else {
+    collision = record.sample_free_flight(u_channel, u);
+    if (!collision) {
+      const RGB t_end = record.transmittance_end();
+      state.throughput *= t_end / t_end.average();
+      return SegmentOutcome::kPassed;
+    }
+    if (!may_scatter) return SegmentOutcome::kAbsorbed;
   }
-  if (!may_scatter) return SegmentOutcome::kAbsorbed;
   const MarchStep& step = record.steps()[size_t(collision->step)];
   state.throughput *= step.sigma_s * record.transmittance(collision->t) / collision->pdf;
   if (state.throughput.is_black()) return SegmentOutcome::kAbsorbed;
@@ -207,8 +263,11 @@ SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, c
   state.throughput *= ps.weight;
   if (state.throughput.is_black()) return SegmentOutcome::kAbsorbed;
   state.specular_bounce = false;
+  state.camera_view = false;
   state.scatter_pdf = ps.pdf;
   state.scatter_origin = x;
+  state.scattered_in_medium = true;
+  state.scatter_segment = light_choice_segment(ray, record);
   ray = {x, ps.wi, 0.0f, kInfinity};
   ++state.volume_bounces;
   if (!state.in_volume_run) ++state.volume_runs;
@@ -226,6 +285,7 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
                       PathCounters& counters, PathScratch& scratch) {
   PathSample out;
   PathState state;
+  state.light_sampler = &scene.light_sampler(settings.light_sampler);
   // Scenes without priority surfaces take exactly the paths they took before nested media.
   const bool nested = scene.has_priority_objects();
   const bool has_volumes = !scene.volumes().empty() || scene.volumes().has_media();
@@ -274,7 +334,8 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
 
     if (!is_specular(si.material->bsdf))
       out.radiance +=
-          state.throughput * surface_direct_light(scene, si, wo, sampler, state.vertex(), scratch, counters);
+          state.throughput *
+          surface_direct_light(scene, *state.light_sampler, si, wo, sampler, state.vertex(), scratch, counters);
 
     // A dielectric refracts with the IORs of the media actually on either side.
     const Bsdf* bsdf = &si.material->bsdf;
@@ -292,8 +353,11 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
     if (transmits && entry) scratch.stack.cross(*entry);
     state.throughput *= bs->weight;
     state.specular_bounce = bs->specular;
+    state.camera_view = state.camera_view && bs->specular;
     state.scatter_pdf = bs->pdf;
     state.scatter_origin = si.p;
+    state.scatter_normal = light_choice_normal(si, wo);
+    state.scattered_in_medium = false;
     ray = {offset_ray_origin(si.p, si.ng, bs->wi), bs->wi, 0.0f, kInfinity};
     ++state.surface_bounces;
     state.in_volume_run = false;

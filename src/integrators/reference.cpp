@@ -440,9 +440,15 @@ float dielectric_eta(const MediumStack& stack, const std::optional<MediumEntry>&
   return front_face ? c.after.ior / c.before.ior : c.before.ior / c.after.ior;
 }
 
-RGB environment(const Scene& scene, Vec3 w) {
+// `camera_view`: the ray left the camera through specular events only, so an environment
+// with visible = false is not seen (EnvironmentLight::visible).
+RGB environment(const Scene& scene, Vec3 w, bool camera_view) {
   RGB sum;
-  for (int i : scene.infinite_lights()) sum += escaped_radiance(scene.lights()[size_t(i)], w);
+  for (int i : scene.infinite_lights()) {
+    const Light& light = scene.lights()[size_t(i)];
+    const auto* env = std::get_if<EnvironmentLight>(&light);
+    if (!(env && !env->visible && camera_view)) sum += escaped_radiance(light, w);
+  }
   return sum;
 }
 
@@ -482,6 +488,7 @@ RGB reference_delta_tracking(const Scene& scene, const Ray& camera_ray, Referenc
   // Emission the ray reaches counts only when the ray left the camera or a specular event;
   // after a diffuse or phase event next-event estimation has already counted it.
   bool count_emission = true;
+  bool camera_view = true;  // only specular events so far
   MediumStack stack = scene.camera_stack();
   std::vector<Crossed> crossed;  // false hits in front of the seen surface
   Ray ray = camera_ray;
@@ -504,11 +511,12 @@ RGB reference_delta_tracking(const Scene& scene, const Ray& camera_ray, Referenc
       if (!in_volume_run) ++volume_runs;
       in_volume_run = true;
       count_emission = false;
+      camera_view = false;
       continue;
     }
     cross_before(stack, crossed, kInfinity);
     if (!hit) {
-      if (count_emission) radiance += throughput * environment(scene, ray.direction)[channel];
+      if (count_emission) radiance += throughput * environment(scene, ray.direction, camera_view)[channel];
       break;
     }
     const SurfaceInteraction si = scene.interaction(ray, *hit);
@@ -541,6 +549,7 @@ RGB reference_delta_tracking(const Scene& scene, const Ray& camera_ray, Referenc
       bs = bsdf_sample(bsdf, si.ns, wo, u_lobe, next_2d(rng));
       if (!bs || dot(si.ng, bs->wi) * dot(si.ng, wo) <= 0.0f) break;
       count_emission = false;
+      camera_view = false;
     } else {
       break;  // black surfaces absorb
     }

@@ -4,7 +4,9 @@
 
 #include "core/sampling.h"
 #include "integrators/visibility.h"
+#include "lights/area_light_sampling.h"
 #include "lights/equiangular.h"
+#include "lights/light_reach.h"
 #include "lights/light_sample.h"
 
 namespace caligo {
@@ -27,6 +29,19 @@ struct LightCentre {
 };
 
 std::optional<Vec3> light_centre(const Light& light) { return std::visit(LightCentre{}, light); }
+
+// Equiangular sampling over the part of [t0, t1] the light reaches (lights/light_reach.h: a
+// spot's cone, a range sphere, a one-sided area light's front half-space). Its pdf is zero
+// elsewhere, where the integrand is zero too; density sampling still covers all of [t0, t1].
+// None when the light reaches no part of the segment (then density sampling alone).
+std::optional<EquiangularSetup> reach_equiangular_setup(const Light& light, const Ray& ray, Vec3 centre,
+                                                        float t0, float t1) {
+  if (!light_sampling_options().clip_equiangular)
+    return make_equiangular_setup(ray.origin, ray.direction, centre, t0, t1);
+  const auto reach = light_reach(light, ray.origin, ray.direction, t0, t1);
+  if (!reach || !(reach->t1 > reach->t0)) return std::nullopt;
+  return make_equiangular_setup(ray.origin, ray.direction, centre, reach->t0, reach->t1);
+}
 
 // f(t) / p_light: the light arriving at x(t) and scattered back along the ray, for one light
 // sample at x(t), before dividing by the distance pdf.
@@ -92,20 +107,21 @@ MixedPhaseSample sample_mixed_phase(const TransmittanceRecord& record, const Mar
   return {wi, pdf > 0.0f ? mixed_phase_eval(record, step, wo, wi) / pdf : RGB(0.0f), pdf};
 }
 
-RGB volume_direct_light(const Scene& scene, const Ray& ray, const TransmittanceRecord& record,
-                        const Sampler& sampler, int depth, DistanceSampling strategy, PathScratch& scratch,
-                        PathCounters& counters) {
-  const DiscreteDistribution& selection = scene.light_selection();
-  if (selection.empty() || record.scatter_weight_total() <= 0.0f) return RGB(0.0f);
-  float pick_pmf = 0.0f;
-  const int light_index =
-      selection.sample(sampler.get_1d(bounce(depth, sample_dim::kVolumeLightSelect)), &pick_pmf);
+RGB volume_direct_light(const Scene& scene, const LightSampler& lights, const Ray& ray,
+                        const TransmittanceRecord& record, const Sampler& sampler, int depth,
+                        DistanceSampling strategy, PathScratch& scratch, PathCounters& counters) {
+  if (record.scatter_weight_total() <= 0.0f) return RGB(0.0f);
+  const LightChoice choice = lights.sample_segment(light_choice_segment(ray, record),
+                                                   sampler.get_1d(bounce(depth, sample_dim::kVolumeLightSelect)));
+  if (choice.light < 0) return RGB(0.0f);
+  const int light_index = choice.light;
+  const float pick_pmf = choice.pmf;
   const Light& light = scene.lights()[size_t(light_index)];
 
   const auto centre = light_centre(light);
   std::optional<EquiangularSetup> eq;
   if (centre && strategy != DistanceSampling::kDensity)
-    eq = make_equiangular_setup(ray.origin, ray.direction, *centre, record.t_begin(), record.t_end());
+    eq = reach_equiangular_setup(light, ray, *centre, record.t_begin(), record.t_end());
   // Equiangular sampling cancels the 1/r^2 that dominates the integrand near a light, so it
   // gets three quarters of the samples; density sampling is the safety net for thick or
   // heterogeneous media (measured on lamp-in-fog: see docs/benchmarks.md).

@@ -15,10 +15,18 @@
 namespace caligo {
 
 // Radiance scattered towards the ray's origin by the segment's medium, before the path
-// throughput. `ray` must have a unit direction.
-RGB volume_direct_light(const Scene& scene, const Ray& ray, const TransmittanceRecord& record,
-                        const Sampler& sampler, int depth, DistanceSampling strategy, PathScratch& scratch,
-                        PathCounters& counters);
+// throughput. `ray` must have a unit direction. `lights` chooses one light for the whole
+// segment (LightSampler::sample_segment of light_choice_segment()).
+RGB volume_direct_light(const Scene& scene, const LightSampler& lights, const Ray& ray,
+                        const TransmittanceRecord& record, const Sampler& sampler, int depth,
+                        DistanceSampling strategy, PathScratch& scratch, PathCounters& counters);
+
+// The segment volume next-event estimation chooses its light for: the ray over the record's
+// extent. A phase-sampled hit from a vertex on that segment weights its MIS with the same
+// segment's pmf, so the two strategies' weights sum to one at every point of it.
+inline Ray light_choice_segment(const Ray& ray, const TransmittanceRecord& record) {
+  return {ray.origin, ray.direction, record.t_begin(), record.t_end()};
+}
 
 // The phase-function mixture stored at a record step, per colour channel.
 RGB mixed_phase_eval(const TransmittanceRecord& record, const MarchStep& step, Vec3 wo, Vec3 wi);

@@ -2,8 +2,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "render/render.h"
+#include "scene/camera.h"
 
 namespace caligo {
 namespace {
@@ -138,6 +140,35 @@ TEST(VolumeScenes, SingleScatteringMatchesQuadrature) {
   EXPECT_NEAR(image_mean(render_desc(desc, 4096, DistanceSampling::kDensity, 1)).g, expected,
               1e-3 * expected);
   EXPECT_NEAR(image_mean(render_desc(desc, 8192, DistanceSampling::kMis, 1)).g, expected, 0.01 * expected);
+}
+
+// Absorption by weight: a purely absorbing slab (sigma_a = 0.8, thickness 1 m) seen in perspective
+// under a white sky. Each path passes with the record's exact transmittance, so every pixel is
+// the pixel-average of e^(-sigma d / cos theta) up to the film's jitter: within 0.5 % at 16 spp
+// (analog free-flight sampling gives 0 or 1 per path: errors of tens of percent per pixel).
+TEST(VolumeScenes, AbsorbingSlabIsExactPerPixel) {
+  SceneDesc desc = camera_at({0, 0, 3}, {1.5f, 0.8f, -5}, {32, 24}, 60.0f);
+  VolumePrimitive slab{BoxVolumeShape{Transform(), {-100, -100, -1}, {100, 100, 0}}, {RGB(0.8f), RGB(0.0f)}};
+  desc.volumes.push_back(slab);
+  desc.lights.push_back(EnvironmentLight{RGB(1.0f)});
+  const Image image = render_desc(desc, 16);
+  const Camera camera(desc.camera, desc.camera.resolution);
+  double worst = 0.0;
+  for (int y = 0; y < 24; ++y)
+    for (int x = 0; x < 32; ++x) {
+      // The pixel's expected value: e^(-sigma d / |dir.z|) averaged over an 8 x 8 grid in the pixel.
+      double expected = 0.0;
+      for (int j = 0; j < 8; ++j)
+        for (int i = 0; i < 8; ++i) {
+          const Ray ray = camera.generate_ray({float(x) + (float(i) + 0.5f) / 8.0f, float(y) + (float(j) + 0.5f) / 8.0f});
+          const Vec3 d = normalize(ray.direction);
+          expected += std::exp(-0.8 * 1.0 / std::abs(double(d.z))) / 64.0;
+        }
+      const double got = image.rgb(x, y, 0).g;
+      worst = std::max(worst, std::abs(got - expected) / expected);
+      EXPECT_NEAR(got, expected, 0.005 * expected) << x << "," << y;
+    }
+  std::printf("absorbing slab: worst pixel %.3f %% off e^(-sigma d / cos)\n", 100 * worst);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/math.h"
+#include "lights/environment_map.h"
 #include "lights/gobo.h"
 #include "lights/ies.h"
 
@@ -62,8 +63,10 @@ struct Power {
   float operator()(const DirectionalLight& l) const {
     return kPi * sqr(l.scene_radius) * l.irradiance.average();
   }
+  // pi r^2 times the radiance integrated over the sphere (4 pi L for a constant one).
   float operator()(const EnvironmentLight& l) const {
-    return 4.0f * kPi * kPi * sqr(l.scene_radius) * l.radiance.average();
+    const RGB integral = l.map ? l.radiance * l.map->integral() : l.radiance * (4.0f * kPi);
+    return kPi * sqr(l.scene_radius) * integral.average();
   }
   float operator()(const TriangleLight& l) const {
     return (l.two_sided ? 2.0f : 1.0f) * kPi * 0.5f * parallelogram_area(l.p1 - l.p0, l.p2 - l.p0) *

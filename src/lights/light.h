@@ -28,6 +28,7 @@ namespace caligo {
 
 class GoboImage;   // lights/gobo.h
 class IesProfile;  // lights/ies.h
+class EnvironmentMap;  // lights/environment_map.h
 
 // A projector texture (gobo, cookie) that multiplies a spot or box light's emission by the
 // colour at a texture coordinate. Texture coordinates are rotated by `rotation` about the
@@ -114,10 +115,17 @@ struct DirectionalLight {
   float scene_radius = 1.0f;  // set by the scene builder, for power()
 };
 
-// Radiance arriving from every direction not blocked by the scene.
+// Radiance arriving from every direction not blocked by the scene: `radiance` alone, or
+// `radiance` times an image (lights/environment_map.h, lat-long) turned about +Y by the
+// rotation (world = R_y(angle) * map; angle > 0 turns +Z towards +X).
+// `visible` = false hides it from camera rays and from rays after only specular events
+// (what the camera sees through glass and in mirrors); lighting is unchanged.
 struct EnvironmentLight {
-  RGB radiance;
+  RGB radiance;               // the constant radiance, or the map's scale
   float scene_radius = 1.0f;  // set by the scene builder, for power()
+  std::shared_ptr<const EnvironmentMap> map;  // null: constant
+  float cos_rotation = 1.0f, sin_rotation = 0.0f;
+  bool visible = true;
 };
 
 // One emissive triangle (from a shape with an emissive material). Emits on the side of

@@ -4,6 +4,8 @@
 
 #include "core/math.h"
 #include "core/sampling.h"
+#include "lights/area_light_sampling.h"
+#include "lights/environment_map.h"
 #include "lights/light_profile.h"
 
 namespace caligo {
@@ -31,6 +33,25 @@ std::optional<LightSample> sample_area_point(Vec3 receiver, Vec3 p, Vec3 n, floa
   const float pdf = area_to_solid_angle(1.0f / area, receiver, p, n);
   if (!(pdf > 0.0f) || !std::isfinite(pdf)) return std::nullopt;
   return LightSample{emitted_towards_receiver, wi, dist, pdf, false};
+}
+
+// A point chosen uniformly in the solid angle `omega` (lights/area_light_sampling.h); the
+// receiver is on the emitting side (solid_angle_sampling checked it).
+std::optional<LightSample> sample_solid_angle_point(Vec3 receiver, std::optional<Vec3> p, double omega,
+                                                    RGB radiance) {
+  if (!p || radiance.is_black()) return std::nullopt;
+  const Vec3 d = *p - receiver;
+  const float dist = length(d);
+  if (!(dist > 0.0f)) return std::nullopt;
+  return LightSample{radiance, d / dist, dist, float(1.0 / omega), false};
+}
+
+// An environment map's frame from the world's and back: R_y(-angle) and R_y(angle).
+Vec3 environment_to_map(const EnvironmentLight& l, Vec3 w) {
+  return {l.cos_rotation * w.x - l.sin_rotation * w.z, w.y, l.sin_rotation * w.x + l.cos_rotation * w.z};
+}
+Vec3 environment_to_world(const EnvironmentLight& l, Vec3 m) {
+  return {l.cos_rotation * m.x + l.sin_rotation * m.z, m.y, -l.sin_rotation * m.x + l.cos_rotation * m.z};
 }
 
 // Delta lights go through delta_arrival, the function the real-time passes call too.
@@ -78,6 +99,8 @@ struct Sample {
   }
   std::optional<LightSample> operator()(const SphereLight& l) const { return sample_sphere(l, receiver, u); }
   std::optional<LightSample> operator()(const QuadLight& l) const {
+    if (const SolidAngleSampling s = solid_angle_sampling(l, receiver); s.solid_angle > 0.0)
+      return sample_solid_angle_point(receiver, sample_solid_angle(s, u), s.solid_angle, l.radiance);
     const Vec3 p = l.corner + l.edge1 * u.x + l.edge2 * u.y;
     const Vec3 c = cross(l.edge1, l.edge2);
     const float area = length(c);
@@ -85,6 +108,8 @@ struct Sample {
     return sample_area_point(receiver, p, n, area, one_sided(l.radiance, l.two_sided, n, receiver - p));
   }
   std::optional<LightSample> operator()(const TriangleLight& l) const {
+    if (const SolidAngleSampling s = solid_angle_sampling(l, receiver); s.solid_angle > 0.0)
+      return sample_solid_angle_point(receiver, sample_solid_angle(s, u), s.solid_angle, l.radiance);
     const Vec3 b = sample_uniform_triangle(u);
     const Vec3 p = l.p0 * b.x + l.p1 * b.y + l.p2 * b.z;
     const Vec3 c = cross(l.p1 - l.p0, l.p2 - l.p0);
@@ -98,8 +123,12 @@ struct Sample {
     const Vec3 wi = Frame::from_z(towards).to_world(sample_uniform_cone(u, l.cos_angular_radius));
     return LightSample{escaped_radiance(l, wi), wi, kInfinity, uniform_cone_pdf(l.cos_angular_radius), false};
   }
+  // A constant environment uniformly over the sphere; a map by its own distribution.
   std::optional<LightSample> operator()(const EnvironmentLight& l) const {
-    return LightSample{l.radiance, sample_uniform_sphere(u), kInfinity, uniform_sphere_pdf(), false};
+    if (!l.map) return LightSample{l.radiance, sample_uniform_sphere(u), kInfinity, uniform_sphere_pdf(), false};
+    const auto s = l.map->sample(u);
+    if (!s) return std::nullopt;
+    return LightSample{l.radiance * l.map->lookup(s->w), environment_to_world(l, s->w), kInfinity, s->pdf, false};
   }
 };
 
@@ -117,9 +146,11 @@ struct Pdf {
     return uniform_cone_pdf(safe_sqrt(1.0f - r2 / dist2));
   }
   float operator()(const QuadLight& l) const {
+    if (const double omega = solid_angle_sampling(l, receiver).solid_angle; omega > 0.0) return float(1.0 / omega);
     return area_to_solid_angle(1.0f / length(cross(l.edge1, l.edge2)), receiver, on_light, light_normal);
   }
   float operator()(const TriangleLight& l) const {
+    if (const double omega = solid_angle_sampling(l, receiver).solid_angle; omega > 0.0) return float(1.0 / omega);
     return area_to_solid_angle(1.0f / (0.5f * length(cross(l.p1 - l.p0, l.p2 - l.p0))), receiver, on_light,
                                light_normal);
   }
@@ -127,7 +158,9 @@ struct Pdf {
     if (l.cos_angular_radius >= 1.0f || dot(-l.direction, wi) < l.cos_angular_radius) return 0.0f;
     return uniform_cone_pdf(l.cos_angular_radius);
   }
-  float operator()(const EnvironmentLight&) const { return uniform_sphere_pdf(); }
+  float operator()(const EnvironmentLight& l) const {
+    return l.map ? l.map->pdf(environment_to_map(l, wi)) : uniform_sphere_pdf();
+  }
 };
 
 // A sun of irradiance E and angular radius a has uniform radiance E / (pi sin^2 a) over its
@@ -141,7 +174,9 @@ RGB sun_radiance(const DirectionalLight& l) {
 struct Escaped {
   Vec3 w;
 
-  RGB operator()(const EnvironmentLight& l) const { return l.radiance; }
+  RGB operator()(const EnvironmentLight& l) const {
+    return l.map ? l.radiance * l.map->lookup(environment_to_map(l, w)) : l.radiance;
+  }
   RGB operator()(const DirectionalLight& l) const {
     if (l.cos_angular_radius >= 1.0f || dot(-l.direction, w) < l.cos_angular_radius) return RGB(0.0f);
     return sun_radiance(l);

@@ -31,8 +31,16 @@ double exp_integral(float sigma_t, float length) {
   return tau > 0.0 ? -std::expm1(-tau) / sigma_t : double(length);
 }
 
+bool grey(RGB v) { return v.r == v.g && v.g == v.b; }
+
+// Grey media (the common case) take one exp instead of three; the values are the same.
 RGB transmittance_in_step(const MarchStep& s, float t) {
   RGB out;
+  if (grey(s.sigma_t)) {
+    const double e = std::exp(-optical_depth(s.sigma_t.r, t - s.t0));
+    for (int c = 0; c < kChannels; ++c) channel(out, c) = float(s.transmittance[c] * e);
+    return out;
+  }
   for (int c = 0; c < kChannels; ++c)
     channel(out, c) = float(s.transmittance[c] * std::exp(-optical_depth(s.sigma_t[c], t - s.t0)));
   return out;
@@ -43,16 +51,12 @@ RGB transmittance_after_step(const MarchStep& s) { return transmittance_in_step(
 // Integral of sigma_s,c T_c over the whole step, per channel.
 RGB scatter_in_step(const MarchStep& s) {
   RGB out;
+  const bool one = grey(s.sigma_t);
+  const double shared = one ? exp_integral(s.sigma_t.r, s.t1 - s.t0) : 0.0;
   for (int c = 0; c < kChannels; ++c)
-    channel(out, c) =
-        float(double(s.sigma_s[c]) * s.transmittance[c] * exp_integral(s.sigma_t[c], s.t1 - s.t0));
+    channel(out, c) = float(double(s.sigma_s[c]) * s.transmittance[c] *
+                            (one ? shared : exp_integral(s.sigma_t[c], s.t1 - s.t0)));
   return out;
-}
-
-// Per-channel integral of sigma_s T over the record (the W_c of the density sampler).
-RGB scatter_totals(std::span<const MarchStep> steps) {
-  if (steps.empty()) return RGB(0.0f);
-  return steps.back().scatter_before + scatter_in_step(steps.back());
 }
 
 // Index of the last step with t0 <= t, or -1.
@@ -106,6 +110,8 @@ void TransmittanceRecord::clear() {
   steps_.clear();
   lobes_.clear();
   emission_ = RGB();
+  end_transmittance_ = RGB(1.0f);
+  scatter_totals_ = RGB(0.0f);
 }
 
 // A start that overlaps the previous step by rounding only (a marcher computing step ends as
@@ -121,14 +127,12 @@ void TransmittanceRecord::push(float t0, float t1, RGB sigma_t, RGB sigma_s,
     t0 = previous_end;
   }
   if (!(t1 > t0)) return;
-  MarchStep step{
-      t0, t1, sigma_t, sigma_s, RGB(1.0f), RGB(0.0f), uint32_t(lobes_.size()), uint32_t(lobes.size())};
-  if (!steps_.empty()) {
-    step.transmittance = transmittance_after_step(steps_.back());
-    step.scatter_before = scatter_totals(steps_);
-  }
+  const MarchStep step{t0,         t1, sigma_t, sigma_s, end_transmittance_, scatter_totals_, uint32_t(lobes_.size()),
+                       uint32_t(lobes.size())};
   lobes_.insert(lobes_.end(), lobes.begin(), lobes.end());
   steps_.push_back(step);
+  end_transmittance_ = transmittance_after_step(step);
+  scatter_totals_ = step.scatter_before + scatter_in_step(step);
 }
 
 std::span<const PhaseLobe> TransmittanceRecord::lobes(const MarchStep& step) const {
@@ -153,15 +157,13 @@ RGB TransmittanceRecord::transmittance(float t) const {
   return size_t(i) + 1 < steps_.size() ? steps_[i + 1].transmittance : transmittance_after_step(s);
 }
 
-RGB TransmittanceRecord::transmittance_end() const {
-  return steps_.empty() ? RGB(1.0f) : transmittance_after_step(steps_.back());
-}
+RGB TransmittanceRecord::transmittance_end() const { return end_transmittance_; }
 
-float TransmittanceRecord::scatter_weight_total() const { return scatter_totals(steps_).average(); }
+float TransmittanceRecord::scatter_weight_total() const { return scatter_totals_.average(); }
 
 std::optional<DistanceSample> TransmittanceRecord::sample_scatter_density(float u_channel,
                                                                           float u_distance) const {
-  const RGB w = scatter_totals(steps_);
+  const RGB w = scatter_totals_;
   const float total = w.r + w.g + w.b;
   if (!(total > 0.0f)) return std::nullopt;
   const int c = pick_channel(w, u_channel * total);
@@ -179,7 +181,7 @@ std::optional<DistanceSample> TransmittanceRecord::sample_scatter_density(float 
 float TransmittanceRecord::scatter_density_pdf(float t) const {
   const int i = find_step(t);
   if (i < 0) return 0.0f;
-  const RGB w = scatter_totals(steps_);
+  const RGB w = scatter_totals_;
   const float total = w.r + w.g + w.b;
   return total > 0.0f ? scatter_density_in_step(steps_[i], t, total) : 0.0f;
 }

@@ -87,6 +87,10 @@ class TransmittanceRecord {
   std::vector<MarchStep> steps_;
   std::vector<PhaseLobe> lobes_;
   RGB emission_;
+  // Kept up to date by push(): every query reads them, and recomputing them costs three exp
+  // and three expm1 in double each time.
+  RGB end_transmittance_{1.0f};  // T at the end of the last step
+  RGB scatter_totals_{0.0f};     // per-channel integral of sigma_s T over the record
 };
 
 }  // namespace caligo

@@ -15,6 +15,8 @@ struct RenderSettings {
   int max_depth = 8;
   int max_volume_bounces = 128;
   DistanceSampling distance_sampling = DistanceSampling::kMis;
+  bool absorption_by_weight = true;  // PathSettings::absorption_by_weight
+  LightSamplerKind light_sampler = LightSamplerKind::kTree;  // PathSettings::light_sampler
   uint64_t seed = 0;
   int threads = 0;  // 0: all hardware threads
   int tile_size = 16;

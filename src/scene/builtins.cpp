@@ -1,5 +1,6 @@
 #include "scene/builtins.h"
 
+#include "scene/builtin_many_lamps.h"
 #include "scene/scene_parser.h"
 
 namespace caligo {
@@ -125,6 +126,49 @@ constexpr const char* kSpotShafts = R"json({
   "volumes": [{"type": "box", "min": [-3.5, 0, -3.5], "max": [3.5, 4, 3.5], "medium": "haze"}],
   "lights": [{"type": "spot", "position": [0, 3.9, 0], "look_at": [0, 0, 0], "inner_angle": 22,
               "outer_angle": 28, "color": [1, 0.9, 0.75], "intensity": 30}]
+})json";
+
+// Neon signs in fog: three emissive torus-knot tubes (closed generated meshes; an emissive
+// material on a mesh makes one TriangleLight per triangle, 2,048 each, sampled by solid
+// angle) over a dark wet-looking floor, in fog that glows around them. No other light.
+constexpr const char* kNeon = R"json({
+  "camera": {"position": [0, 1.4, 6.5], "look_at": [0, 1.3, 0], "fov": 45, "resolution": [480, 270]},
+  "render": {"spp": 64, "max_depth": 6, "max_volume_bounces": 8},
+  "materials": {"floor": {"type": "diffuse", "reflectance": 0.25},
+                "pink": {"type": "emissive", "color": [1, 0.15, 0.6], "radiance": 6},
+                "cyan": {"type": "emissive", "color": [0.1, 0.8, 1], "radiance": 6},
+                "amber": {"type": "emissive", "color": [1, 0.55, 0.1], "radiance": 6}},
+  "media": {"fog": {"sigma_s": 0.12, "sigma_a": 0.01, "phase": {"type": "hg", "g": 0.3}}},
+  "volumes": [{"type": "box", "min": [-5, 0, -4], "max": [5, 4, 4], "medium": "fog"}],
+  "shapes": [
+    {"type": "rectangle", "corner": [-8, 0, -8], "edge1": [0, 0, 16], "edge2": [16, 0, 0], "material": "floor"},
+    {"type": "mesh", "generate": {"kind": "torus_knot", "triangles": 2000}, "material": "pink",
+     "transform": [{"scale": 0.6}, {"rotate": {"angle": 90, "axis": [1, 0, 0]}}, {"translate": [-1.9, 1.5, -0.5]}]},
+    {"type": "mesh", "generate": {"kind": "torus_knot", "triangles": 2000}, "material": "cyan",
+     "transform": [{"scale": 0.5}, {"rotate": {"angle": 70, "axis": [1, 0, 0]}}, {"translate": [0.1, 2.1, -1]}]},
+    {"type": "mesh", "generate": {"kind": "torus_knot", "triangles": 2000}, "material": "amber",
+     "transform": [{"scale": 0.45}, {"rotate": {"angle": 100, "axis": [1, 0.3, 0]}}, {"translate": [1.9, 1.2, 0]}]}
+  ]
+})json";
+
+// A real mesh on a stage: the Wuson from Debian's assimp-testmodels (OBJ, 3,732 triangles,
+// 3.2 m long, turned side-on) on a floor, under a narrow, bright spot in haze, with a dim
+// blue sky. Most of the image is lit indirectly (haze -> lit floor -> eye).
+constexpr const char* kStage = R"json({
+  "camera": {"position": [0, 1.5, 5.6], "look_at": [0, 0.8, 0], "fov": 40, "resolution": [480, 270]},
+  "render": {"spp": 64, "max_depth": 6, "max_volume_bounces": 8},
+  "materials": {"floor": {"type": "diffuse", "reflectance": 0.5},
+                "wuson": {"type": "diffuse", "reflectance": [0.8, 0.72, 0.6]}},
+  "media": {"haze": {"sigma_s": 0.08, "sigma_a": 0.005, "phase": {"type": "hg", "g": 0.4}}},
+  "volumes": [{"type": "box", "min": [-6, 0, -6], "max": [6, 6, 6], "medium": "haze"}],
+  "shapes": [
+    {"type": "rectangle", "corner": [-10, 0, -10], "edge1": [0, 0, 20], "edge2": [20, 0, 0], "material": "floor"},
+    {"type": "mesh", "file": "/usr/share/assimp/models/OBJ/WusonOBJ.obj", "material": "wuson",
+     "transform": [{"rotate": {"angle": 90, "axis": [0, 1, 0]}}]}
+  ],
+  "lights": [{"type": "spot", "position": [0.6, 5.2, 1.2], "look_at": [0, 0.6, 0], "inner_angle": 12,
+              "outer_angle": 17, "color": [1, 0.92, 0.8], "intensity": 400},
+             {"type": "environment", "color": [0.45, 0.55, 1], "radiance": 0.03}]
 })json";
 
 // Two overlapping boxes of coloured media: in the overlap their coefficients add up.
@@ -355,6 +399,39 @@ constexpr const char* kSss = R"json({
   ]
 })json";
 
+// Image-based lighting in fog: a generated sky (lights/sky_generate.h) with a low sun ahead
+// and to the right of the camera, a colonnade whose shadows stretch through haze towards the
+// viewer, spheres of stone and glass on the ground. The sky is built in memory at load time,
+// so the scene needs no file and runs from any directory.
+constexpr const char* kHdriFog = R"json({
+  "camera": {"position": [0, 1.6, 8], "look_at": [0, 1.8, -4], "fov": 50, "resolution": [320, 240]},
+  "render": {"spp": 64, "max_depth": 6},
+  "materials": {
+    "ground": {"type": "diffuse", "reflectance": [0.45, 0.42, 0.38]},
+    "stone": {"type": "diffuse", "reflectance": 0.65},
+    "rust": {"type": "diffuse", "reflectance": [0.6, 0.3, 0.15]},
+    "glass": {"type": "dielectric", "ior": 1.5}
+  },
+  "media": {"haze": {"sigma_s": 0.03, "sigma_a": 0.003, "phase": {"type": "hg", "g": 0.6}}},
+  "volumes": [{"type": "box", "min": [-20, 0, -30], "max": [20, 8, 10], "medium": "haze"}],
+  "shapes": [
+    {"type": "rectangle", "corner": [-30, 0, -40], "edge1": [0, 0, 52], "edge2": [60, 0, 0], "material": "ground"},
+    {"type": "box", "min": [-2.8, 0, -2.3], "max": [-2.2, 4, -1.7], "material": "stone"},
+    {"type": "box", "min": [2.2, 0, -2.3], "max": [2.8, 4, -1.7], "material": "stone"},
+    {"type": "box", "min": [-2.8, 0, -6.3], "max": [-2.2, 4, -5.7], "material": "stone"},
+    {"type": "box", "min": [2.2, 0, -6.3], "max": [2.8, 4, -5.7], "material": "stone"},
+    {"type": "box", "min": [-2.8, 0, -10.3], "max": [-2.2, 4, -9.7], "material": "stone"},
+    {"type": "box", "min": [2.2, 0, -10.3], "max": [2.8, 4, -9.7], "material": "stone"},
+    {"type": "box", "min": [-2.8, 4, -10.3], "max": [2.8, 4.5, -1.7], "material": "stone"},
+    {"type": "sphere", "center": [-0.6, 0.9, -4], "radius": 0.9, "material": "rust"},
+    {"type": "sphere", "center": [1.1, 0.6, 0.5], "radius": 0.6, "material": "glass"}
+  ],
+  "lights": [
+    {"type": "environment",
+     "map": {"generate": {"kind": "sky", "resolution": 512, "sun_elevation": 14, "sun_azimuth": 35, "sun_size": 0.5}}}
+  ]
+})json";
+
 const std::vector<BuiltinScene>& all_builtins() {
   static const std::vector<BuiltinScene> scenes = {
       {"default",
@@ -373,6 +450,15 @@ const std::vector<BuiltinScene>& all_builtins() {
        kLightsShowcase},
       {"lamp-in-fog", "a small point light inside a sphere of homogeneous scattering fog", kLampInFog},
       {"spot-shafts", "a spot light through fog past an occluding sphere: a volumetric shadow", kSpotShafts},
+      {"neon", "neon signs in fog: three emissive torus-knot tubes (6,144 triangle lights) over a dark floor",
+       kNeon},
+      {"stage",
+       "the Wuson (assimp-testmodels OBJ) on a stage under a narrow, bright spot light in haze, with a dim sky",
+       kStage},
+      {"many-lamps",
+       "a town at night in fog: 1,000 small point and spot lights (street lamps, windows) over streets of boxes "
+       "(the light tree's benchmark: --light-sampler)",
+       many_lamps_scene()},
       {"overlap", "two overlapping boxes of coloured media, whose coefficients add where they overlap",
        kOverlap},
       {"cloud", "a dense, bright cumulus (generated VDB grid) under a low sun and a blue sky: 64+ bounces",
@@ -402,6 +488,10 @@ const std::vector<BuiltinScene>& all_builtins() {
        "subsurface scattering: the COLLADA duck as a 1.4 dielectric around a dense waxy medium (albedo ~0.97, "
        "25 per metre), lit from behind",
        kSss},
+      {"hdri-fog",
+       "image-based lighting in haze: a generated sky with a low sun (an environment map, importance-sampled) "
+       "behind a colonnade whose shadows stretch through the haze",
+       kHdriFog},
       {"wyman-20k", "Wyman & Ramsey: a point light in fog over a ground plane, a 20,480-triangle sphere occluder",
        wyman_scene("sphere", 20000, kWymanSphere, kWymanPoint)},
       {"wyman-70k", "Wyman & Ramsey: a point light in fog, a 70,688-triangle torus-knot occluder",

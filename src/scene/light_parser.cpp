@@ -8,10 +8,12 @@
 
 #include "core/math.h"
 #include "image/image_read.h"
+#include "lights/environment_map.h"
 #include "lights/gobo.h"
 #include "lights/gobo_generate.h"
 #include "lights/ies.h"
 #include "lights/light_profile.h"
+#include "lights/sky_generate.h"
 #include "scene/shared_readers.h"
 #include "scene/transform_parser.h"
 
@@ -79,6 +81,51 @@ std::shared_ptr<const IesProfile> load_profile(const JsonCursor& c, LightFileCac
   } catch (const InputError& e) {
     c.fail(std::string("cannot use the IES profile: ") + e.what());
   }
+}
+
+// A lat-long image file, read once per scene. Negative pixel values were clamped to 0 by
+// read_image_rgb; non-finite ones are rejected there.
+std::shared_ptr<const EnvironmentMap> load_environment_map(const JsonCursor& c, LightFileCache& files) {
+  const std::string path = resolve_path(c.string(), files.base_dir);
+  if (auto it = files.environment_maps.find(path); it != files.environment_maps.end()) return it->second;
+  try {
+    const Image image = read_image_rgb(path);
+    std::vector<RGB> pixels(image.pixel_count());
+    for (size_t p = 0; p < pixels.size(); ++p)
+      pixels[p] = {image.pixels()[3 * p], image.pixels()[3 * p + 1], image.pixels()[3 * p + 2]};
+    auto map = std::make_shared<const EnvironmentMap>(image.width(), image.height(), std::move(pixels));
+    files.environment_maps.emplace(path, map);
+    return map;
+  } catch (const InputError& e) {
+    c.fail(std::string("cannot use the environment map: ") + e.what());
+  } catch (const std::invalid_argument& e) {
+    c.fail("cannot use the environment map " + path + ": " + e.what());
+  }
+}
+
+// {"kind": "sky", "resolution", "sun_elevation", "sun_azimuth", "sun_size"}: lights/sky_generate.h.
+std::shared_ptr<const EnvironmentMap> generate_environment_map(const JsonCursor& c) {
+  ObjectReader r(c, "a generated environment map");
+  r.allow({"kind", "resolution", "sun_elevation", "sun_azimuth", "sun_size"});
+  r.choice("kind", {"sky"});
+  SkyParameters p;
+  p.resolution = int(r.integer_or("resolution", p.resolution, Range::closed(kMinSkyResolution, kMaxSkyResolution)));
+  p.sun_elevation = r.number_or("sun_elevation", p.sun_elevation, Range::closed(0, 90));
+  p.sun_azimuth = r.number_or("sun_azimuth", p.sun_azimuth);
+  p.sun_angular_radius = r.number_or("sun_size", p.sun_angular_radius, Range::closed(0.05, 10));
+  r.finish();
+  return std::make_shared<const EnvironmentMap>(generate_sky(p));
+}
+
+// "map": "file.exr", {"file": "file.exr"} or {"generate": {...}}.
+std::shared_ptr<const EnvironmentMap> read_environment_map(const JsonCursor& c, LightFileCache& files) {
+  if (c.is_string()) return load_environment_map(c, files);
+  ObjectReader r(c, "an environment map (a file name, {\"file\": ...} or {\"generate\": ...})");
+  r.allow({"file", "generate"});
+  const auto [which, m] = r.exactly_one("file", "generate");
+  auto map = which == 0 ? load_environment_map(m, files) : generate_environment_map(m);
+  r.finish();
+  return map;
 }
 
 // "generate": {"kind", "resolution", "seed"}: a procedural image (lights/gobo_generate.h).
@@ -306,11 +353,26 @@ ParsedLight read_directional(ObjectReader& r) {
   return {light, read_options(r, Movable{false, true}, {})};
 }
 
-ParsedLight read_environment(ObjectReader& r) {
-  r.allow({"type", "color", "radiance", "volumetric", "shadow", "shadow_map_size"});
+// "map": the image radiance comes from, times color x radiance x strength (radiance defaults
+// to 1 with a map and is required without one).
+ParsedLight read_environment(ObjectReader& r, LightFileCache& files) {
+  r.allow({"type", "color", "radiance", "strength", "map", "rotation", "visible", "volumetric", "shadow",
+           "shadow_map_size"});
   EnvironmentLight light;
   const RGB color = r.rgb_or("color", RGB(1.0f));
-  light.radiance = color * r.rgb("radiance");
+  const float strength = r.number_or("strength", 1.0f, Range::non_negative());
+  if (auto m = r.optional("map")) {
+    light.map = read_environment_map(*m, files);
+    light.radiance = color * r.rgb_or("radiance", RGB(1.0f)) * strength;
+    const float rotation = radians(r.number_or("rotation", 0.0f));
+    light.cos_rotation = std::cos(rotation);
+    light.sin_rotation = std::sin(rotation);
+  } else {
+    light.radiance = color * r.rgb("radiance") * strength;
+    if (r.has("rotation"))
+      r.required("rotation").fail("\"rotation\" turns an environment map, and this environment has no \"map\"");
+  }
+  light.visible = r.boolean_or("visible", true);
   return {light, read_options(r, std::nullopt, {})};
 }
 
@@ -335,7 +397,7 @@ ParsedLight parse_light(const JsonCursor& c, LightFileCache& files) {
   } else if (type == "directional") {
     parsed = read_directional(r);
   } else {
-    parsed = read_environment(r);
+    parsed = read_environment(r, files);
   }
   r.finish();
   return parsed;

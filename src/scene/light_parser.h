@@ -18,6 +18,7 @@ struct LightFileCache {
   std::string base_dir;
   std::map<std::string, std::shared_ptr<const GoboImage>> gobos;
   std::map<std::string, std::shared_ptr<const IesProfile>> profiles;
+  std::map<std::string, std::shared_ptr<const EnvironmentMap>> environment_maps;
 };
 
 struct ParsedLight {

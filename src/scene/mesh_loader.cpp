@@ -1,9 +1,7 @@
 #include "scene/mesh_loader.h"
 
 // Debian ships the libraries compiled: include the declarations only (no *_IMPLEMENTATION).
-#include <assimp/Importer.hpp>
-#include <assimp/postprocess.h>
-#include <assimp/scene.h>
+// assimp is reached through the caligo_assimp.so plugin (assimp_plugin.h).
 #include <tiny_gltf.h>
 #include <tiny_obj_loader.h>
 
@@ -22,6 +20,9 @@
 #include <string_view>
 #include <unordered_map>
 #include <vector>
+
+#include "core/module_loader.h"
+#include "scene/assimp_plugin.h"
 
 namespace caligo {
 namespace {
@@ -546,92 +547,97 @@ void check_ply_header(const std::string& data) {
 }
 
 // aiMatrix4x4 is row-major with points as column vectors, like Mat4.
-Mat4 to_mat4(const aiMatrix4x4& a) {
-  const float rows[4][4] = {
-      {a.a1, a.a2, a.a3, a.a4}, {a.b1, a.b2, a.b3, a.b4}, {a.c1, a.c2, a.c3, a.c4}, {a.d1, a.d2, a.d3, a.d4}};
+Mat4 to_mat4(const std::array<std::array<float, 4>, 4>& rows) {
   Mat4 m;
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) m.m[r][c] = rows[r][c];
+  m.m = rows;
   return m;
 }
 
 // One assimp mesh in its own space; points and lines (which PLY may hold) are not surfaces
 // and are skipped, as is every mesh without triangles.
-TriangleMesh assimp_part(const aiMesh& mesh, unsigned mesh_index) {
+TriangleMesh assimp_part(const AssimpMeshCopy& mesh, unsigned mesh_index) {
   TriangleMesh part;
-  part.positions.reserve(mesh.mNumVertices);
-  for (unsigned v = 0; v < mesh.mNumVertices; ++v)
-    part.positions.push_back({mesh.mVertices[v].x, mesh.mVertices[v].y, mesh.mVertices[v].z});
-  if (mesh.mNormals != nullptr)
-    for (unsigned v = 0; v < mesh.mNumVertices; ++v)
-      part.normals.push_back({mesh.mNormals[v].x, mesh.mNormals[v].y, mesh.mNormals[v].z});
-  for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
-    const aiFace& face = mesh.mFaces[f];
-    if (face.mNumIndices < 3) continue;
-    if (face.mNumIndices != 3)
-      fail("mesh " + std::to_string(mesh_index) + ", face " + std::to_string(f) + " has " +
-           std::to_string(face.mNumIndices) + " vertices after triangulation");
+  part.positions = mesh.positions;
+  part.normals = mesh.normals;
+  const size_t vertex_count = mesh.positions.size();
+  size_t next = 0;
+  for (size_t f = 0; f < mesh.face_sizes.size(); ++f) {
+    const uint32_t size = mesh.face_sizes[f];
+    const uint32_t* corners = mesh.indices.data() + next;
+    next += size;
+    if (size < 3) continue;
+    if (size != 3)
+      fail("mesh " + std::to_string(mesh_index) + ", face " + std::to_string(f) + " has " + std::to_string(size) +
+           " vertices after triangulation");
     for (unsigned k = 0; k < 3; ++k) {
-      if (face.mIndices[k] >= mesh.mNumVertices)
+      if (corners[k] >= vertex_count)
         fail("mesh " + std::to_string(mesh_index) + ", face " + std::to_string(f) + " refers to vertex " +
-             std::to_string(face.mIndices[k]) + ", but it has " + std::to_string(mesh.mNumVertices));
-      part.indices.push_back(face.mIndices[k]);
+             std::to_string(corners[k]) + ", but it has " + std::to_string(vertex_count));
+      part.indices.push_back(corners[k]);
     }
   }
   return part;
 }
 
 // Every mesh instance under the root node, with the node transforms applied (as for glTF).
-TriangleMesh assimp_scene_mesh(const aiScene& scene) {
+TriangleMesh assimp_scene_mesh(const AssimpSceneCopy& scene) {
   struct Pending {
-    const aiNode* node;
+    uint32_t node;
     Mat4 parent;
   };
-  std::vector<Pending> stack{{scene.mRootNode, Mat4::identity()}};
+  std::vector<Pending> stack{{0, Mat4::identity()}};
   MeshBuilder builder;
   size_t visited = 0;
   while (!stack.empty()) {
     const Pending pending = stack.back();
     stack.pop_back();
-    if (pending.node == nullptr) continue;
-    // assimp builds the tree itself, but a malformed file must not make it loop.
-    if (++visited > 1'000'000) fail("the file's node hierarchy is too large");
-    const Mat4 node_to_model = pending.parent * to_mat4(pending.node->mTransformation);
+    const AssimpNodeCopy& node = scene.nodes[pending.node];
+    // The plugin bounds the copy too (kMaxAssimpNodes).
+    if (++visited > kMaxAssimpNodes) fail("the file's node hierarchy is too large");
+    const Mat4 node_to_model = pending.parent * to_mat4(node.transform);
     if (!is_affine_and_finite(node_to_model)) fail("a node has a non-affine or non-finite transform");
     const std::optional<Transform> transform = Transform::from_matrix(node_to_model);
-    for (unsigned i = 0; i < pending.node->mNumMeshes && transform; ++i) {
-      const unsigned index = pending.node->mMeshes[i];
-      if (index >= scene.mNumMeshes || scene.mMeshes[index] == nullptr)
-        fail("a node refers to a missing mesh");
-      TriangleMesh part = assimp_part(*scene.mMeshes[index], index);
+    for (size_t i = 0; i < node.meshes.size() && transform; ++i) {
+      const uint32_t index = node.meshes[i];
+      if (index >= scene.meshes.size() || !scene.meshes[index].present) fail("a node refers to a missing mesh");
+      TriangleMesh part = assimp_part(scene.meshes[index], index);
       if (part.indices.empty()) continue;  // points or lines only: nothing to add, not even normals
       if (!transform->is_identity()) transform_mesh(part, *transform);
       builder.append(part);
     }
-    for (unsigned c = 0; c < pending.node->mNumChildren; ++c)
-      stack.push_back({pending.node->mChildren[c], node_to_model});
+    for (const uint32_t child : node.children) stack.push_back({child, node_to_model});
   }
   return builder.finish();
 }
 
-// Triangulate and weld only: the other post-processing steps would change the geometry. The
-// validation step comes first (assimp runs it before the others): without it, a face that
-// refers to a missing vertex crashes the triangulation. `format` is assimp's extension hint.
+const AssimpPluginApi& assimp_plugin() {
+  static const AssimpPluginApi* api = [] {
+    constexpr const char* kPurpose = "needed to read PLY and COLLADA meshes";
+    using Entry = const AssimpPluginApi* (*)();
+    const auto entry = reinterpret_cast<Entry>(module_symbol(kAssimpPluginName, kAssimpPluginSymbol, kPurpose));
+    const AssimpPluginApi* table = entry();
+    if (table->abi_version != kAssimpPluginAbi)
+      throw std::runtime_error(std::string("the module ") + kAssimpPluginName + ".so (" + kPurpose +
+                               ") does not match this caligo build");
+    return table;
+  }();
+  return *api;
+}
+
+// Imported by the plugin (validate, triangulate, weld); `format` is assimp's extension hint.
 TriangleMesh read_with_assimp(const std::string& data, const char* format, const char* name) {
-  Assimp::Importer importer;
-  const aiScene* scene = nullptr;
-  constexpr unsigned kSteps =
-      aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices;
-  try {
-    scene = importer.ReadFileFromMemory(data.data(), data.size(), kSteps, format);
-  } catch (const std::exception& e) {
-    fail(std::string("cannot parse ") + name + ": " + e.what());
+  AssimpSceneCopy scene;
+  std::string error;
+  switch (assimp_plugin().read(data.data(), data.size(), format, &scene, &error)) {
+    case AssimpReadStatus::kOk:
+      break;
+    case AssimpReadStatus::kCannotParse:
+      fail(std::string("cannot parse ") + name + ": " + tidy_library_message(error));
+    case AssimpReadStatus::kTooManyNodes:
+      fail("the file's node hierarchy is too large");
   }
-  if (scene == nullptr)
-    fail(std::string("cannot parse ") + name + ": " + tidy_library_message(importer.GetErrorString()));
-  if ((scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0 || scene->mRootNode == nullptr)
-    fail(std::string("the ") + name + " file holds no mesh");
-  return assimp_scene_mesh(*scene);
+  if (scene.incomplete || scene.nodes.empty()) fail(std::string("the ") + name + " file holds no mesh");
+  return assimp_scene_mesh(scene);
 }
 
 // ---- Clean-up -------------------------------------------------------------------------------

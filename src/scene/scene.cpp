@@ -234,6 +234,8 @@ void Scene::finish_lights() {
   float total = 0.0f;
   for (float w : weights) total += w;
   if (total > 0.0f) light_selection_ = DiscreteDistribution(weights);
+  for (LightSamplerKind kind : {LightSamplerKind::kUniform, LightSamplerKind::kPower, LightSamplerKind::kTree})
+    light_samplers_[size_t(kind)] = LightSampler(kind, lights_);
 }
 
 SurfaceInteraction Scene::interaction(const Ray& ray, const SurfaceHit& hit) const {

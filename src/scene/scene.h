@@ -4,6 +4,7 @@
 // for emitters, to its light.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "core/sampling.h"
 #include "geometry/embree_scene.h"
 #include "lights/light.h"
+#include "lights/light_sampler.h"
 #include "materials/material.h"
 #include "media/medium_stack.h"
 #include "scene/camera.h"
@@ -44,6 +46,9 @@ class Scene {
   float light_selection_pmf(int light) const {
     return light_selection_.empty() ? 0.0f : light_selection_.pmf(light);
   }
+  // The light-sampler seam (lights/light_sampler.h): every strategy, built once with the scene
+  // (the tree costs a few microseconds per light). kPower reproduces light_selection() exactly.
+  const LightSampler& light_sampler(LightSamplerKind kind) const { return light_samplers_[size_t(kind)]; }
 
   // False for a light whose scene entry says "shadow": false (Arnold's cast_shadows):
   // surfaces do not block it, media still attenuate it. Lights made from emissive shapes
@@ -96,6 +101,7 @@ class Scene {
   std::vector<Light> lights_;
   std::vector<int> infinite_lights_;
   DiscreteDistribution light_selection_;
+  std::array<LightSampler, 3> light_samplers_;  // indexed by LightSamplerKind
   std::vector<int> interior_slot_;  // per SceneDesc medium: its slot in volumes_' media, or -1
   std::vector<uint8_t> shadow_deferred_;
   bool has_priority_objects_ = false;

@@ -1,0 +1,68 @@
+#include "core/module_loader.h"
+
+#include <dlfcn.h>
+
+#include <filesystem>
+#include <map>
+#include <mutex>
+#include <stdexcept>
+#include <vector>
+
+namespace caligo {
+namespace {
+
+std::vector<std::filesystem::path> module_dirs() {
+  std::vector<std::filesystem::path> dirs;
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) dirs.push_back(exe.parent_path());
+#ifdef CALIGO_MODULE_DIR
+  const std::filesystem::path build_dir = CALIGO_MODULE_DIR;
+  if (dirs.empty() || !std::filesystem::equivalent(dirs.front(), build_dir, ec)) dirs.push_back(build_dir);
+#endif
+  return dirs;
+}
+
+void* open_module(const std::string& name, const char* purpose) {
+  std::string tried;
+  for (const std::filesystem::path& dir : module_dirs()) {
+    const std::filesystem::path file = dir / (name + ".so");
+    std::error_code ec;
+    if (!std::filesystem::exists(file, ec)) {
+      tried += "\n  " + file.string() + ": not found";
+      continue;
+    }
+    if (void* handle = dlopen(file.c_str(), RTLD_NOW | RTLD_LOCAL)) return handle;
+    tried += "\n  " + file.string() + ": " + dlerror();
+  }
+  throw std::runtime_error("cannot load the module " + name + ".so (" + purpose +
+                           "); it belongs next to the caligo executable. Tried:" + tried);
+}
+
+}  // namespace
+
+std::string module_search_path() {
+  std::string path;
+  for (const std::filesystem::path& dir : module_dirs()) path += (path.empty() ? "" : ":") + dir.string();
+  return path;
+}
+
+void* module_symbol(const std::string& name, const char* symbol, const char* purpose) {
+  static std::mutex mutex;
+  static std::map<std::string, void*> handles;
+  void* handle = nullptr;
+  {
+    const std::lock_guard lock(mutex);
+    auto it = handles.find(name);
+    if (it == handles.end()) it = handles.emplace(name, open_module(name, purpose)).first;
+    handle = it->second;
+  }
+  dlerror();
+  void* address = dlsym(handle, symbol);
+  if (address == nullptr)
+    throw std::runtime_error("the module " + name + ".so (" + purpose + ") has no symbol " + symbol +
+                             ": it does not match this caligo build");
+  return address;
+}
+
+}  // namespace caligo
