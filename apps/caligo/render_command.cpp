@@ -32,7 +32,7 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--max-volume-bounces", o.max_volume_bounces,
                   "Maximum scattering events in media (overrides the scene)");
   cmd->add_option("--distance-sampling", o.distance_sampling,
-                  "Distance sampling for light in media: mis (default), density or equiangular");
+                  "Distance sampling for light in media: mis (default; equiangular share by optical depth), mis-fixed (share 3/4), density or equiangular");
   cmd->add_option("--light-sampler", o.light_sampler,
                   "How next-event estimation picks a light: tree (light tree: importance at the receiver), "
                   "power (in proportion to power, the same everywhere) or uniform")
@@ -91,9 +91,11 @@ RenderSettings settings_from(const RenderOptions& o, const SceneDesc& desc) {
       s.distance_sampling = DistanceSampling::kDensity;
     else if (d == "equiangular")
       s.distance_sampling = DistanceSampling::kEquiangular;
+    else if (d == "mis-fixed")
+      s.distance_sampling = DistanceSampling::kMisFixed;
     else
-      throw InputError(kCommandLine,
-                       "--distance-sampling: expected mis, density or equiangular, got \"" + d + "\"");
+      throw InputError(kCommandLine, "--distance-sampling: expected mis, mis-fixed, density or equiangular, got \"" +
+                                         d + "\"");
   }
   if (o.light_sampler) {
     const auto kind = light_sampler_from_name(*o.light_sampler);

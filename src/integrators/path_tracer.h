@@ -29,7 +29,9 @@ namespace caligo {
 enum class DistanceSampling {
   kDensity,      // pdf proportional to sigma_s T
   kEquiangular,  // pdf cancelling the light's inverse-square falloff (density for lights at infinity)
-  kMis,          // one of the two at random, weighted by the balance heuristic (one-sample MIS)
+  kMis,          // one of the two at random, weighted by the balance heuristic (one-sample MIS);
+                 // equiangular's share follows the segment's optical depth (volume_direct.h)
+  kMisFixed,     // the same with equiangular's share fixed at 3/4 (the former default)
 };
 
 struct PathSettings {
