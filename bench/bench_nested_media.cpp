@@ -49,9 +49,9 @@ void BM_NestedMediaPerRay(benchmark::State& state) {
   desc.file = "bench";
   desc.camera = {{0, 0, 6}, {0, 0, 0}, {0, 1, 0}, 20.0f, {64, 64}};
   for (int i = 0; i < n; ++i) {
-    desc.media.push_back({"m" + std::to_string(i), VolumeShader{RGB(0.01f), RGB(0.0f)}});
+    desc.media.push_back({std::string("m") + std::to_string(i), VolumeShader{RGB(0.01f), RGB(0.0f)}});
     Material m;
-    m.name = "shell" + std::to_string(i);
+    m.name = std::string("shell") + std::to_string(i);
     m.bsdf = NullBsdf{};
     m.priority = 400 - 20 * i;  // inner spheres higher: each boundary is real
     m.interior = i;

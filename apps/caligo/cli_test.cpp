@@ -589,7 +589,7 @@ bool any_named(const std::vector<std::string>& names, const std::string& part) {
 }  // namespace
 
 TEST_F(Cli, HeavyLibrariesAreLoadedOnlyByRunsThatUseThem) {
-  for (const std::string args : {std::string("--help"), "render default --res 16x16 --spp 1 -q -o " +
+  for (const std::string& args : {std::string("--help"), "render default --res 16x16 --spp 1 -q -o " +
                                                             (dir_ / "small.exr").string()}) {
     const RunResult r = run_with_env("LD_DEBUG=files", args);
     ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -43,7 +43,10 @@ void* open_module(const std::string& name, const char* purpose) {
 
 std::string module_search_path() {
   std::string path;
-  for (const std::filesystem::path& dir : module_dirs()) path += (path.empty() ? "" : ":") + dir.string();
+  for (const std::filesystem::path& dir : module_dirs()) {
+    if (!path.empty()) path += ':';
+    path += dir.string();
+  }
   return path;
 }
 

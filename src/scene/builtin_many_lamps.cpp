@@ -35,7 +35,7 @@ std::string num(float v) {
   return buf;
 }
 
-std::string vec(float x, float y, float z) { return "[" + num(x) + ", " + num(y) + ", " + num(z) + "]"; }
+std::string vec(float x, float y, float z) { return std::string("[") + num(x) + ", " + num(y) + ", " + num(z) + "]"; }
 
 struct Building {
   float x0, x1, z0, z1, height;
@@ -61,7 +61,7 @@ std::string street_lamps(Lcg& rng, int* count) {
       for (int k = 0; k < 21; ++k) {
         const float x = kStreets[s] + side * 5.5f, z = 2.0f - 9.0f * float(k) - 4.5f * (side > 0 ? 1.0f : 0.0f);
         const bool sodium = s != 1;
-        json += ",\n    {\"type\": \"spot\", \"position\": " + vec(x, 5.0f, z) +
+        json += std::string(",\n    {\"type\": \"spot\", \"position\": ") + vec(x, 5.0f, z) +
                 ", \"look_at\": " + vec(x - side * 1.5f, 0.0f, z) +
                 ", \"inner_angle\": 35, \"outer_angle\": 55, \"color\": " +
                 (sodium ? vec(1.0f, 0.65f, 0.3f) : vec(0.85f, 0.92f, 1.0f)) +
@@ -81,11 +81,11 @@ std::string windows(Lcg& rng, const std::vector<Building>& blocks, int count) {
     const std::string color = vec(1.0f, 0.55f + 0.3f * rng.next(), 0.2f + 0.3f * rng.next());
     const float intensity = 0.5f + 2.0f * rng.next();
     if (i % 3 == 0) {
-      json += ",\n    {\"type\": \"spot\", \"position\": " + vec(x, y, z) + ", \"direction\": " + vec(b.facing, -0.3f, 0.0f) +
+      json += std::string(",\n    {\"type\": \"spot\", \"position\": ") + vec(x, y, z) + ", \"direction\": " + vec(b.facing, -0.3f, 0.0f) +
               ", \"inner_angle\": 50, \"outer_angle\": 75, \"color\": " + color +
               ", \"intensity\": " + num(2.0f * intensity) + "}";
     } else {
-      json += ",\n    {\"type\": \"point\", \"position\": " + vec(x, y, z) + ", \"color\": " + color +
+      json += std::string(",\n    {\"type\": \"point\", \"position\": ") + vec(x, y, z) + ", \"color\": " + color +
               ", \"intensity\": " + num(intensity) + "}";
     }
   }
@@ -109,7 +109,7 @@ std::string many_lamps_scene() {
   "shapes": [
     {"type": "rectangle", "corner": [-50, 0, 20], "edge1": [100, 0, 0], "edge2": [0, 0, -220], "material": "asphalt"})json";
   for (const Building& b : blocks)
-    json += ",\n    {\"type\": \"box\", \"min\": " + vec(b.x0, 0.0f, b.z0) + ", \"max\": " + vec(b.x1, b.height, b.z1) +
+    json += std::string(",\n    {\"type\": \"box\", \"min\": ") + vec(b.x0, 0.0f, b.z0) + ", \"max\": " + vec(b.x1, b.height, b.z1) +
             ", \"material\": \"concrete\"}";
   json += R"json(
   ],

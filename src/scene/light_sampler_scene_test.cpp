@@ -31,7 +31,9 @@ TEST(SceneLightSampler, PowerIsTheOldSelectionOnEveryBuiltin) {
       const int old = scene->light_selection().empty() ? -1 : scene->light_selection().sample(u, &old_pmf);
       const LightChoice c = power.sample({}, {}, u);
       ASSERT_EQ(c.light, old) << name;
-      if (old >= 0) ASSERT_EQ(c.pmf, old_pmf) << name;
+      if (old >= 0) {
+        ASSERT_EQ(c.pmf, old_pmf) << name;
+      }
     }
     ++scenes;
   }
