@@ -12,17 +12,13 @@
 
 #include "core/math.h"
 #include "lights/environment_map.h"
+#include "integrators/test_scenes.h"
 #include "render/render.h"
 
 namespace caligo {
 namespace {
 
-SceneDesc camera_at(Vec3 position, Vec3 look_at, Vec2i resolution, float fov) {
-  SceneDesc desc;
-  desc.file = "test";
-  desc.camera = {position, look_at, {0, 1, 0}, fov, resolution};
-  return desc;
-}
+using testing::camera_at;
 
 int add_material(SceneDesc& desc, Bsdf bsdf) {
   desc.materials.push_back({std::to_string(desc.materials.size()), bsdf, {}, false});

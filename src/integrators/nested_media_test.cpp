@@ -10,17 +10,13 @@
 #include "integrators/interface_eta.h"
 #include "integrators/path_tracer.h"
 #include "integrators/visibility.h"
+#include "integrators/test_scenes.h"
 #include "render/render.h"
 
 namespace caligo {
 namespace {
 
-SceneDesc camera_at(Vec3 position, Vec3 look_at, Vec2i resolution, float fov) {
-  SceneDesc desc;
-  desc.file = "test";
-  desc.camera = {position, look_at, {0, 1, 0}, fov, resolution};
-  return desc;
-}
+using testing::camera_at;
 
 int add_medium(SceneDesc& desc, const char* name, RGB sigma_a, RGB sigma_s = RGB(0.0f)) {
   desc.media.push_back({name, VolumeShader{sigma_a, sigma_s}});

@@ -14,6 +14,7 @@
 
 #include "core/parallel.h"
 #include "integrators/path_tracer.h"
+#include "integrators/test_scenes.h"
 #include "integrators/reference.h"
 #include "integrators/visibility.h"
 #include "scene/builtins.h"
@@ -24,15 +25,7 @@ namespace {
 
 // ---- scene building ----
 
-SceneDesc camera_at(Vec3 position, Vec3 look_at, Vec2i resolution, float fov_degrees) {
-  SceneDesc desc;
-  desc.file = "test";
-  desc.camera.position = position;
-  desc.camera.look_at = look_at;
-  desc.camera.resolution = resolution;
-  desc.camera.fov_degrees = fov_degrees;
-  return desc;
-}
+using testing::camera_at;
 
 VolumeShader medium(RGB sigma_a, RGB sigma_s) {
   return VolumeShader{sigma_a, sigma_s, RGB(0.0f), 1.0f, IsotropicPhase{}, ConstantDensity{}, std::nullopt, 0.0f};
