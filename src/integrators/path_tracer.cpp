@@ -96,13 +96,16 @@ Vec3 light_choice_normal(const SurfaceInteraction& si, Vec3 wo) { return face_fo
 // Next-event estimation at a surface: one light chosen by the light sampler, one point on it.
 RGB surface_direct_light(const Scene& scene, const LightSampler& lights, const SurfaceInteraction& si, Vec3 wo,
                          const Sampler& sampler, int depth, PathScratch& scratch, PathCounters& counters) {
+  // Random numbers that would not be used are not drawn (one light, a delta light's position).
   const LightChoice choice =
-      lights.sample(si.p, light_choice_normal(si, wo), sampler.get_1d(bounce(depth, sample_dim::kLightSelect)));
+      lights.sample(si.p, light_choice_normal(si, wo),
+                    lights.needs_random() ? sampler.get_1d(bounce(depth, sample_dim::kLightSelect)) : 0.0f);
   if (choice.light < 0) return RGB(0.0f);
   const int index = choice.light;
   const float pick_pmf = choice.pmf;
   const Light& light = scene.lights()[size_t(index)];
-  const auto ls = sample_light(light, si.p, sampler.get_2d(bounce(depth, sample_dim::kLightPosition)));
+  const auto ls = sample_light(
+      light, si.p, is_delta(light) ? Vec2(0.5f) : sampler.get_2d(bounce(depth, sample_dim::kLightPosition)));
   if (!ls || ls->radiance.is_black() || !(ls->pdf > 0.0f)) return RGB(0.0f);
   const RGB f = bsdf_eval(si.material->bsdf, si.ns, wo, ls->wi) * abs_dot(si.ns, ls->wi);
   if (f.is_black() || dot(si.ng, ls->wi) * dot(si.ng, wo) <= 0.0f) return RGB(0.0f);
@@ -122,6 +125,7 @@ RGB surface_direct_light(const Scene& scene, const LightSampler& lights, const S
 bool russian_roulette(PathState& state, const Sampler& sampler, const PathSettings& settings) {
   if (state.depth < settings.russian_roulette_depth) return true;
   const float survive = std::min(1.0f, state.throughput.max_component());
+  if (survive >= 1.0f) return true;  // no draw: it could not end the path
   if (sampler.get_1d(bounce(state.vertex(), sample_dim::kRussianRoulette)) >= survive) return false;
   state.throughput *= 1.0f / survive;
   return true;
@@ -209,7 +213,8 @@ SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, c
     // light but cost two shadow rays: next-event estimation runs with a probability that
     // follows the segment's scattering probability, and is reweighted (unbiased roulette).
     const float nee_probability = std::min(1.0f, settings.volume_nee_scale * record.scatter_weight_total());
-    const float u = sampler.get_1d(bounce(state.vertex(), sample_dim::kVolumeNeeRoulette));
+    const float u = nee_probability < 1.0f ? sampler.get_1d(bounce(state.vertex(), sample_dim::kVolumeNeeRoulette))
+                                           : 0.0f;
     if (nee_probability > 0.0f && u < nee_probability)
       out.radiance += state.throughput *
                       volume_direct_light(scene, *state.light_sampler, ray, record, sampler, state.vertex(),
@@ -228,7 +233,9 @@ SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, c
   // tiny weights that Russian roulette then turns into noise (3x the standard error on `sss`).
   // A path that may not scatter again just takes T.
   const float u = sampler.get_1d(bounce(state.vertex(), sample_dim::kFreeFlightDistance));
-  const float u_channel = sampler.get_1d(bounce(state.vertex(), sample_dim::kFreeFlightChannel));
+  // A grey record samples the same distance whichever channel is picked.
+  const float u_channel =
+      record.grey() ? 0.0f : sampler.get_1d(bounce(state.vertex(), sample_dim::kFreeFlightChannel));
   std::optional<DistanceSample> collision;
   if (settings.absorption_by_weight) {
     const RGB t_end = record.transmittance_end();
@@ -258,7 +265,8 @@ SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, c
   const Vec3 x = ray.at(collision->t);
   *event_t = collision->t;
   const MixedPhaseSample ps = sample_mixed_phase(
-      record, step, ray.direction, sampler.get_1d(bounce(state.vertex(), sample_dim::kPhaseLobe)),
+      record, step, ray.direction,
+      record.lobes(step).size() > 1 ? sampler.get_1d(bounce(state.vertex(), sample_dim::kPhaseLobe)) : 0.0f,
       sampler.get_2d(bounce(state.vertex(), sample_dim::kPhaseDirection)));
   state.throughput *= ps.weight;
   if (state.throughput.is_black()) return SegmentOutcome::kAbsorbed;

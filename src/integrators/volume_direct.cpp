@@ -113,17 +113,19 @@ RGB volume_direct_light(const Scene& scene, const LightSampler& lights, const Ra
                         const TransmittanceRecord& record, const Sampler& sampler, int depth,
                         DistanceSampling strategy, PathScratch& scratch, PathCounters& counters) {
   if (record.scatter_weight_total() <= 0.0f) return RGB(0.0f);
-  const LightChoice choice = lights.sample_segment(light_choice_segment(ray, record),
-                                                   sampler.get_1d(bounce(depth, sample_dim::kVolumeLightSelect)));
+  const LightChoice choice = lights.sample_segment(
+      light_choice_segment(ray, record),
+      lights.needs_random() ? sampler.get_1d(bounce(depth, sample_dim::kVolumeLightSelect)) : 0.0f);
   if (choice.light < 0) return RGB(0.0f);
   const int light_index = choice.light;
   const float pick_pmf = choice.pmf;
   const Light& light = scene.lights()[size_t(light_index)];
 
   const auto centre = light_centre(light);
-  std::optional<EquiangularSetup> eq;
+  std::optional<EquiangularDistribution> eq;
   if (centre && strategy != DistanceSampling::kDensity)
-    eq = reach_equiangular_setup(light, ray, *centre, record.t_begin(), record.t_end());
+    if (const auto setup = reach_equiangular_setup(light, ray, *centre, record.t_begin(), record.t_end()))
+      eq.emplace(*setup);
   // Equiangular sampling cancels the 1/r^2 that dominates the integrand near a light; density
   // sampling is the safety net where transmittance, not distance to the light, shapes the
   // integrand. kMis gives equiangular 0.95 of the samples on an optically thin segment (density
@@ -144,19 +146,20 @@ RGB volume_direct_light(const Scene& scene, const LightSampler& lights, const Ra
   const Vec2 u = sampler.get_2d(bounce(depth, sample_dim::kDistanceSample));
   float t;
   if (u.x < equiangular_share) {
-    t = sample_equiangular(*eq, u.y);
+    t = eq->sample(u.y);
   } else {
     const auto ds =
-        record.sample_scatter_density(sampler.get_1d(bounce(depth, sample_dim::kDensityChannel)), u.y);
+        record.sample_scatter_density(
+            record.grey() ? 0.0f : sampler.get_1d(bounce(depth, sample_dim::kDensityChannel)), u.y);
     if (!ds) return RGB(0.0f);
     t = ds->t;
   }
   // One-sample MIS with the balance heuristic: the estimate divides by the mixture's density.
-  const float pdf = (eq ? equiangular_share * equiangular_pdf(*eq, t) : 0.0f) +
+  const float pdf = (eq ? equiangular_share * eq->pdf(t) : 0.0f) +
                     (1.0f - equiangular_share) * record.scatter_density_pdf(t);
   if (!(pdf > 0.0f)) return RGB(0.0f);
   return scattered_light(scene, ray, record, light_index, pick_pmf, t,
-                         sampler.get_2d(bounce(depth, sample_dim::kVolumeLightPosition)),
+                         is_delta(light) ? Vec2(0.5f) : sampler.get_2d(bounce(depth, sample_dim::kVolumeLightPosition)),
                          march_jitter(scene, sampler, depth), scratch, counters) /
          pdf;
 }

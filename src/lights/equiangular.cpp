@@ -34,14 +34,7 @@ namespace {
 
 constexpr double kCollinearRatio = 1e-6;
 
-enum class Regime { kCauchy, kInverseSquare, kUniform };
-
-struct Prepared {
-  Regime regime;
-  double a, b, delta, D;
-  double xa;    // a - delta
-  double span;  // Cauchy: theta_b - theta_a; inverse square: K = 1/x_a - 1/x_b; uniform: b - a
-};
+enum Regime { kCauchy, kInverseSquare, kUniform };
 
 // atan(x1 / D) - atan(x0 / D) for x0 <= x1, without the cancellation of subtracting two
 // angles near +-pi/2: tan(A - B) = D (x1 - x0) / (D^2 + x0 x1), and atan2 keeps the branch
@@ -49,61 +42,6 @@ struct Prepared {
 double subtended_angle(double x0, double x1, double D) {
   if (std::isinf(x1)) return std::atan2(D, x0);
   return std::atan2(D * (x1 - x0), D * D + x0 * x1);
-}
-
-Prepared prepare(const EquiangularSetup& s) {
-  Prepared p{Regime::kCauchy, s.a, s.b, s.delta, s.D, double(s.a) - s.delta, 0.0};
-  const double xb = p.b - p.delta;
-  const bool foot_outside = p.xa > 0.0 || xb < 0.0;
-  if (foot_outside && p.D <= kCollinearRatio * std::min(std::abs(p.xa), std::abs(xb))) {
-    p.regime = Regime::kInverseSquare;
-    p.span = 1.0 / p.xa - 1.0 / xb;
-    return p;
-  }
-  p.span = p.D > 0.0 ? subtended_angle(p.xa, xb, p.D) : 0.0;
-  // The pdf peaks at 1 / (span D) at the foot point; the foot lies outside only when D is
-  // well above the collinear threshold, so only the inside case can overflow.
-  if (p.D <= 0.0 || !std::isfinite(float(1.0 / (p.span * p.D)))) {
-    p.regime = Regime::kUniform;
-    p.span = p.b - p.a;
-  }
-  return p;
-}
-
-double offset_for(const Prepared& p, double u) {
-  switch (p.regime) {
-    case Regime::kCauchy:
-      return p.D * std::tan(std::atan(p.xa / p.D) + u * p.span);
-    case Regime::kInverseSquare:
-      return 1.0 / (1.0 / p.xa - u * p.span);
-    case Regime::kUniform:
-      break;
-  }
-  return p.xa + u * p.span;
-}
-
-double cdf_at_offset(const Prepared& p, double x) {
-  switch (p.regime) {
-    case Regime::kCauchy:
-      return subtended_angle(p.xa, x, p.D) / p.span;
-    case Regime::kInverseSquare:
-      return (1.0 / p.xa - 1.0 / x) / p.span;
-    case Regime::kUniform:
-      break;
-  }
-  return (x - p.xa) / p.span;
-}
-
-double pdf_at_offset(const Prepared& p, double x) {
-  switch (p.regime) {
-    case Regime::kCauchy:
-      return p.D / (p.span * (p.D * p.D + x * x));
-    case Regime::kInverseSquare:
-      return 1.0 / (p.span * x * x);
-    case Regime::kUniform:
-      break;
-  }
-  return 1.0 / p.span;
 }
 
 }  // namespace
@@ -117,21 +55,52 @@ EquiangularSetup make_equiangular_setup(Vec3 origin, Vec3 unit_dir, Vec3 light, 
   return {a, b, delta, length(to_light - unit_dir * delta)};
 }
 
-float sample_equiangular(const EquiangularSetup& s, float u) {
-  const Prepared p = prepare(s);
-  return float(std::clamp(p.delta + offset_for(p, u), p.a, p.b));
+EquiangularDistribution::EquiangularDistribution(const EquiangularSetup& s)
+    : regime_(kCauchy), a_(s.a), b_(s.b), delta_(s.delta), D_(s.D), xa_(double(s.a) - s.delta), span_(0.0),
+      theta_a_(0.0) {
+  const double xb = b_ - delta_;
+  const bool foot_outside = xa_ > 0.0 || xb < 0.0;
+  if (foot_outside && D_ <= kCollinearRatio * std::min(std::abs(xa_), std::abs(xb))) {
+    regime_ = kInverseSquare;
+    span_ = 1.0 / xa_ - 1.0 / xb;
+    return;
+  }
+  span_ = D_ > 0.0 ? subtended_angle(xa_, xb, D_) : 0.0;
+  // The pdf peaks at 1 / (span D) at the foot point; the foot lies outside only when D is
+  // well above the collinear threshold, so only the inside case can overflow.
+  if (D_ <= 0.0 || !std::isfinite(float(1.0 / (span_ * D_)))) {
+    regime_ = kUniform;
+    span_ = b_ - a_;
+    return;
+  }
+  theta_a_ = std::atan(xa_ / D_);
 }
 
-float equiangular_pdf(const EquiangularSetup& s, float t) {
-  if (!(t >= s.a && t <= s.b)) return 0.0f;
-  const Prepared p = prepare(s);
-  return float(pdf_at_offset(p, double(t) - p.delta));
+float EquiangularDistribution::sample(float u) const {
+  double x = xa_ + u * span_;
+  if (regime_ == kCauchy) x = D_ * std::tan(theta_a_ + u * span_);
+  if (regime_ == kInverseSquare) x = 1.0 / (1.0 / xa_ - u * span_);
+  return float(std::clamp(delta_ + x, a_, b_));
 }
 
-float invert_equiangular(const EquiangularSetup& s, float t) {
-  const Prepared p = prepare(s);
-  const double x = std::clamp(double(t), p.a, p.b) - p.delta;
-  return float(std::clamp(cdf_at_offset(p, x), 0.0, 1.0));
+float EquiangularDistribution::pdf(float t) const {
+  if (!(t >= a_ && t <= b_)) return 0.0f;
+  const double x = double(t) - delta_;
+  if (regime_ == kCauchy) return float(D_ / (span_ * (D_ * D_ + x * x)));
+  if (regime_ == kInverseSquare) return float(1.0 / (span_ * x * x));
+  return float(1.0 / span_);
 }
+
+float EquiangularDistribution::invert(float t) const {
+  const double x = std::clamp(double(t), a_, b_) - delta_;
+  double cdf = (x - xa_) / span_;
+  if (regime_ == kCauchy) cdf = subtended_angle(xa_, x, D_) / span_;
+  if (regime_ == kInverseSquare) cdf = (1.0 / xa_ - 1.0 / x) / span_;
+  return float(std::clamp(cdf, 0.0, 1.0));
+}
+
+float sample_equiangular(const EquiangularSetup& s, float u) { return EquiangularDistribution(s).sample(u); }
+float equiangular_pdf(const EquiangularSetup& s, float t) { return EquiangularDistribution(s).pdf(t); }
+float invert_equiangular(const EquiangularSetup& s, float t) { return EquiangularDistribution(s).invert(t); }
 
 }  // namespace caligo

@@ -23,6 +23,24 @@ struct EquiangularSetup {
 // The setup for the segment [a, b] of a ray with unit direction towards a light position.
 EquiangularSetup make_equiangular_setup(Vec3 origin, Vec3 unit_dir, Vec3 light, float a, float b);
 
+// The distribution of one setup with its angles computed once (an atan2 and an atan): a light
+// connection samples a distance and then evaluates the pdf at it, and each of the free
+// functions below would redo them.
+class EquiangularDistribution {
+ public:
+  explicit EquiangularDistribution(const EquiangularSetup& s);
+  float sample(float u) const;
+  float pdf(float t) const;
+  float invert(float t) const;  // the CDF at t
+
+ private:
+  int regime_;
+  double a_, b_, delta_, D_;
+  double xa_;       // a - delta
+  double span_;     // Cauchy: theta_b - theta_a; inverse square: 1/x_a - 1/x_b; uniform: b - a
+  double theta_a_;  // Cauchy: atan(x_a / D)
+};
+
 float sample_equiangular(const EquiangularSetup& s, float u);
 float equiangular_pdf(const EquiangularSetup& s, float t);
 float invert_equiangular(const EquiangularSetup& s, float t);

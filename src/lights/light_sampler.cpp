@@ -39,6 +39,10 @@ const char* light_sampler_name(LightSamplerKind kind) {
 }
 
 LightSampler::LightSampler(LightSamplerKind kind, std::span<const Light> lights) {
+  // One light of positive power: every strategy chooses it with probability 1 (the tree's
+  // importance bounds would only cut off receivers it cannot light, where its contribution is
+  // zero anyway), and no random number is needed.
+  if (lights.size() == 1 && power(lights[0]) > 0.0f) single_ = 0;
   switch (kind) {
     case LightSamplerKind::kUniform:
       strategy_ = Uniform{int(lights.size())};
@@ -122,6 +126,7 @@ LightChoice sample_uniform(int count, float u) {
 }  // namespace
 
 LightChoice LightSampler::sample(Vec3 p, Vec3 n, float u) const {
+  if (single_ >= 0) return {single_, 1.0f};
   if (const auto* power = std::get_if<Power>(&strategy_)) return sample_power(power->distribution, u);
   if (const auto* uniform = std::get_if<Uniform>(&strategy_)) return sample_uniform(uniform->count, u);
   const Tree& t = std::get<Tree>(strategy_);
@@ -129,6 +134,7 @@ LightChoice LightSampler::sample(Vec3 p, Vec3 n, float u) const {
 }
 
 float LightSampler::pmf(Vec3 p, Vec3 n, int light) const {
+  if (single_ >= 0) return light == single_ ? 1.0f : 0.0f;
   if (const auto* power = std::get_if<Power>(&strategy_))
     return power->distribution.empty() ? 0.0f : power->distribution.pmf(light);
   if (const auto* uniform = std::get_if<Uniform>(&strategy_))
@@ -138,6 +144,7 @@ float LightSampler::pmf(Vec3 p, Vec3 n, int light) const {
 }
 
 LightChoice LightSampler::sample_segment(const Ray& segment, float u) const {
+  if (single_ >= 0) return {single_, 1.0f};
   if (const auto* power = std::get_if<Power>(&strategy_)) return sample_power(power->distribution, u);
   if (const auto* uniform = std::get_if<Uniform>(&strategy_)) return sample_uniform(uniform->count, u);
   const Tree& t = std::get<Tree>(strategy_);
@@ -145,6 +152,7 @@ LightChoice LightSampler::sample_segment(const Ray& segment, float u) const {
 }
 
 float LightSampler::pmf_segment(const Ray& segment, int light) const {
+  if (single_ >= 0) return light == single_ ? 1.0f : 0.0f;
   if (!std::holds_alternative<Tree>(strategy_)) return pmf({}, {}, light);
   const Tree& t = std::get<Tree>(strategy_);
   return pmf_tree(t, light, [&] { return t.tree.pmf_segment(segment, light); });

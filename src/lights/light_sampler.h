@@ -51,6 +51,8 @@ class LightSampler {
   // One light for a whole ray segment in a medium: origin, unit direction, [tmin, tmax].
   LightChoice sample_segment(const Ray& segment, float u) const;
   float pmf_segment(const Ray& segment, int light) const;
+  // False when the choice does not depend on u (one light): callers skip drawing it.
+  bool needs_random() const { return single_ < 0; }
 
  private:
   struct Uniform {
@@ -72,6 +74,7 @@ class LightSampler {
   float pmf_tree(const Tree& t, int light, const TreePmf& tree_pmf) const;
 
   std::variant<Power, Uniform, Tree> strategy_;
+  int single_ = -1;  // the only light, when there is exactly one of positive power
 };
 
 }  // namespace caligo

@@ -31,12 +31,12 @@ double exp_integral(float sigma_t, float length) {
   return tau > 0.0 ? -std::expm1(-tau) / sigma_t : double(length);
 }
 
-bool grey(RGB v) { return v.r == v.g && v.g == v.b; }
+bool is_grey(RGB v) { return v.r == v.g && v.g == v.b; }
 
 // Grey media (the common case) take one exp instead of three; the values are the same.
 RGB transmittance_in_step(const MarchStep& s, float t) {
   RGB out;
-  if (grey(s.sigma_t)) {
+  if (is_grey(s.sigma_t)) {
     const double e = std::exp(-optical_depth(s.sigma_t.r, t - s.t0));
     for (int c = 0; c < kChannels; ++c) channel(out, c) = float(s.transmittance[c] * e);
     return out;
@@ -51,7 +51,7 @@ RGB transmittance_after_step(const MarchStep& s) { return transmittance_in_step(
 // Integral of sigma_s,c T_c over the whole step, per channel.
 RGB scatter_in_step(const MarchStep& s) {
   RGB out;
-  const bool one = grey(s.sigma_t);
+  const bool one = is_grey(s.sigma_t);
   const double shared = one ? exp_integral(s.sigma_t.r, s.t1 - s.t0) : 0.0;
   for (int c = 0; c < kChannels; ++c)
     channel(out, c) = float(double(s.sigma_s[c]) * s.transmittance[c] *
@@ -112,6 +112,7 @@ void TransmittanceRecord::clear() {
   emission_ = RGB();
   end_transmittance_ = RGB(1.0f);
   scatter_totals_ = RGB(0.0f);
+  grey_ = true;
 }
 
 // A start that overlaps the previous step by rounding only (a marcher computing step ends as
@@ -133,6 +134,7 @@ void TransmittanceRecord::push(float t0, float t1, RGB sigma_t, RGB sigma_s,
   steps_.push_back(step);
   end_transmittance_ = transmittance_after_step(step);
   scatter_totals_ = step.scatter_before + scatter_in_step(step);
+  grey_ = grey_ && is_grey(sigma_t) && is_grey(sigma_s);
 }
 
 std::span<const PhaseLobe> TransmittanceRecord::lobes(const MarchStep& step) const {

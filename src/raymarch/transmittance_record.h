@@ -55,6 +55,9 @@ class TransmittanceRecord {
   void add_emission(RGB radiance) { emission_ += radiance; }
 
   bool empty() const { return steps_.empty(); }
+  // Every step's sigma_t and sigma_s are grey (equal in all channels): the channel a sampler
+  // picks does not change the distance it returns.
+  bool grey() const { return grey_; }
   std::span<const MarchStep> steps() const { return steps_; }
   std::span<const PhaseLobe> lobes(const MarchStep& step) const;
   RGB emission() const { return emission_; }
@@ -91,6 +94,7 @@ class TransmittanceRecord {
   // and three expm1 in double each time.
   RGB end_transmittance_{1.0f};  // T at the end of the last step
   RGB scatter_totals_{0.0f};     // per-channel integral of sigma_s T over the record
+  bool grey_ = true;
 };
 
 }  // namespace caligo
