@@ -24,6 +24,7 @@ struct RenderOptions {
   std::optional<int> max_depth;
   std::optional<int> max_volume_bounces;
   std::optional<std::string> distance_sampling;
+  std::optional<int> deferred_nee;
   std::optional<std::string> light_sampler;
   float time = 0.0f;  // seconds: the camera on its path and the lights on their keys at this time
   float exposure = 0.0f;

@@ -33,6 +33,8 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                   "Maximum scattering events in media (overrides the scene)");
   cmd->add_option("--distance-sampling", o.distance_sampling,
                   "Distance sampling for light in media: mis (default; equiangular share by optical depth), mis-fixed (share 3/4), density or equiangular");
+  cmd->add_option("--deferred-nee", o.deferred_nee,
+                  "Connect K scattering vertices per path to lights after building it (0: each segment as it goes)");
   cmd->add_option("--light-sampler", o.light_sampler,
                   "How next-event estimation picks a light: tree (light tree: importance at the receiver), "
                   "power (in proportion to power, the same everywhere) or uniform")
@@ -96,6 +98,11 @@ RenderSettings settings_from(const RenderOptions& o, const SceneDesc& desc) {
     else
       throw InputError(kCommandLine, "--distance-sampling: expected mis, mis-fixed, density or equiangular, got \"" +
                                          d + "\"");
+  }
+  if (o.deferred_nee) {
+    if (*o.deferred_nee < 0 || *o.deferred_nee > 64)
+      throw InputError(kCommandLine, "--deferred-nee: expected 0 to 64, got " + std::to_string(*o.deferred_nee));
+    s.deferred_nee = *o.deferred_nee;
   }
   if (o.light_sampler) {
     const auto kind = light_sampler_from_name(*o.light_sampler);

@@ -27,6 +27,7 @@ struct PathState {
   // light hit needs: at a surface, pmf(scatter_origin, scatter_normal); after scattering in a
   // medium, pmf_segment(scatter_segment), the segment volume NEE chose its light for.
   const LightSampler* light_sampler = nullptr;
+  bool deferred_nee = false;  // PathSettings::deferred_nee > 0
   Vec3 scatter_normal;
   bool scattered_in_medium = false;
   Ray scatter_segment;
@@ -59,6 +60,7 @@ float light_choice_pmf(const PathState& state, int light) {
 
 float mis_weight_for_hit(const Scene& scene, const PathState& state, int light, Vec3 wi, Vec3 p, Vec3 n) {
   if (state.specular_bounce) return 1.0f;
+  if (state.deferred_nee && state.scattered_in_medium) return 0.0f;  // deferred connections count it
   const float light_pdf_sa =
       light_choice_pmf(state, light) * light_pdf(scene.lights()[size_t(light)], state.scatter_origin, wi, p, n);
   return power_heuristic(1, state.scatter_pdf, 1, light_pdf_sa);
@@ -208,7 +210,7 @@ SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, c
   // would lengthen it.
   const bool may_scatter = state.volume_bounces < settings.max_volume_bounces &&
                            (state.in_volume_run || state.may_start_event(settings.max_depth));
-  if (may_scatter) {
+  if (may_scatter && settings.deferred_nee <= 0) {
     // Segments that barely scatter (thin fog between two walls) contribute little in-scattered
     // light but cost two shadow rays: next-event estimation runs with a probability that
     // follows the segment's scattering probability, and is reweighted (unbiased roulette).
@@ -264,6 +266,12 @@ SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, c
   if (state.throughput.is_black()) return SegmentOutcome::kAbsorbed;
   const Vec3 x = ray.at(collision->t);
   *event_t = collision->t;
+  if (settings.deferred_nee > 0) {
+    const auto lobes = record.lobes(step);
+    scratch.deferred.push_back({x, ray.direction, state.throughput, uint32_t(scratch.deferred_lobes.size()),
+                                uint32_t(lobes.size())});
+    scratch.deferred_lobes.insert(scratch.deferred_lobes.end(), lobes.begin(), lobes.end());
+  }
   const MixedPhaseSample ps = sample_mixed_phase(
       record, step, ray.direction,
       record.lobes(step).size() > 1 ? sampler.get_1d(bounce(state.vertex(), sample_dim::kPhaseLobe)) : 0.0f,
@@ -283,6 +291,54 @@ SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, c
   return SegmentOutcome::kScattered;
 }
 
+
+// Deferred next-event estimation (PathSettings::deferred_nee): `count` connections, each to a
+// scattering vertex of the finished path chosen with probability q_i proportional to its
+// throughput and weighted 1 / (count q_i); at the vertex, one light by the light sampler's
+// point form and one point on it, the phase mixture stored with the vertex, and the shadow
+// ray's transmittance (with the vertex's medium stack in nested scenes). Its random numbers
+// come from the vertex indices after the path's last one.
+RGB deferred_connections(const Scene& scene, const LightSampler& lights, const Sampler& sampler, int count,
+                         int first_dim, bool nested, PathScratch& scratch, PathCounters& counters) {
+  double total = 0.0;
+  for (const auto& v : scratch.deferred) total += double(v.beta.average());
+  if (!(total > 0.0)) return RGB(0.0f);
+  RGB sum;
+  for (int k = 0; k < count; ++k) {
+    const int dim = first_dim + k;
+    // The vertex: inverse CDF over the throughputs.
+    const double target = double(sampler.get_1d(bounce(dim, sample_dim::kFreeFlightChannel))) * total;
+    size_t i = 0;
+    double acc = double(scratch.deferred[0].beta.average());
+    while (acc <= target && i + 1 < scratch.deferred.size()) acc += double(scratch.deferred[++i].beta.average());
+    const auto& v = scratch.deferred[i];
+    const float q = float(double(v.beta.average()) / total);
+    if (!(q > 0.0f)) continue;
+    const LightChoice choice = lights.sample(
+        v.x, Vec3(0.0f), lights.needs_random() ? sampler.get_1d(bounce(dim, sample_dim::kVolumeLightSelect)) : 0.0f);
+    if (choice.light < 0) continue;
+    const Light& light = scene.lights()[size_t(choice.light)];
+    const auto ls = sample_light(
+        light, v.x, is_delta(light) ? Vec2(0.5f) : sampler.get_2d(bounce(dim, sample_dim::kVolumeLightPosition)));
+    if (!ls || ls->radiance.is_black() || !(ls->pdf > 0.0f)) continue;
+    RGB phase;
+    for (uint32_t l = 0; l < v.lobe_count; ++l) {
+      const PhaseLobe& lobe = scratch.deferred_lobes[v.first_lobe + l];
+      phase += lobe.weight * phase_eval(lobe.phase, v.wo, ls->wi);
+    }
+    if (phase.is_black()) continue;
+    if (nested) {
+      scratch.stack.assign(scratch.deferred_stacks[i]);
+      scratch.pending.clear();
+    }
+    const RGB tr = light_transmittance(scene, v.x, v.x, *ls, scene.casts_shadows(choice.light),
+                                       march_jitter(scene, sampler, dim), scratch, counters);
+    if (tr.is_black()) continue;
+    sum += v.beta * phase * tr * ls->radiance * (1.0f / (choice.pmf * ls->pdf * float(count) * q));
+  }
+  return sum;
+}
+
 }  // namespace
 
 float march_jitter(const Scene& scene, const Sampler& sampler, int depth) {
@@ -294,6 +350,9 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
   PathSample out;
   PathState state;
   state.light_sampler = &scene.light_sampler(settings.light_sampler);
+  state.deferred_nee = settings.deferred_nee > 0;
+  scratch.deferred.clear();
+  scratch.deferred_lobes.clear();
   // Scenes without priority surfaces take exactly the paths they took before nested media.
   const bool nested = scene.has_priority_objects();
   const bool has_volumes = !scene.volumes().empty() || scene.volumes().has_media();
@@ -316,6 +375,10 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
       if (outcome == SegmentOutcome::kAbsorbed) break;
       if (outcome == SegmentOutcome::kScattered) {
         if (nested) apply_pending(scratch, event_t);
+        if (nested && state.deferred_nee) {
+          if (scratch.deferred_stacks.size() < scratch.deferred.size()) scratch.deferred_stacks.resize(scratch.deferred.size());
+          scratch.deferred_stacks[scratch.deferred.size() - 1].assign(scratch.stack);
+        }
         ++state.depth;
         if (!russian_roulette(state, sampler, settings)) break;
         continue;
@@ -372,6 +435,9 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
     ++state.depth;
     if (!russian_roulette(state, sampler, settings)) break;
   }
+  if (state.deferred_nee && !scratch.deferred.empty())
+    out.radiance += deferred_connections(scene, *state.light_sampler, sampler, settings.deferred_nee,
+                                         state.vertex() + 1, nested, scratch, counters);
   return out;
 }
 

@@ -53,6 +53,13 @@ struct PathSettings {
   // the segment's exact transmittance (absorption by weight). false: analog free-flight
   // sampling, where a collision that absorbs ends the path (kept for comparisons).
   bool absorption_by_weight = true;
+  // Deferred next-event estimation (the seed's "optimizations for multiple scattering"): 0 (the
+  // default) connects each medium segment to a light as the path goes; K > 0 builds the whole
+  // path first, then connects K of its scattering vertices, chosen with probability
+  // proportional to their throughput (~ sigma_s T along the path) and weighted by the inverse.
+  // Light hits from medium vertices then count zero (the connections alone are unbiased).
+  // See docs/techniques.md for when it pays.
+  int deferred_nee = 0;
 };
 
 // What one camera path contributes to the film and its AOVs.
@@ -88,6 +95,16 @@ struct PathScratch {
   std::vector<PendingCrossing> pending;
   MediumStack work;
   std::vector<SurfaceHit> shadow_hits;
+  // Deferred next-event estimation (PathSettings::deferred_nee): the path's scattering vertices
+  // in media, their phase lobes and (with nested media) their medium stacks.
+  struct DeferredVertex {
+    Vec3 x, wo;  // the vertex and the direction the path arrived along
+    RGB beta;    // throughput at the vertex, before the phase sample
+    uint32_t first_lobe, lobe_count;
+  };
+  std::vector<DeferredVertex> deferred;
+  std::vector<PhaseLobe> deferred_lobes;
+  std::vector<MediumStack> deferred_stacks;
 };
 
 // The position of heterogeneous march steps for this path vertex (constant when no

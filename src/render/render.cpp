@@ -33,6 +33,7 @@ PathCounters render_tile(const Scene& scene, const Camera& camera, const RenderS
   path_settings.max_volume_bounces = settings.max_volume_bounces;
   path_settings.distance_sampling = settings.distance_sampling;
   path_settings.absorption_by_weight = settings.absorption_by_weight;
+  path_settings.deferred_nee = settings.deferred_nee;
   path_settings.light_sampler = settings.light_sampler;
   scratch.march_settings = settings.march;
   PathCounters counters;

@@ -16,6 +16,7 @@ struct RenderSettings {
   int max_volume_bounces = 128;
   DistanceSampling distance_sampling = DistanceSampling::kMis;
   bool absorption_by_weight = true;  // PathSettings::absorption_by_weight
+  int deferred_nee = 0;              // PathSettings::deferred_nee
   LightSamplerKind light_sampler = LightSamplerKind::kTree;  // PathSettings::light_sampler
   uint64_t seed = 0;
   int threads = 0;  // 0: all hardware threads
