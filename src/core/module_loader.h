@@ -1,5 +1,5 @@
 // Optional heavy libraries as plugins loaded on first use. OpenImageIO (~260 shared libraries,
-// ~200 ms and ~100 MB before main), OpenVDB (~30 ms, ~28 MB) and assimp would otherwise be
+// ~0.2–0.45 s and ~100 MB (docs/benchmarks.md) before main), OpenVDB (~30 ms, ~28 MB) and assimp would otherwise be
 // loaded and relocated by every process, including `caligo --help`. Each lives in a small
 // module built by this project (caligo_oiio.so, caligo_vdb.so, caligo_assimp.so) that exports
 // one C function returning a table of entry points; only runs that read images, OpenVDB grids

@@ -21,6 +21,8 @@ struct HybridScatterer::CachedVolumes {
   Vec3 light;
   float extrusion = 0.0f;
   std::vector<ShadowVolume> volumes;
+  // A textured spot's blurred gobo, built once per gobo image rather than every frame.
+  std::shared_ptr<const GoboImage> gobo_source, gobo_blurred;
 };
 
 namespace {
@@ -110,12 +112,6 @@ std::string medium_problem(const VolumeScene& volumes, Vec3 eye, Vec3 light) {
   return "";
 }
 
-void add_scaled(ColorPlanes& accum, const ColorPlanes& add, RGB weight) {
-  Plane* const out[3] = {&accum.r, &accum.g, &accum.b};
-  const Plane* const in[3] = {&add.r, &add.g, &add.b};
-  for (int c = 0; c < 3; ++c)
-    for (size_t i = 0; i < out[c]->data.size(); ++i) out[c]->data[i] += weight[c] * in[c]->data[i];
-}
 
 }  // namespace
 
@@ -164,9 +160,10 @@ HybridScatterer::HybridScatterer(const Scene& scene, VolumetricMethod method, Hy
   }
   if (!open_occluder_.empty())
     std::fprintf(stderr,
-                 "caligo realtime: warning: --method hybrid: occluder %s; shadow volumes need closed meshes, "
-                 "so point lights use brute-force marching (the shadow map alone)\n",
-                 open_occluder_.c_str());
+                 "caligo realtime: warning: --method %s: occluder %s; shadow volumes need closed meshes, "
+                 "so point lights use brute-force marching (the shadow map alone)%s\n",
+                 volumetric_method_name(method_), open_occluder_.c_str(),
+                 method_ == VolumetricMethod::kTextured ? " and spot lights read the shadow map at every step" : "");
 }
 
 HybridScatterer::~HybridScatterer() = default;
@@ -271,7 +268,7 @@ bool HybridScatterer::scatter(size_t index, const FrameLight& frame_light, const
     }
     RGB w = weight;
     if (!grey) w = RGB(c == 0 ? weight.r : 0.0f, c == 1 ? weight.g : 0.0f, c == 2 ? weight.b : 0.0f);
-    add_scaled(accum, result, w);
+    accum.add(result, w);
   }
   used_[index] = method;
   return true;
@@ -301,12 +298,22 @@ bool HybridScatterer::scatter_spot(size_t index, const SpotLight& spot, const Fr
   const bool grey =
       sigma_s.r == sigma_s.g && sigma_s.g == sigma_s.b && sigma_t.r == sigma_t.g && sigma_t.g == sigma_t.b;
   const float gain = frame_light.options.volumetric_intensity;
+  SpotLight lit = spot;
+  TexturedSpotSettings settings = spot_settings_;
+  if (spot.gobo.image && settings.blur_level > 0) {
+    CachedVolumes& cache = cache_[index];
+    if (cache.gobo_source != spot.gobo.image) {
+      cache.gobo_blurred = blurred_gobo(*spot.gobo.image, settings.blur_level);
+      cache.gobo_source = spot.gobo.image;
+    }
+    lit.gobo.image = cache.gobo_blurred;
+    settings.blur_level = 0;
+  }
   for (int c = 0; c < (grey ? 1 : 3); ++c) {
     const ScatterResult r = scatter_textured_spot(low_view, clipped.depth, frame_light.shadow, table,
-                                                  AirlightMedium{sigma_s[c], sigma_t[c]}, spot, spot_settings_,
-                                                  buffers);
+                                                  AirlightMedium{sigma_s[c], sigma_t[c]}, lit, settings, buffers);
     const RGB w = grey ? RGB(gain) : RGB(c == 0 ? gain : 0.0f, c == 1 ? gain : 0.0f, c == 2 ? gain : 0.0f);
-    add_scaled(accum, r.radiance, w);
+    accum.add(r.radiance, w);
   }
   used_[index] = VolumetricMethod::kTextured;
   return true;

@@ -58,6 +58,11 @@ std::vector<GoboImage> gobo_mip_chain(const GoboImage& image, int max_levels) {
   return chain;
 }
 
+std::shared_ptr<const GoboImage> blurred_gobo(const GoboImage& image, int level) {
+  std::vector<GoboImage> chain = gobo_mip_chain(image, std::max(level, 0) + 1);
+  return std::make_shared<const GoboImage>(std::move(chain.back()));
+}
+
 int textured_spot_steps(float abs_cos_axis, const TexturedSpotSettings& settings) {
   const int lo = std::max(settings.min_steps, 1), hi = std::max(settings.max_steps, lo);
   const float c = std::clamp(std::abs(abs_cos_axis), 0.0f, 1.0f);
@@ -80,11 +85,7 @@ ScatterResult scatter_textured_spot(const View& view, const Plane& opaque_depth,
     throw std::invalid_argument("textured spot: shadow-volume buffers do not match the view");
   if (!shadow) volumes = nullptr;  // nothing casts a shadow: every step is lit
   Emitter emitter{light, light.gobo};
-  std::vector<GoboImage> chain;
-  if (light.gobo.image && settings.blur_level > 0) {
-    chain = gobo_mip_chain(*light.gobo.image, settings.blur_level + 1);
-    emitter.gobo.image = std::make_shared<const GoboImage>(chain.back());
-  }
+  if (light.gobo.image && settings.blur_level > 0) emitter.gobo.image = blurred_gobo(*light.gobo.image, settings.blur_level);
   const Light as_light{light};
   const float max_distance = std::max(settings.max_distance, 0.0f);
   const float jitter = std::clamp(settings.jitter, 0.0f, 1.0f);

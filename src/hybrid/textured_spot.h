@@ -27,7 +27,7 @@
 //     pattern differs between neighbouring pixels and no sampling planes show; E · V is held
 //     constant over the step and the step's airlight of an isotropic point light of unit
 //     intensity at the spot's position is integrated in closed form (airlight.h; consecutive
-//     steps share their endpoint tails, n + 1 tail evaluations per pixel). The only errors are
+//     steps share their endpoint tails, k + 1 tail evaluations per segment of k steps). The only errors are
 //     E and V varying inside a step.
 //   - with the spot's shadow volumes (shadow_volume.h, built from the spot's position), the
 //     stretch is cut at the front-most and back-most volume surfaces into before / inside /
@@ -53,6 +53,7 @@
 // the thread pool.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "hybrid/airlight.h"
@@ -82,6 +83,9 @@ struct TexturedSpotSettings {
 // (at least 1 texel; each target texel averages a block of source texels, the blocks partitioning
 // the source: even sizes keep the mean exactly, odd ones nearly), down to 1x1 or `max_levels` levels.
 std::vector<GoboImage> gobo_mip_chain(const GoboImage& image, int max_levels = 16);
+
+// Level `level` of that chain (clamped to the coarsest): the volumetric term's gobo.
+std::shared_ptr<const GoboImage> blurred_gobo(const GoboImage& image, int level);
 
 // The steps the pass takes for a ray at |cos α| = abs_cos_axis (the rule above).
 int textured_spot_steps(float abs_cos_axis, const TexturedSpotSettings& settings);

@@ -1,6 +1,6 @@
 // Reading pictures in any format OpenImageIO knows (PNG, JPEG, TIFF, EXR, HDR, ...) as linear
 // RGB: gobo (cookie) textures for lights. OpenImageIO is reached through the caligo_oiio.so
-// plugin (oiio_plugin.h), loaded on the first call: it costs ~200 ms and ~100 MB of process
+// plugin (oiio_plugin.h), loaded on the first call: it costs ~0.2–0.45 s and ~100 MB (docs/benchmarks.md) of process
 // start-up, which runs that read no image do not pay.
 #pragma once
 

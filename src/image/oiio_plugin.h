@@ -1,5 +1,5 @@
 // The entry points of caligo_oiio.so, the plugin that keeps OpenImageIO (~260 shared
-// libraries, ~200 ms and ~100 MB of process start-up) out of every run that reads no image
+// libraries, ~0.2–0.45 s and ~100 MB (docs/benchmarks.md) of process start-up) out of every run that reads no image
 // and writes no GIF (see core/module_loader.h). Host and plugin are built together, so C++
 // types cross the boundary; exceptions do not: failures come back as messages.
 #pragma once

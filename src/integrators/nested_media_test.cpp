@@ -266,6 +266,32 @@ TEST(NestedMedia, ShadowRaysSeeTheMediaTheCameraSees) {
   }
 }
 
+// Only a REAL dielectric crossing takes a light sample out of MIS (weight 1): inside a clipping
+// box (very high, vacuum) the water surface is a hidden crossing, straight for BSDF samples too.
+TEST(NestedMedia, HiddenDielectricCrossingsKeepMis) {
+  SceneDesc desc = camera_at({0, 3, 5}, {0, 0, 0}, {1, 1}, 30.0f);
+  desc.render.priority_shadows = true;
+  const int water = add_boundary(desc, "water", kPriorityNormal, add_medium(desc, "w", RGB(0.1f)), 1.33f, true);
+  add_box(desc, {-10, -10, -10}, {10, 0, 10}, water);
+  const int clip = add_boundary(desc, "clip", kPriorityVeryHigh, -1);
+  add_box(desc, {-1, -1, -1}, {1, 1, 1}, clip);
+  const auto scene = Scene::build(desc);
+  PathScratch scratch;
+  PathCounters counters;
+  // Whether the shadow ray from x to a point light at `light` crosses a dielectric for real.
+  const auto through = [&](Vec3 x, Vec3 light) {
+    scratch.stack.assign(scene->stack_at(x));
+    scratch.pending.clear();
+    const LightSample ls{RGB(1.0f), normalize(light - x), distance(light, x), 1.0f, true};
+    bool crossed = false;
+    const RGB tr = light_transmittance(*scene, x, x, ls, true, 0.5f, scratch, counters, kInfinity, &crossed);
+    EXPECT_FALSE(tr.is_black());
+    return crossed;
+  };
+  EXPECT_FALSE(through({0, -0.5f, 0}, {0, 0.5f, 0}));  // both in the box: the water surface is hidden
+  EXPECT_TRUE(through({3, -1.0f, 0}, {3, 2.0f, 0}));    // outside it: water -> air is a real interface
+}
+
 // ---- neutrality ----
 
 // Priority surfaces that no ray meets switch the nested code path on without changing any

@@ -266,18 +266,20 @@ SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, c
   if (state.throughput.is_black()) return SegmentOutcome::kAbsorbed;
   const Vec3 x = ray.at(collision->t);
   *event_t = collision->t;
-  if (settings.deferred_nee > 0) {
-    const auto lobes = record.lobes(step);
-    scratch.deferred.push_back({x, ray.direction, state.throughput, uint32_t(scratch.deferred_lobes.size()),
-                                uint32_t(lobes.size())});
-    scratch.deferred_lobes.insert(scratch.deferred_lobes.end(), lobes.begin(), lobes.end());
-  }
+  const RGB beta = state.throughput;  // at the vertex, before the phase sample (deferred NEE)
   const MixedPhaseSample ps = sample_mixed_phase(
       record, step, ray.direction,
       record.lobes(step).size() > 1 ? sampler.get_1d(bounce(state.vertex(), sample_dim::kPhaseLobe)) : 0.0f,
       sampler.get_2d(bounce(state.vertex(), sample_dim::kPhaseDirection)));
   state.throughput *= ps.weight;
   if (state.throughput.is_black()) return SegmentOutcome::kAbsorbed;
+  // Kept only on the scattered outcome, which is where trace_path stores its medium stack.
+  if (settings.deferred_nee > 0) {
+    const auto lobes = record.lobes(step);
+    scratch.deferred.push_back(
+        {x, ray.direction, beta, uint32_t(scratch.deferred_lobes.size()), uint32_t(lobes.size())});
+    scratch.deferred_lobes.insert(scratch.deferred_lobes.end(), lobes.begin(), lobes.end());
+  }
   state.specular_bounce = false;
   state.camera_view = false;
   state.scatter_pdf = ps.pdf;

@@ -7,6 +7,7 @@
 #include <variant>
 
 #include "core/parallel.h"
+#include "integrators/interface_eta.h"
 #include "lights/light_sample.h"
 #include "materials/bsdf.h"
 #include "media/medium_stack.h"
@@ -430,16 +431,6 @@ float surface_direct_light(const Scene& scene, const SurfaceInteraction& si, Vec
   return sum;
 }
 
-// n_inside / n_outside of a dielectric hit (inside: the side ng points away from). A priority
-// surface separates the media the stack rules put before and after its crossing; an Off
-// surface is its own IOR against the medium the ray is in (the stack never holds it).
-float dielectric_eta(const MediumStack& stack, const std::optional<MediumEntry>& entry, float material_ior,
-                     bool front_face) {
-  if (!entry) return material_ior / stack.current().ior;
-  const MediumStack::Crossing c = stack.peek(*entry);
-  return front_face ? c.after.ior / c.before.ior : c.before.ior / c.after.ior;
-}
-
 // `camera_view`: the ray left the camera through specular events only, so an environment
 // with visible = false is not seen (EnvironmentLight::visible).
 RGB environment(const Scene& scene, Vec3 w, bool camera_view) {
@@ -536,7 +527,7 @@ RGB reference_delta_tracking(const Scene& scene, const Ray& camera_ray, Referenc
     std::optional<BsdfSample> bs;
     if (const auto* d = std::get_if<DielectricBsdf>(&bsdf)) {
       // Specular: no next-event estimation, so emission the new ray reaches counts.
-      const Bsdf interface = DielectricBsdf{dielectric_eta(stack, entry, d->ior, dot(si.ng, wo) > 0.0f)};
+      const Bsdf interface = DielectricBsdf{interface_eta(stack, entry, d->ior, dot(si.ng, wo) > 0.0f)};
       const float u_lobe = rng.next_float();
       bs = bsdf_sample(interface, si.ns, wo, u_lobe, next_2d(rng));
       if (!bs) break;

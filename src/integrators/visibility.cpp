@@ -47,8 +47,11 @@ RGB nested_transmittance(const Scene& scene, const Ray& shadow, bool casts_shado
                                 stack.current().medium);
     if (tr.is_black()) return RGB(0.0f);
     if (i < hits.size()) {
-      if (const auto entry = scene.medium_entry(hits[i].geom_id)) stack.cross(*entry);
-      if (through_interface && std::holds_alternative<DielectricBsdf>(scene.material(hits[i]).bsdf))
+      // Only a REAL dielectric crossing bends the paths MIS would pair this sample with; a
+      // hidden one (a false hit) is crossed straight by BSDF and phase samples too.
+      bool real = false;
+      if (const auto entry = scene.medium_entry(hits[i].geom_id)) real = stack.cross(*entry).real;
+      if (through_interface && real && std::holds_alternative<DielectricBsdf>(scene.material(hits[i]).bsdf))
         *through_interface = true;
       stretch.tmin = hits[i].t;
     }

@@ -23,7 +23,7 @@ namespace caligo {
 // priority surface costs one occlusion query and one march, as without nesting. A light that
 // casts no shadows sees the origin's medium along the whole ray.
 //
-// *through_interface (when given) is set when the ray passed a priority dielectric
+// *through_interface (when given) is set when the ray crossed a priority dielectric for real
 // (render.priority_shadows): no BSDF or phase sample can reach the light along that straight
 // line (it would refract), so the caller weights such a sample 1, not by MIS.
 RGB light_transmittance(const Scene& scene, Vec3 origin, Vec3 sampled_from, const LightSample& ls,

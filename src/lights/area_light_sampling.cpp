@@ -131,7 +131,7 @@ std::optional<Vec3> sample_solid_angle(const SolidAngleSampling& s, Vec2 u) {
   // A parallelogram: one of its two triangles in proportion to solid angle, u.x reused.
   const float p_first = float(s.tri[0].solid_angle / s.solid_angle);
   if (u.x < p_first) return sample_spherical_triangle(s.tri[0], {u.x / p_first, u.y});
-  const float rest = std::min((u.x - p_first) / (1.0f - p_first), 0x1.fffffep-1f);
+  const float rest = std::min((u.x - p_first) / (1.0f - p_first), kOneMinusEpsilon);
   return sample_spherical_triangle(s.tri[1], {rest, u.y});
 }
 

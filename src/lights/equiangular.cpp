@@ -99,8 +99,4 @@ float EquiangularDistribution::invert(float t) const {
   return float(std::clamp(cdf, 0.0, 1.0));
 }
 
-float sample_equiangular(const EquiangularSetup& s, float u) { return EquiangularDistribution(s).sample(u); }
-float equiangular_pdf(const EquiangularSetup& s, float t) { return EquiangularDistribution(s).pdf(t); }
-float invert_equiangular(const EquiangularSetup& s, float t) { return EquiangularDistribution(s).invert(t); }
-
 }  // namespace caligo

@@ -24,8 +24,7 @@ struct EquiangularSetup {
 EquiangularSetup make_equiangular_setup(Vec3 origin, Vec3 unit_dir, Vec3 light, float a, float b);
 
 // The distribution of one setup with its angles computed once (an atan2 and an atan): a light
-// connection samples a distance and then evaluates the pdf at it, and each of the free
-// functions below would redo them.
+// connection samples a distance and then evaluates the pdf at it.
 class EquiangularDistribution {
  public:
   explicit EquiangularDistribution(const EquiangularSetup& s);
@@ -41,8 +40,5 @@ class EquiangularDistribution {
   double theta_a_;  // Cauchy: atan(x_a / D)
 };
 
-float sample_equiangular(const EquiangularSetup& s, float u);
-float equiangular_pdf(const EquiangularSetup& s, float t);
-float invert_equiangular(const EquiangularSetup& s, float t);
 
 }  // namespace caligo

@@ -88,7 +88,7 @@ std::vector<Case> all_cases() {
   };
 }
 
-double pdf_at(const EquiangularSetup& s, double t) { return equiangular_pdf(s, float(t)); }
+double pdf_at(const EquiangularSetup& s, double t) { return EquiangularDistribution(s).pdf(float(t)); }
 
 // Bin edges in t that do not come from the sampler: 32 uniform bins, refined geometrically
 // towards the foot point so that a peak there spans many bins.
@@ -147,11 +147,11 @@ TEST(Equiangular, PdfIsFinitePositiveInsideAndZeroOutside) {
     SCOPED_TRACE(c.name);
     for (int i = 0; i <= 1000; ++i) {
       const float t = lerp(i / 1000.0f, c.s.a, c.s.b);
-      const float pdf = equiangular_pdf(c.s, t);
+      const float pdf = EquiangularDistribution(c.s).pdf(t);
       EXPECT_TRUE(std::isfinite(pdf) && pdf > 0.0f) << "t = " << t << ", pdf = " << pdf;
     }
-    EXPECT_EQ(equiangular_pdf(c.s, std::nextafter(c.s.a, -kInfinity)), 0.0f);
-    EXPECT_EQ(equiangular_pdf(c.s, std::nextafter(c.s.b, kInfinity)), 0.0f);
+    EXPECT_EQ(EquiangularDistribution(c.s).pdf(std::nextafter(c.s.a, -kInfinity)), 0.0f);
+    EXPECT_EQ(EquiangularDistribution(c.s).pdf(std::nextafter(c.s.b, kInfinity)), 0.0f);
   }
 }
 
@@ -161,13 +161,13 @@ TEST(Equiangular, SamplesStayInTheSegmentAndGrowWithU) {
   for (const Case& c : all_cases()) {
     SCOPED_TRACE(c.name);
     for (float u : test_us()) {
-      const float t = sample_equiangular(c.s, u);
+      const float t = EquiangularDistribution(c.s).sample(u);
       ASSERT_GE(t, c.s.a) << "u = " << u;
       ASSERT_LE(t, c.s.b) << "u = " << u;
     }
     float previous = c.s.a;
     for (int i = 0; i <= 1000; ++i) {
-      const float t = sample_equiangular(c.s, std::min(i / 1000.0f, kOneMinusEpsilon));
+      const float t = EquiangularDistribution(c.s).sample(std::min(i / 1000.0f, kOneMinusEpsilon));
       ASSERT_GE(t, previous) << i;
       previous = t;
     }
@@ -177,7 +177,7 @@ TEST(Equiangular, SamplesStayInTheSegmentAndGrowWithU) {
 TEST(Equiangular, SamplesFollowPdf) {
   for (const Case& c : all_cases()) {
     SCOPED_TRACE(c.name);
-    EXPECT_GT(p_value([&](float u) { return sample_equiangular(c.s, u); }, c.s), kMinPValue);
+    EXPECT_GT(p_value([&](float u) { return EquiangularDistribution(c.s).sample(u); }, c.s), kMinPValue);
   }
 }
 
@@ -186,20 +186,20 @@ TEST(Equiangular, ChiSquaredRejectsUniformSamplesForAPeakedSetup) {
   EXPECT_LT(p_value([&](float u) { return lerp(u, peaked.a, peaked.b); }, peaked), 1e-9);
   // A subtler error: samples for a light 20% farther from the ray.
   const EquiangularSetup farther{0.0f, 10.0f, 5.0f, 0.12f};
-  EXPECT_LT(p_value([&](float u) { return sample_equiangular(farther, u); }, peaked), 1e-9);
+  EXPECT_LT(p_value([&](float u) { return EquiangularDistribution(farther).sample(u); }, peaked), 1e-9);
 }
 
 TEST(Equiangular, InvertUndoesSample) {
   for (const Case& c : all_cases()) {
     SCOPED_TRACE(c.name);
     for (float u : test_us()) {
-      const float t = sample_equiangular(c.s, u);
+      const float t = EquiangularDistribution(c.s).sample(u);
       // Rounding t to a float moves u by up to pdf(t) * ulp(t) / 2, large at a sharp peak.
-      const float quantisation = equiangular_pdf(c.s, t) * std::abs(t) * 0x1p-23f;
-      ASSERT_NEAR(invert_equiangular(c.s, t), u, 1e-4f + quantisation) << "u = " << u << ", t = " << t;
+      const float quantisation = EquiangularDistribution(c.s).pdf(t) * std::abs(t) * 0x1p-23f;
+      ASSERT_NEAR(EquiangularDistribution(c.s).invert(t), u, 1e-4f + quantisation) << "u = " << u << ", t = " << t;
     }
-    EXPECT_EQ(invert_equiangular(c.s, c.s.a), 0.0f);
-    EXPECT_EQ(invert_equiangular(c.s, c.s.b), 1.0f);
+    EXPECT_EQ(EquiangularDistribution(c.s).invert(c.s.a), 0.0f);
+    EXPECT_EQ(EquiangularDistribution(c.s).invert(c.s.b), 1.0f);
   }
 }
 
@@ -210,19 +210,19 @@ TEST(Equiangular, RegimesJoinContinuouslyAtTheCollinearThreshold) {
     const EquiangularSetup s{0.0f, 10.0f, -near, 1e-6f * near * factor};
     const EquiangularSetup collinear{0.0f, 10.0f, -near, 0.0f};
     for (float t : {0.0f, 0.5f, 3.0f, 10.0f})
-      EXPECT_NEAR(equiangular_pdf(s, t), equiangular_pdf(collinear, t),
-                  1e-5f * equiangular_pdf(collinear, t));
+      EXPECT_NEAR(EquiangularDistribution(s).pdf(t), EquiangularDistribution(collinear).pdf(t),
+                  1e-5f * EquiangularDistribution(collinear).pdf(t));
     for (float u : {0.0f, 0.25f, 0.9f})
-      EXPECT_NEAR(sample_equiangular(s, u), sample_equiangular(collinear, u), 1e-5f);
+      EXPECT_NEAR(EquiangularDistribution(s).sample(u), EquiangularDistribution(collinear).sample(u), 1e-5f);
   }
 }
 
 TEST(Equiangular, UniformFallbackWhenTheLightIsOnTheSegment) {
   const EquiangularSetup s{2.0f, 6.0f, 3.0f, 0.0f};
-  EXPECT_FLOAT_EQ(equiangular_pdf(s, 2.5f), 0.25f);
-  EXPECT_FLOAT_EQ(equiangular_pdf(s, 3.0f), 0.25f);
-  EXPECT_FLOAT_EQ(sample_equiangular(s, 0.5f), 4.0f);
-  EXPECT_FLOAT_EQ(invert_equiangular(s, 5.0f), 0.75f);
+  EXPECT_FLOAT_EQ(EquiangularDistribution(s).pdf(2.5f), 0.25f);
+  EXPECT_FLOAT_EQ(EquiangularDistribution(s).pdf(3.0f), 0.25f);
+  EXPECT_FLOAT_EQ(EquiangularDistribution(s).sample(0.5f), 4.0f);
+  EXPECT_FLOAT_EQ(EquiangularDistribution(s).invert(5.0f), 0.75f);
 }
 
 TEST(Equiangular, HalfInfiniteSegment) {
@@ -231,14 +231,14 @@ TEST(Equiangular, HalfInfiniteSegment) {
     SCOPED_TRACE(D);
     const EquiangularSetup s{1.0f, kInfinity, -1.0f, D};
     for (float u : test_us()) {
-      const float t = sample_equiangular(s, u);
+      const float t = EquiangularDistribution(s).sample(u);
       ASSERT_TRUE(t >= 1.0f && std::isfinite(t)) << "u = " << u;
-      ASSERT_NEAR(invert_equiangular(s, t), u, 1e-4f) << "u = " << u;
+      ASSERT_NEAR(EquiangularDistribution(s).invert(t), u, 1e-4f) << "u = " << u;
     }
     // x = t - delta = 2 at t = 1: Cauchy span pi/2 - atan(2 / D), inverse-square K = 1/2.
     const double expected = D > 0.0f ? D / ((0.5 * kPi - std::atan(2.0 / D)) * (D * D + 4.0)) : 2.0 / 4.0;
-    EXPECT_FLOAT_EQ(equiangular_pdf(s, 1.0f), float(expected));
-    EXPECT_GT(equiangular_pdf(s, 1e15f), 0.0f);
+    EXPECT_FLOAT_EQ(EquiangularDistribution(s).pdf(1.0f), float(expected));
+    EXPECT_GT(EquiangularDistribution(s).pdf(1e15f), 0.0f);
   }
 }
 
@@ -275,9 +275,9 @@ TEST(Equiangular, PointLightInverseSquareIntegralHasZeroVariance) {
     const auto integrand = [&](double t) { return 1.0 / (double(D) * D + (t - delta) * (t - delta)); };
     EXPECT_NEAR(integrate(integrand, a, b, {double(delta)}), closed_form, 1e-6 * closed_form);
     for (float u : test_us()) {
-      const float t = sample_equiangular(s, u);
+      const float t = EquiangularDistribution(s).sample(u);
       const double f = 1.0 / double(length_squared(light - (origin + dir * t)));  // from the geometry
-      ASSERT_NEAR(f / equiangular_pdf(s, t), closed_form, 1e-4 * closed_form) << "u = " << u << ", t = " << t;
+      ASSERT_NEAR(f / EquiangularDistribution(s).pdf(t), closed_form, 1e-4 * closed_form) << "u = " << u << ", t = " << t;
     }
   }
 }
@@ -290,9 +290,9 @@ TEST(Equiangular, FlashlightInverseSquareIntegralHasZeroVariance) {
   const EquiangularSetup s = make_equiangular_setup(origin, dir, light, 0.0f, 20.0f);
   const double closed_form = 1.0 / 1.5 - 1.0 / 21.5;
   for (float u : test_us()) {
-    const float t = sample_equiangular(s, u);
+    const float t = EquiangularDistribution(s).sample(u);
     const double f = 1.0 / double(length_squared(light - (origin + dir * t)));
-    ASSERT_NEAR(f / equiangular_pdf(s, t), closed_form, 1e-4 * closed_form) << "u = " << u;
+    ASSERT_NEAR(f / EquiangularDistribution(s).pdf(t), closed_form, 1e-4 * closed_form) << "u = " << u;
   }
 }
 

@@ -7,7 +7,7 @@ namespace {
 
 constexpr float kMinInfiniteShare = 0.1f, kMaxInfiniteShare = 0.9f;
 
-// The weights Scene::light_selection uses (kept identical, so power reproduces it bit for bit).
+// Power selection's weights: max(0, power), as the former selection used (bit for bit).
 std::vector<float> power_weights(std::span<const Light> lights) {
   std::vector<float> weights;
   for (const Light& light : lights) weights.push_back(std::max(0.0f, power(light)));

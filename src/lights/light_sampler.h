@@ -1,7 +1,7 @@
 // Choosing which light next-event estimation samples: one seam, three strategies.
 //
 //   uniform  every light with probability 1 / (number of lights)
-//   power    in proportion to power(light), the same everywhere (Scene::light_selection)
+//   power    in proportion to power(light), the same everywhere (the former selection)
 //   tree     the light tree (lights/light_tree.h) for finite lights, importance at the
 //            receiver; lights at infinity (directional, environment) beside it
 //

@@ -34,7 +34,8 @@
 
 namespace caligo {
 
-// The medium a ray travels in: an index into the scene's media (-1: vacuum) and its IOR.
+// The medium a ray travels in: a slot of the VolumeScene's media (Scene::medium_entry maps a
+// material's interior to it; -1: vacuum) and its IOR.
 struct MediumState {
   int medium = -1;
   float ior = 1.0f;

@@ -134,12 +134,17 @@ const RealtimeFrame& RealtimePipeline::render(float time, uint32_t frame_index) 
   // takes every light, no frame pays for it.
   // The scatterer's lights go to their own buffer: their noise-free result wants the small gather.
   bool rays_built = false, marched = false, scattered = false;
-  ColorPlanes scatter_accum;
+  ColorPlanes& scatter_accum = scatter_accum_;
+  if (scatterer_) {
+    if (scatter_accum.width() != low_res.x || scatter_accum.height() != low_res.y)
+      scatter_accum = ColorPlanes(low_res.x, low_res.y);
+    else
+      scatter_accum.clear();
+  }
   for (size_t i = 0; i < lights.size(); ++i) {
     if (!lights[i].options.volumetric) continue;
     const auto light_start = Clock::now();
     const double rays_before = times.rays;
-    if (scatterer_ && scatter_accum.width() == 0) scatter_accum = ColorPlanes(low_res.x, low_res.y);
     if (scatterer_ && scatterer_->scatter(i, lights[i], volumes, next.low_view, next.low_depth, scatter_accum)) {
       scattered = true;
     } else {
@@ -163,13 +168,7 @@ const RealtimeFrame& RealtimePipeline::render(float time, uint32_t frame_index) 
   };
   ColorPlanes gathered = scattered && !marched ? gather(scatter_accum, settings_.scatter_gather_radius)
                                                : gather(accum, settings_.gather_radius);
-  if (scattered && marched) {
-    const ColorPlanes more = gather(scatter_accum, settings_.scatter_gather_radius);
-    Plane* const out[3] = {&gathered.r, &gathered.g, &gathered.b};
-    const Plane* const in[3] = {&more.r, &more.g, &more.b};
-    for (int c = 0; c < 3; ++c)
-      for (size_t k = 0; k < out[c]->data.size(); ++k) out[c]->data[k] += in[c]->data[k];
-  }
+  if (scattered && marched) gathered.add(gather(scatter_accum, settings_.scatter_gather_radius));
   times.gather = micros_since(t);
 
   // Temporal reprojection at accumulation resolution: the interleaving pattern and the

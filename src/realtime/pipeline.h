@@ -115,6 +115,7 @@ class RealtimePipeline {
   RealtimeFrame frame_, previous_;   // swapped each frame so their buffers are reused
   bool has_history_ = false;
   std::unique_ptr<LightScatterer> scatterer_;
+  ColorPlanes scatter_accum_;  // the scatterer's lights, reused frame to frame
 };
 
 }  // namespace caligo

@@ -55,6 +55,13 @@ struct ColorPlanes {
     g.fill(0.0f);
     b.fill(0.0f);
   }
+  // this += weight * other, per channel; same size required.
+  void add(const ColorPlanes& other, RGB weight = RGB(1.0f)) {
+    Plane* const out[3] = {&r, &g, &b};
+    const Plane* const in[3] = {&other.r, &other.g, &other.b};
+    for (int c = 0; c < 3; ++c)
+      for (size_t i = 0; i < out[c]->data.size(); ++i) out[c]->data[i] += weight[c] * in[c]->data[i];
+  }
 };
 
 }  // namespace caligo

@@ -211,6 +211,12 @@ const std::vector<BadCase> kBadCases = {
      "expected a number in [1, 10], got 0.5"},
     {"NullIorAbsurd", [](OJson& j) { j["materials"]["clip"]["ior"] = 11; }, "/materials/clip/ior",
      "expected a number in [1, 10], got 11"},
+    {"NullIorWithoutPriority",
+     [](OJson& j) {
+       j["materials"]["clip"]["priority"] = "off";
+       j["materials"]["clip"]["ior"] = 1.2;
+     },
+     "/materials/clip/ior", "an \"ior\" on a null material needs a \"priority\" or an \"interior\""},
     {"DielectricIorAbsurd", [](OJson& j) { j["materials"]["glass"]["ior"] = 11; }, "/materials/glass/ior",
      "expected a number in [1, 10], got 11"},
     {"IorOnDiffuse", [](OJson& j) { j["materials"]["white"]["ior"] = 1.5; }, "/materials/white/ior",

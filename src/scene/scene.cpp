@@ -224,16 +224,11 @@ void Scene::add_light_geometry(int index) {
 void Scene::finish_lights() {
   const Bounds3 b = surfaces_.bounds();
   const float radius = b.empty() ? 1.0f : std::max(1e-3f, 0.5f * length(b.diagonal()));
-  std::vector<float> weights;
   for (size_t i = 0; i < lights_.size(); ++i) {
     Light& light = lights_[i];
     std::visit(SetSceneRadius{radius}, light);
     if (is_infinite(light)) infinite_lights_.push_back(int(i));
-    weights.push_back(std::max(0.0f, power(light)));
   }
-  float total = 0.0f;
-  for (float w : weights) total += w;
-  if (total > 0.0f) light_selection_ = DiscreteDistribution(weights);
   for (LightSamplerKind kind : {LightSamplerKind::kUniform, LightSamplerKind::kPower, LightSamplerKind::kTree})
     light_samplers_[size_t(kind)] = LightSampler(kind, lights_);
 }

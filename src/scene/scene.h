@@ -41,13 +41,8 @@ class Scene {
   const std::vector<Material>& materials() const { return materials_; }
   const std::vector<Light>& lights() const { return lights_; }
   const std::vector<int>& infinite_lights() const { return infinite_lights_; }
-  // Probability of picking each light for next-event estimation (proportional to power).
-  const DiscreteDistribution& light_selection() const { return light_selection_; }
-  float light_selection_pmf(int light) const {
-    return light_selection_.empty() ? 0.0f : light_selection_.pmf(light);
-  }
   // The light-sampler seam (lights/light_sampler.h): every strategy, built once with the scene
-  // (the tree costs a few microseconds per light). kPower reproduces light_selection() exactly.
+  // (the tree costs a few microseconds per light).
   const LightSampler& light_sampler(LightSamplerKind kind) const { return light_samplers_[size_t(kind)]; }
 
   // False for a light whose scene entry says "shadow": false (Arnold's cast_shadows):
@@ -68,8 +63,8 @@ class Scene {
   // priority dielectrics with RenderDefaults::priority_shadows) instead of being blocked.
   const std::vector<uint8_t>& shadow_deferred() const { return shadow_deferred_; }
   // The media around the camera at build time: one probe ray from the camera straight up
-  // (+Y) through every surface; an object whose first crossing along it leaves it (the ray
-  // meets its front face first) contains the camera. Works for open surfaces such as a
+  // (+Y) through every surface; an object whose first crossing along it leaves it (the probe
+  // runs along that face's geometric normal) contains the camera. Works for open surfaces such as a
   // water plane whose normal points out of the water.
   const MediumStack& camera_stack() const { return camera_stack_; }
   // The same probe from any point.
@@ -100,7 +95,6 @@ class Scene {
   std::vector<GeometryInfo> geometry_;  // indexed by Embree geometry id
   std::vector<Light> lights_;
   std::vector<int> infinite_lights_;
-  DiscreteDistribution light_selection_;
   std::array<LightSampler, 3> light_samplers_;  // indexed by LightSamplerKind
   std::vector<int> interior_slot_;  // per SceneDesc medium: its slot in volumes_' media, or -1
   std::vector<uint8_t> shadow_deferred_;

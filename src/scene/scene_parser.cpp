@@ -181,6 +181,11 @@ void read_bounded_medium(ObjectReader& r, const std::string& type, const std::ve
     (interior ? *interior : *priority)
         .fail(std::string(type == "emissive" ? "an " : "a ") + type + " material cannot bound a medium: only dielectric and null surfaces bound media");
   if (interior && !priority) m.priority = kPriorityNormal;
+  // A null surface's IOR is what neighbouring dielectrics see of its medium: without a
+  // priority it bounds none, and the value would be silently ignored.
+  if (type == "null" && r.has("ior") && m.priority == kPriorityOff)
+    r.optional("ior")->fail("an \"ior\" on a null material needs a \"priority\" or an \"interior\" (a null "
+                            "surface of priority off bounds no medium)");
   if (interior && m.priority == kPriorityOff)
     priority->fail("expected a priority other than off for a material with an \"interior\" (off objects "
                    "never enter the medium stack), got " + priority->describe());

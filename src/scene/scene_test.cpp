@@ -49,8 +49,9 @@ TEST(Scene, LightSelectionFollowsPower) {
   desc.lights.push_back(PointLight{{0, 1, 0}, RGB(1.0f)});
   desc.lights.push_back(PointLight{{0, 2, 0}, RGB(3.0f)});
   const auto scene = Scene::build(desc);
-  EXPECT_NEAR(scene->light_selection_pmf(0), 0.25f, 1e-6f);
-  EXPECT_NEAR(scene->light_selection_pmf(1), 0.75f, 1e-6f);
+  const LightSampler& by_power = scene->light_sampler(LightSamplerKind::kPower);
+  EXPECT_NEAR(by_power.pmf({}, {}, 0), 0.25f, 1e-6f);
+  EXPECT_NEAR(by_power.pmf({}, {}, 1), 0.75f, 1e-6f);
 }
 
 TEST(Scene, NonUniformlyScaledEmissiveSphereIsAnInputError) {

@@ -20,7 +20,8 @@ namespace caligo {
 class VolumeScene {
  public:
   VolumeScene() = default;
-  // `media`: one per scene medium, in the scene's order; an entry whose shape is not
+  // `media`: the media surfaces enclose, one slot each (Scene::medium_entry maps a material's
+  // interior to its slot); an entry whose shape is not
   // UnboundedVolumeShape or that is not homogeneous throws std::invalid_argument.
   explicit VolumeScene(std::vector<VolumePrimitive> primitives, std::vector<VolumePrimitive> media = {});
 
