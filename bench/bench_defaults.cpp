@@ -34,9 +34,9 @@ RenderSettings settings(const char* scene, bool former, int spp, uint64_t seed) 
   s.spp = spp;
   s.seed = seed;
   if (former) {
-    s.light_sampler = LightSamplerKind::kPower;
-    s.absorption_by_weight = false;
-    s.distance_sampling = DistanceSampling::kMisFixed;
+    s.path.light_sampler = LightSamplerKind::kPower;
+    s.path.absorption_by_weight = false;
+    s.path.distance_sampling = DistanceSampling::kMisFixed;
   }
   return s;
 }

@@ -41,8 +41,8 @@ RenderSettings settings(int deferred, int spp, uint64_t seed) {
   RenderSettings s = default_settings(dense_scene().desc());
   s.spp = spp;
   s.seed = seed;
-  s.max_volume_bounces = 256;
-  s.deferred_nee = deferred;
+  s.path.limits.max_volume_bounces = 256;
+  s.path.deferred_nee = deferred;
   return s;
 }
 

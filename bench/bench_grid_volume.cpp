@@ -85,8 +85,7 @@ void BM_CloudEfficiency(benchmark::State& state) {
     if (delta_tracking) {
       ReferenceOptions o;
       o.samples_per_pixel = spp;
-      o.max_bounces = scene.desc().render.max_volume_bounces;
-      o.max_surface_bounces = scene.desc().render.max_depth;
+      o.limits = scene.desc().render.limits;
       o.seed = uint64_t(runs) + 1;
       image = to_image(reference_image(scene, kEfficiencyResolution, o), kEfficiencyResolution);
     } else {

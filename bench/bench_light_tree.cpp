@@ -34,7 +34,7 @@ RenderSettings lamp_settings(LightSamplerKind kind, int spp, uint64_t seed) {
   s.resolution = kResolution;
   s.spp = spp;
   s.seed = seed;
-  s.light_sampler = kind;
+  s.path.light_sampler = kind;
   return s;
 }
 

@@ -65,7 +65,7 @@ void BM_NestedMediaPerRay(benchmark::State& state) {
   const auto scene = Scene::build(desc);
   RenderSettings settings = default_settings(desc);
   settings.spp = 16;
-  settings.max_depth = 1;
+  settings.path.limits.max_bounces = 1;
   uint64_t paths = 0;
   for (auto _ : state) paths += render(*scene, settings).stats.paths;
   state.counters["rays/s"] = benchmark::Counter(double(paths), benchmark::Counter::kIsRate);

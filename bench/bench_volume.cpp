@@ -22,8 +22,8 @@ RenderSettings lamp_settings(DistanceSampling sampling, int spp, uint64_t seed, 
   s.resolution = kResolution;
   s.spp = spp;
   s.seed = seed;
-  s.distance_sampling = sampling;
-  s.max_volume_bounces = bounces;
+  s.path.distance_sampling = sampling;
+  s.path.limits.max_volume_bounces = bounces;
   return s;
 }
 

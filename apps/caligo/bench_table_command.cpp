@@ -208,8 +208,8 @@ Reference render_reference(const SceneDesc& still, int resolution, int spp) {
   RenderSettings rs = default_settings(still);
   rs.resolution = {resolution, resolution};
   rs.spp = std::max(1, spp / 2);
-  rs.max_depth = 1;
-  rs.max_volume_bounces = 1;
+  rs.path.limits.max_bounces = 1;
+  rs.path.limits.max_volume_bounces = 1;
   const auto scene = Scene::build(still);
   rs.seed = 1;
   const Image a = render(*scene, rs, Progress::Style::kQuiet).image;

@@ -223,8 +223,8 @@ Image reference_image(const RealtimeOptions& o, const SceneDesc& still, Vec2i re
   RenderSettings rs = default_settings(still);
   rs.resolution = resolution;
   rs.spp = o.reference_spp;
-  rs.max_depth = 1;
-  rs.max_volume_bounces = 1;
+  rs.path.limits.max_bounces = 1;
+  rs.path.limits.max_volume_bounces = 1;
   const auto style = o.quiet ? Progress::Style::kQuiet : Progress::Style::kAuto;
   if (!o.reference_per_light || still.lights.size() < 2) return render(*Scene::build(still), rs, style).image;
   Image sum;

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <cstdlib>
 #include <optional>
 #include <filesystem>
 #include <string>
@@ -28,9 +29,11 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--res", o.resolution, "Resolution WxH, e.g. 640x480 (overrides the scene)");
   cmd->add_option("--threads", o.threads, "Worker threads (default: all cores)");
   cmd->add_option("--seed", o.seed, "Random seed (overrides the scene)");
-  cmd->add_option("--max-depth", o.max_depth, "Maximum path depth (overrides the scene)");
+  cmd->add_option("--max-bounces,--max-depth", o.max_bounces,
+                  "Maximum bounces: each surface bounce and each run of consecutive scattering events in "
+                  "media counts one; 1 is direct light only (overrides the scene; --max-depth is an alias)");
   cmd->add_option("--max-volume-bounces", o.max_volume_bounces,
-                  "Maximum scattering events in media (overrides the scene)");
+                  "Maximum scattering events in media, runs included (overrides the scene)");
   cmd->add_option("--distance-sampling", o.distance_sampling,
                   "Distance sampling for light in media: mis (default; equiangular share by optical depth), mis-fixed (share 3/4), density or equiangular");
   cmd->add_option("--deferred-nee", o.deferred_nee,
@@ -38,7 +41,13 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--light-sampler", o.light_sampler,
                   "How next-event estimation picks a light: tree (light tree: importance at the receiver), "
                   "power (in proportion to power, the same everywhere) or uniform")
-      ->default_str(light_sampler_name(RenderSettings{}.light_sampler));
+      ->default_str(light_sampler_name(PathSettings{}.light_sampler));
+  cmd->add_option("--filter", o.filter,
+                  "Pixel filter, importance-sampled: box (radius 0.5 px), gaussian (radius 1.5, sigma 0.5) or "
+                  "blackman_harris (radius 0.75, Cycles' width 1.5) (overrides the scene's render.filter)");
+  cmd->add_option("--crop", o.crop,
+                  "x0,x1,y0,y1: render only this part of the image, as fractions of its width and height from "
+                  "the top-left corner, e.g. 0.25,0.75,0,0.5 (overrides the scene's render.crop)");
   cmd->add_option("--time", o.time, "Render the scene at this time in seconds (camera path, light keys)");
   cmd->add_option("--exposure", o.exposure, "Exposure of the PNG preview, in stops");
   cmd->add_option("--priority", o.priorities,
@@ -52,6 +61,82 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
 
 namespace {
 
+// The options that override PathSettings, the scene's limits included.
+void apply_path_options(const RenderOptions& o, PathSettings& path) {
+  if (o.max_bounces) {
+    if (*o.max_bounces < 0 || *o.max_bounces > 10'000)
+      throw InputError(kCommandLine, "--max-bounces: expected 0 to 10000");
+    path.limits.max_bounces = *o.max_bounces;
+  }
+  if (o.max_volume_bounces) {
+    if (*o.max_volume_bounces < 0 || *o.max_volume_bounces > 10'000)
+      throw InputError(kCommandLine, "--max-volume-bounces: expected 0 to 10000");
+    path.limits.max_volume_bounces = *o.max_volume_bounces;
+  }
+  if (o.distance_sampling) {
+    const std::string& d = *o.distance_sampling;
+    if (d == "mis")
+      path.distance_sampling = DistanceSampling::kMis;
+    else if (d == "density")
+      path.distance_sampling = DistanceSampling::kDensity;
+    else if (d == "equiangular")
+      path.distance_sampling = DistanceSampling::kEquiangular;
+    else if (d == "mis-fixed")
+      path.distance_sampling = DistanceSampling::kMisFixed;
+    else
+      throw InputError(kCommandLine, "--distance-sampling: expected mis, mis-fixed, density or equiangular, got \"" +
+                                         d + "\"");
+  }
+  if (o.deferred_nee) {
+    if (*o.deferred_nee < 0 || *o.deferred_nee > 64)
+      throw InputError(kCommandLine, "--deferred-nee: expected 0 to 64, got " + std::to_string(*o.deferred_nee));
+    path.deferred_nee = *o.deferred_nee;
+  }
+  if (o.light_sampler) {
+    const auto kind = light_sampler_from_name(*o.light_sampler);
+    if (!kind)
+      throw InputError(kCommandLine, "--light-sampler: expected tree, power or uniform, got \"" + *o.light_sampler + "\"");
+    path.light_sampler = *kind;
+  }
+}
+
+// --crop x0,x1,y0,y1.
+CropWindow parse_crop(const std::string& text) {
+  const std::string expected = "--crop: expected x0,x1,y0,y1 (fractions of the image in [0, 1]), got \"" + text + "\"";
+  float v[4];
+  size_t start = 0;
+  for (int i = 0; i < 4; ++i) {
+    const size_t comma = i < 3 ? text.find(',', start) : text.size();
+    if (comma == std::string::npos) throw InputError(kCommandLine, expected);
+    const std::string part = text.substr(start, comma - start);
+    char* end = nullptr;
+    v[i] = std::strtof(part.c_str(), &end);
+    if (part.empty() || end != part.c_str() + part.size()) throw InputError(kCommandLine, expected);
+    start = comma + 1;
+  }
+  const CropWindow crop{v[0], v[1], v[2], v[3]};
+  if (const std::string why = crop_window_problem(crop); !why.empty())
+    throw InputError(kCommandLine, "--crop " + text + ": " + why);
+  return crop;
+}
+
+// --filter and --crop; a crop (from either source) must hold a pixel at the final resolution.
+void apply_image_options(const RenderOptions& o, const SceneDesc& desc, RenderSettings& s) {
+  if (o.filter) {
+    const auto type = pixel_filter_type_from_name(*o.filter);
+    if (!type)
+      throw InputError(kCommandLine, "--filter: expected box, gaussian or blackman_harris, got \"" + *o.filter + "\"");
+    s.filter = PixelFilter({*type, PixelFilterDesc::default_radius(*type), PixelFilterDesc{}.sigma});
+  }
+  if (o.crop) s.crop = parse_crop(*o.crop);
+  if (s.crop.pixels(s.resolution).empty()) {
+    const SourceLocation where = o.crop ? kCommandLine : SourceLocation{desc.file, "/render/crop"};
+    throw InputError(where, "the crop window holds no pixel at " + std::to_string(s.resolution.x) + "x" +
+                                std::to_string(s.resolution.y));
+  }
+}
+
+// The scene's settings with every option of the command line applied.
 RenderSettings settings_from(const RenderOptions& o, const SceneDesc& desc) {
   RenderSettings s = default_settings(desc);
   if (o.spp) {
@@ -75,41 +160,8 @@ RenderSettings settings_from(const RenderOptions& o, const SceneDesc& desc) {
     s.threads = *o.threads;
   }
   if (o.seed) s.seed = *o.seed;
-  if (o.max_depth) {
-    if (*o.max_depth < 0 || *o.max_depth > 10'000)
-      throw InputError(kCommandLine, "--max-depth: expected 0 to 10000");
-    s.max_depth = *o.max_depth;
-  }
-  if (o.max_volume_bounces) {
-    if (*o.max_volume_bounces < 0 || *o.max_volume_bounces > 10'000)
-      throw InputError(kCommandLine, "--max-volume-bounces: expected 0 to 10000");
-    s.max_volume_bounces = *o.max_volume_bounces;
-  }
-  if (o.distance_sampling) {
-    const std::string& d = *o.distance_sampling;
-    if (d == "mis")
-      s.distance_sampling = DistanceSampling::kMis;
-    else if (d == "density")
-      s.distance_sampling = DistanceSampling::kDensity;
-    else if (d == "equiangular")
-      s.distance_sampling = DistanceSampling::kEquiangular;
-    else if (d == "mis-fixed")
-      s.distance_sampling = DistanceSampling::kMisFixed;
-    else
-      throw InputError(kCommandLine, "--distance-sampling: expected mis, mis-fixed, density or equiangular, got \"" +
-                                         d + "\"");
-  }
-  if (o.deferred_nee) {
-    if (*o.deferred_nee < 0 || *o.deferred_nee > 64)
-      throw InputError(kCommandLine, "--deferred-nee: expected 0 to 64, got " + std::to_string(*o.deferred_nee));
-    s.deferred_nee = *o.deferred_nee;
-  }
-  if (o.light_sampler) {
-    const auto kind = light_sampler_from_name(*o.light_sampler);
-    if (!kind)
-      throw InputError(kCommandLine, "--light-sampler: expected tree, power or uniform, got \"" + *o.light_sampler + "\"");
-    s.light_sampler = *kind;
-  }
+  apply_path_options(o, s.path);
+  apply_image_options(o, desc, s);
   return s;
 }
 

@@ -11,7 +11,7 @@
 namespace caligo {
 namespace {
 
-// The camera and the light inside a large fog sphere; no surfaces. With max_depth 1 and one
+// The camera and the light inside a large fog sphere; no surfaces. With max_bounces 1 and one
 // volume bounce the path tracer's image is the single-scattered radiance of each pixel's
 // jittered rays; the airlight of the same rays, to where they leave the sphere, must match.
 TEST(AirlightReference, MatchesThePathTracersSingleScattering) {
@@ -25,8 +25,8 @@ TEST(AirlightReference, MatchesThePathTracersSingleScattering) {
   const auto scene = Scene::build(desc);
   RenderSettings s = default_settings(desc);
   s.spp = 1024;
-  s.max_depth = 1;
-  s.max_volume_bounces = 1;
+  s.path.limits.max_bounces = 1;
+  s.path.limits.max_volume_bounces = 1;
   const Image image = render(*scene, s).image;
 
   const AirlightTable& table = AirlightTable::shared();

@@ -36,11 +36,11 @@ RGB mean_rgb(const Image& image, bool (*keep)(const Image&, int, int) = nullptr)
   return RGB(float(r / n), float(g / n), float(b / n));
 }
 
-RenderResult render_desc(const SceneDesc& desc, int spp, int max_depth) {
+RenderResult render_desc(const SceneDesc& desc, int spp, int max_bounces) {
   const auto scene = Scene::build(desc);
   RenderSettings settings = default_settings(desc);
   settings.spp = spp;
-  settings.max_depth = max_depth;
+  settings.path.limits.max_bounces = max_bounces;
   return render(*scene, settings);
 }
 

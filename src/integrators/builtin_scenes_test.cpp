@@ -2,8 +2,14 @@
 // (at low resolution). `default` holds a dielectric, which the ladder does not handle, and
 // `lamp-in-fog` puts a point light inside the medium, which gives the ladder's collision
 // estimators unbounded variance; both are covered by the analytic and custom-scene tests.
+// `furnace` and `point-in-sphere` are checked against their closed-form pixel values.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/math.h"
 #include "integrators/reference.h"
 #include "render/render.h"
 #include "scene/builtins.h"
@@ -19,19 +25,18 @@ struct Comparison {
 // Image means over rows [first_row, resolution.y) of the production render and the delta-
 // tracking reference.
 Comparison compare_builtin(const char* name, Vec2i resolution, int production_spp, int reference_spp,
-                           int max_bounces, int first_row = 0) {
+                           int max_volume_bounces, int first_row = 0) {
   const SceneDesc desc = parse_builtin(*find_builtin(name));
   const auto scene = Scene::build(desc);
   RenderSettings settings = default_settings(desc);
   settings.resolution = resolution;
   settings.spp = production_spp;
-  settings.max_volume_bounces = max_bounces;
+  settings.path.limits.max_volume_bounces = max_volume_bounces;
   const Image image = render(*scene, settings).image;
   ReferenceOptions options;
   options.estimator = ReferenceEstimator::kDeltaTracking;
   options.samples_per_pixel = reference_spp;
-  options.max_bounces = max_bounces;
-  options.max_surface_bounces = desc.render.max_depth;
+  options.limits = {.max_bounces = desc.render.limits.max_bounces, .max_volume_bounces = max_volume_bounces};
   options.seed = 77;
   const std::vector<RGB> reference = reference_image(*scene, resolution, options);
   Comparison c;
@@ -60,10 +65,56 @@ TEST(BuiltinScenes, OverlapAgreesWithDeltaTracking) {
 // over seeds about 5 %, against about 1 % below it). Tolerance 3 %.
 TEST(BuiltinScenes, SpotShaftsAgreesWithDeltaTracking) {
   const SceneDesc desc = parse_builtin(*find_builtin("spot-shafts"));
-  ASSERT_EQ(desc.render.max_depth, 1);
-  ASSERT_EQ(desc.render.max_volume_bounces, 1);
+  ASSERT_EQ(desc.render.limits.max_bounces, 1);
+  ASSERT_EQ(desc.render.limits.max_volume_bounces, 1);
   const Comparison c = compare_builtin("spot-shafts", {24, 18}, 512, 2048, 1, 6);
   expect_close(c.production, c.reference, 0.03f);
+}
+
+struct PixelMean {
+  double mean, standard_error;
+  int pixels;
+};
+
+// The built-in at `resolution` and `spp`, with its own path settings (depth 1000), and the mean
+// of its pixels' channel average. Every pixel of these scenes has the same expectation and its
+// own independent samples, so the pixels are i.i.d. estimates of it: the standard error of
+// their mean is sqrt(s^2 / n), s^2 the unbiased variance over the n pixels.
+PixelMean render_builtin_mean(const char* name, Vec2i resolution, int spp) {
+  const SceneDesc desc = parse_builtin(*find_builtin(name));
+  const auto scene = Scene::build(desc);
+  RenderSettings settings = default_settings(desc);
+  settings.resolution = resolution;
+  settings.spp = spp;
+  const Image image = render(*scene, settings).image;
+  double sum = 0.0, sum2 = 0.0;
+  for (int y = 0; y < resolution.y; ++y)
+    for (int x = 0; x < resolution.x; ++x) {
+      const double v = image.rgb(x, y, 0).average();
+      sum += v;
+      sum2 += v * v;
+    }
+  const int n = resolution.x * resolution.y;
+  const double mean = sum / n;
+  const double variance = std::max(0.0, (sum2 - n * mean * mean) / (n - 1));
+  return {mean, std::sqrt(variance / n), n};
+}
+
+// The built-ins whose pixels converge to a documented number (builtins.cpp,
+// docs/scene-format.md): within 4 standard errors (a false alarm once in ~16,000 runs).
+TEST(BuiltinScenes, FurnaceConvergesToTwo) {
+  const PixelMean m = render_builtin_mean("furnace", {32, 32}, 256);
+  std::printf("furnace: %.5f +- %.5f over %d pixels (documented 2)\n", m.mean, m.standard_error, m.pixels);
+  EXPECT_GT(m.standard_error, 0.0);  // Russian roulette makes the paths random
+  EXPECT_NEAR(m.mean, 2.0, 4.0 * m.standard_error);
+}
+
+TEST(BuiltinScenes, PointInSphereConvergesToOneOverPi) {
+  const PixelMean m = render_builtin_mean("point-in-sphere", {32, 32}, 256);
+  std::printf("point-in-sphere: %.5f +- %.5f over %d pixels (documented 1/pi = %.5f)\n", m.mean,
+              m.standard_error, m.pixels, 1.0 / kPi);
+  EXPECT_GT(m.standard_error, 0.0);
+  EXPECT_NEAR(m.mean, 1.0 / kPi, 4.0 * m.standard_error);
 }
 
 }  // namespace

@@ -25,11 +25,11 @@ int add_material(SceneDesc& desc, Bsdf bsdf) {
   return int(desc.materials.size()) - 1;
 }
 
-Image render_desc(const SceneDesc& desc, int spp, int max_depth = 8) {
+Image render_desc(const SceneDesc& desc, int spp, int max_bounces = 8) {
   const auto scene = Scene::build(desc);
   RenderSettings s = default_settings(desc);
   s.spp = spp;
-  s.max_depth = max_depth;
+  s.path.limits.max_bounces = max_bounces;
   return render(*scene, s).image;
 }
 

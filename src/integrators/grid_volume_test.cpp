@@ -183,7 +183,7 @@ TEST(GridVolume, ProductionMarcherAgreesWithDeltaTrackingOnAGridCloud) {
   SceneDesc desc;
   desc.file = "test";
   desc.camera = {{0, 0.3f, 5}, {0, 0, 0}, {0, 1, 0}, 30.0f, {8, 8}};
-  desc.render.max_depth = 16;
+  desc.render.limits.max_bounces = 16;
   desc.volumes.push_back(grid_primitive(cloud, RGB(0.4f), RGB(3.6f)));
   desc.volumes.back().shader.phase = HenyeyGreensteinPhase{0.5f};
   desc.lights.push_back(DirectionalLight{normalize(Vec3(-0.5f, -0.7f, -0.4f)), RGB(3.0f)});
@@ -192,8 +192,7 @@ TEST(GridVolume, ProductionMarcherAgreesWithDeltaTrackingOnAGridCloud) {
 
   RenderSettings s = default_settings(desc);
   s.spp = 2048;
-  s.max_depth = 16;
-  s.max_volume_bounces = 16;
+  s.path.limits = {.max_bounces = 16, .max_volume_bounces = 16};
   const Image production = render(*scene, s).image;
   double produced = 0;
   for (int y = 0; y < 8; ++y)
@@ -202,8 +201,7 @@ TEST(GridVolume, ProductionMarcherAgreesWithDeltaTrackingOnAGridCloud) {
 
   ReferenceOptions options;
   options.samples_per_pixel = 2048;
-  options.max_bounces = 16;
-  options.max_surface_bounces = 16;
+  options.limits = {.max_bounces = 16, .max_volume_bounces = 16};
   options.seed = 11;
   const RGB reference = reference_mean_radiance(*scene, {8, 8}, options);
   EXPECT_GT(reference.average(), 0.05f);

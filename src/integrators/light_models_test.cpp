@@ -34,9 +34,9 @@ float render_green(const SceneDesc& desc, int spp, DistanceSampling sampling) {
   const auto scene = Scene::build(desc);
   RenderSettings s = default_settings(desc);
   s.spp = spp;
-  s.max_volume_bounces = 1;
-  s.max_depth = 1;
-  s.distance_sampling = sampling;
+  s.path.limits.max_volume_bounces = 1;
+  s.path.limits.max_bounces = 1;
+  s.path.distance_sampling = sampling;
   return render(*scene, s).image.rgb(0, 0, 0).g;
 }
 
@@ -123,7 +123,7 @@ TEST(LightModels, LightsWithoutShadowsAreNotBlockedBySurfaces) {
     const auto scene = Scene::build(desc);
     RenderSettings s = default_settings(desc);
     s.spp = 4;
-    s.max_depth = 1;
+    s.path.limits.max_bounces = 1;
     const float g = render(*scene, s).image.rgb(0, 0, 0).g;
     const float unblocked = 0.5f / kPi * 9.0f / 9.0f;  // albedo/pi x I cos / d^2, d = 3
     EXPECT_NEAR(g, shadow ? 0.0f : unblocked, 1e-3f * unblocked) << "shadow " << shadow;

@@ -64,7 +64,7 @@ Estimate image_mean(const Scene& scene, const SceneDesc& desc, LightSamplerKind 
   double sum = 0.0, sum_sq = 0.0;
   for (int run = 0; run < kRuns; ++run) {
     RenderSettings s = default_settings(desc);
-    s.light_sampler = kind;
+    s.path.light_sampler = kind;
     s.seed = uint64_t(1000 + run);
     const Image image = render(scene, s).image;
     double m = 0.0;
@@ -107,9 +107,9 @@ TEST(LightTreeRender, OneLightScenesAreIdenticalUnderTreeAndPower) {
     RenderSettings s = default_settings(desc);
     s.resolution = {16, 12};
     s.spp = 4;
-    s.light_sampler = LightSamplerKind::kPower;
+    s.path.light_sampler = LightSamplerKind::kPower;
     const Image power = render(*scene, s).image;
-    s.light_sampler = LightSamplerKind::kTree;
+    s.path.light_sampler = LightSamplerKind::kTree;
     const Image tree = render(*scene, s).image;
     for (int y = 0; y < 12; ++y)
       for (int x = 0; x < 16; ++x) {

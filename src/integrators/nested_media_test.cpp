@@ -149,7 +149,7 @@ TEST(NestedMedia, GlassToWaterReflectsWithTheirIorRatio) {
   add_box(desc, {-50, -0.5f, -50}, {50, 0.5f, 50}, glass);
   add_box(desc, {-50, -20, -50}, {50, -0.4f, 50}, water);
   desc.lights.push_back(EnvironmentLight{RGB(1.0f)});
-  desc.render.max_depth = 16;
+  desc.render.limits.max_bounces = 16;
   const auto scene = Scene::build(desc);
   ASSERT_EQ(scene->camera_stack().size(), 1u);  // the camera is in the glass
   const int spp = 1 << 18;

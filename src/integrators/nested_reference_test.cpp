@@ -134,23 +134,21 @@ MeanEstimate image_mean(const Scene& scene, int spp, Sample&& sample) {
 }
 
 struct Limits {
-  int max_depth = 16;           // production max_depth = the ladder's max_surface_bounces
-  int max_volume_bounces = 256;
+  PathLimits path{.max_bounces = 16, .max_volume_bounces = 256};  // production's and the ladder's
   bool absorption_by_weight = true;
 };
 
 MeanEstimate production_mean(const Scene& scene, int spp, Limits limits, uint64_t seed = 1) {
   PathSettings settings;
   settings.absorption_by_weight = limits.absorption_by_weight;
-  settings.max_depth = limits.max_depth;
-  settings.max_volume_bounces = limits.max_volume_bounces;
+  settings.limits = limits.path;
   return image_mean(scene, spp, [&](const Camera& camera, int x, int y, int s) {
     thread_local PathScratch scratch;
     PathCounters counters;
     const Sampler sampler(seed, {x, y}, uint32_t(s));
     const Vec2 jitter = sampler.get_2d(sample_dim::kFilm);
     const Ray ray = camera.generate_ray({float(x) + jitter.x, float(y) + jitter.y});
-    const RGB v = trace_path(scene, ray, sampler, settings, counters, scratch).radiance;
+    const RGB v = trace_path(scene, ray, sampler, settings, counters, scratch).beauty();
     return v.is_finite() ? v : RGB(0.0f);  // as the film does
   });
 }
@@ -160,7 +158,7 @@ MeanEstimate ladder_mean(const Scene& scene, int spp, Limits limits, uint64_t se
     Pcg32 rng(hash_values(seed, uint64_t(x), uint64_t(y)), uint64_t(s));
     const Vec2 jitter{rng.next_float(), rng.next_float()};
     const Ray ray = camera.generate_ray({float(x) + jitter.x, float(y) + jitter.y});
-    return reference_delta_tracking(scene, ray, {limits.max_volume_bounces, limits.max_depth}, rng);
+    return reference_delta_tracking(scene, ray, limits.path, rng);
   });
 }
 

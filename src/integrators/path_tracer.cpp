@@ -31,24 +31,51 @@ struct PathState {
   Vec3 scatter_normal;
   bool scattered_in_medium = false;
   Ray scatter_segment;
-  int depth = 0;                // scattering events so far (surface and volume)
+  int events = 0;               // scattering events so far (surface and volume, every one)
   int surface_bounces = 0;
   int volume_bounces = 0;
-  // A run of consecutive scattering events in media counts as ONE event against max_depth
-  // (max_volume_bounces bounds the events inside runs): so max_depth 1 is direct light only,
+  // A run of consecutive scattering events in media counts as ONE bounce against max_bounces
+  // (max_volume_bounces bounds the events inside runs): so max_bounces 1 is direct light only,
   // surfaces or media, and a long chain of scattering in fog costs a path one surface bounce.
   int volume_runs = 0;
   bool in_volume_run = false;
   // Real crossings of medium boundaries (priority null surfaces): not events, but each starts a
   // new segment whose free-flight and NEE samples must not reuse the previous segment's.
   int boundary_crossings = 0;
+  // Light-layer bookkeeping (integrators/path_sample.h): non-specular events so far and where
+  // the first of them happened.
+  int nonspecular_events = 0;
+  bool first_event_in_medium = false;
+  // Alpha: what of the background the camera sees through this path, so far (1 - alpha).
+  float visibility = 0.0f;
+  bool first_hit_recorded = false;
 
-  // The sampler's vertex index: events plus boundary crossings (= depth without nested media).
-  int vertex() const { return depth + boundary_crossings; }
+  // The sampler's vertex index: events plus boundary crossings (= events without nested media).
+  int vertex() const { return events + boundary_crossings; }
 
-  // Whether the path may have another event of max_depth's count (a surface bounce or the
+  // Whether the path may have another bounce of PathLimits::max_bounces (a surface bounce or the
   // start of a volume run).
-  bool may_start_event(int max_depth) const { return surface_bounces + volume_runs < max_depth; }
+  bool may_bounce(int max_bounces) const { return surface_bounces + volume_runs < max_bounces; }
+
+  // The layer of light that reaches the camera along the path as it is: emission and light hits
+  // (`seen` is the layer when the camera sees it directly).
+  LightKind arriving(LightKind seen) const {
+    if (nonspecular_events == 0) return seen;
+    const bool direct = nonspecular_events == 1;
+    if (first_event_in_medium) return direct ? LightKind::kVolumeDirect : LightKind::kVolumeIndirect;
+    return direct ? LightKind::kSurfaceDirect : LightKind::kSurfaceIndirect;
+  }
+  // The layer of a light connection made at a new non-specular event (in a medium or not).
+  LightKind connected(bool in_medium) const {
+    const bool medium_first = nonspecular_events == 0 ? in_medium : first_event_in_medium;
+    const bool direct = nonspecular_events == 0;
+    if (medium_first) return direct ? LightKind::kVolumeDirect : LightKind::kVolumeIndirect;
+    return direct ? LightKind::kSurfaceDirect : LightKind::kSurfaceIndirect;
+  }
+  void count_nonspecular_event(bool in_medium) {
+    if (nonspecular_events == 0) first_event_in_medium = in_medium;
+    ++nonspecular_events;
+  }
 };
 
 // The probability that next-event estimation at the previous vertex chose `light`.
@@ -125,7 +152,7 @@ RGB surface_direct_light(const Scene& scene, const LightSampler& lights, const S
 
 // Returns false when the path ends (absorbed or rouletted).
 bool russian_roulette(PathState& state, const Sampler& sampler, const PathSettings& settings) {
-  if (state.depth < settings.russian_roulette_depth) return true;
+  if (state.events < settings.russian_roulette_depth) return true;
   const float survive = std::min(1.0f, state.throughput.max_component());
   if (survive >= 1.0f) return true;  // no draw: it could not end the path
   if (sampler.get_1d(bounce(state.vertex(), sample_dim::kRussianRoulette)) >= survive) return false;
@@ -134,7 +161,6 @@ bool russian_roulette(PathState& state, const Sampler& sampler, const PathSettin
 }
 
 void record_first_hit(PathSample& out, const SurfaceInteraction& si, float t) {
-  out.alpha = 1.0f;
   out.hit_t = t;
   out.normal = si.ns;
   out.albedo = bsdf_albedo(si.material->bsdf);
@@ -203,13 +229,13 @@ SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, c
   march(scene.volumes(), segment, march_jitter(scene, sampler, state.vertex()), scratch.march_settings,
         scratch.march, record, medium);
   if (record.empty()) return SegmentOutcome::kPassed;
-  if (state.depth == 0) counters.camera_march_steps += record.steps().size();
-  out.radiance += state.throughput * record.emission();
-  // A path that has used up its surface bounces may not scatter in media either: max_depth
+  if (state.events == 0) counters.camera_march_steps += record.steps().size();
+  out.add(state.arriving(LightKind::kVolumeEmission), state.throughput * record.emission());
+  // A path that has used up its surface bounces may not scatter in media either: max_bounces
   // bounds the whole path's surface events, and a scattering event after the last one
   // would lengthen it.
-  const bool may_scatter = state.volume_bounces < settings.max_volume_bounces &&
-                           (state.in_volume_run || state.may_start_event(settings.max_depth));
+  const bool may_scatter = state.volume_bounces < settings.limits.max_volume_bounces &&
+                           (state.in_volume_run || state.may_bounce(settings.limits.max_bounces));
   if (may_scatter && settings.deferred_nee <= 0) {
     // Segments that barely scatter (thin fog between two walls) contribute little in-scattered
     // light but cost two shadow rays: next-event estimation runs with a probability that
@@ -218,10 +244,11 @@ SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, c
     const float u = nee_probability < 1.0f ? sampler.get_1d(bounce(state.vertex(), sample_dim::kVolumeNeeRoulette))
                                            : 0.0f;
     if (nee_probability > 0.0f && u < nee_probability)
-      out.radiance += state.throughput *
+      out.add(state.connected(true),
+              state.throughput *
                       volume_direct_light(scene, *state.light_sampler, ray, record, sampler, state.vertex(),
                                           settings.distance_sampling, scratch, counters) /
-                      nee_probability;
+                      nee_probability);
   }
 
   // Absorption by weight, not by chance (PathSettings::absorption_by_weight; implicit capture):
@@ -276,8 +303,8 @@ SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, c
   // Kept only on the scattered outcome, which is where trace_path stores its medium stack.
   if (settings.deferred_nee > 0) {
     const auto lobes = record.lobes(step);
-    scratch.deferred.push_back(
-        {x, ray.direction, beta, uint32_t(scratch.deferred_lobes.size()), uint32_t(lobes.size())});
+    scratch.deferred.push_back({x, ray.direction, beta, state.connected(true), uint32_t(scratch.deferred_lobes.size()),
+                                uint32_t(lobes.size())});
     scratch.deferred_lobes.insert(scratch.deferred_lobes.end(), lobes.begin(), lobes.end());
   }
   state.specular_bounce = false;
@@ -286,6 +313,7 @@ SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, c
   state.scatter_origin = x;
   state.scattered_in_medium = true;
   state.scatter_segment = light_choice_segment(ray, record);
+  state.count_nonspecular_event(true);
   ray = {x, ps.wi, 0.0f, kInfinity};
   ++state.volume_bounces;
   if (!state.in_volume_run) ++state.volume_runs;
@@ -300,12 +328,11 @@ SegmentOutcome integrate_medium(const Scene& scene, Ray& ray, float t_surface, c
 // point form and one point on it, the phase mixture stored with the vertex, and the shadow
 // ray's transmittance (with the vertex's medium stack in nested scenes). Its random numbers
 // come from the vertex indices after the path's last one.
-RGB deferred_connections(const Scene& scene, const LightSampler& lights, const Sampler& sampler, int count,
-                         int first_dim, bool nested, PathScratch& scratch, PathCounters& counters) {
+void deferred_connections(const Scene& scene, const LightSampler& lights, const Sampler& sampler, int count,
+                          int first_dim, bool nested, PathScratch& scratch, PathCounters& counters, PathSample& out) {
   double total = 0.0;
   for (const auto& v : scratch.deferred) total += double(v.beta.average());
-  if (!(total > 0.0)) return RGB(0.0f);
-  RGB sum;
+  if (!(total > 0.0)) return;
   for (int k = 0; k < count; ++k) {
     const int dim = first_dim + k;
     // The vertex: inverse CDF over the throughputs.
@@ -336,9 +363,8 @@ RGB deferred_connections(const Scene& scene, const LightSampler& lights, const S
     const RGB tr = light_transmittance(scene, v.x, v.x, *ls, scene.casts_shadows(choice.light),
                                        march_jitter(scene, sampler, dim), scratch, counters);
     if (tr.is_black()) continue;
-    sum += v.beta * phase * tr * ls->radiance * (1.0f / (choice.pmf * ls->pdf * float(count) * q));
+    out.add(v.kind, v.beta * phase * tr * ls->radiance * (1.0f / (choice.pmf * ls->pdf * float(count) * q)));
   }
-  return sum;
 }
 
 }  // namespace
@@ -368,12 +394,30 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
     if (!is_finite(ray.direction) || !state.throughput.is_finite()) break;
     const auto hit = nested ? nearest_visible_hit(scene, ray, settings, scratch, counters)
                             : nearest_opaque_hit(scene, ray, settings, counters);
+    // The camera's view (only specular events so far) sees the background, or a holdout, at the
+    // end of this segment: its share of the path weight joins the visibility (1 - alpha) whether
+    // or not the path then scatters on the way, so alpha behind a medium is exact, not 0 or 1.
+    const bool holdout_hit = hit && scene.is_holdout(hit->geom_id);
+    const float seen = state.camera_view ? state.throughput.average() : 0.0f;
+    // The first surface the camera ray meets is recorded before the medium in front of it is
+    // sampled: a camera path that scatters on the way still reports the surface behind.
+    std::optional<SurfaceInteraction> hit_si;
+    if (hit && state.events == 0 && !state.first_hit_recorded) {
+      hit_si = scene.interaction(ray, *hit);
+      if (!(nested && scene.medium_entry(hit->geom_id) && std::holds_alternative<NullBsdf>(hit_si->material->bsdf))) {
+        record_first_hit(out, *hit_si, hit->t);
+        state.first_hit_recorded = true;
+      }
+    }
     if (has_volumes) {
       float event_t = kInfinity;
       const SegmentOutcome outcome =
           integrate_medium(scene, ray, hit ? hit->t : kInfinity, sampler, settings, state, out, scratch, counters,
                            nested ? scratch.stack.current().medium : -1, &event_t);
-      if (state.depth == 0 && !hit) out.alpha = 1.0f - scratch.record.transmittance_end().average();
+      if (seen > 0.0f) {
+        if (!hit || holdout_hit) state.visibility += seen * scratch.record.transmittance_end().average();
+        state.visibility += seen * scratch.record.holdout_total();
+      }
       if (outcome == SegmentOutcome::kAbsorbed) break;
       if (outcome == SegmentOutcome::kScattered) {
         if (nested) apply_pending(scratch, event_t);
@@ -381,17 +425,22 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
           if (scratch.deferred_stacks.size() < scratch.deferred.size()) scratch.deferred_stacks.resize(scratch.deferred.size());
           scratch.deferred_stacks[scratch.deferred.size() - 1].assign(scratch.stack);
         }
-        ++state.depth;
+        ++state.events;
         if (!russian_roulette(state, sampler, settings)) break;
         continue;
       }
+    } else if (seen > 0.0f && (!hit || holdout_hit)) {
+      state.visibility += seen;
     }
     if (nested) apply_pending(scratch, kInfinity);
     if (!hit) {
-      out.radiance += state.throughput * escaped(scene, state, ray.direction);
+      out.add(state.arriving(LightKind::kBackground), state.throughput * escaped(scene, state, ray.direction));
       break;
     }
-    const SurfaceInteraction si = scene.interaction(ray, *hit);
+    // A holdout seen by the camera is a hole in the image (counted in the visibility above);
+    // other paths see it as the surface it is (it still shadows and reflects).
+    if (holdout_hit && state.camera_view) break;
+    const SurfaceInteraction si = hit_si ? *hit_si : scene.interaction(ray, *hit);
     const Vec3 wo = -ray.direction;
     const std::optional<MediumEntry> entry = nested ? scene.medium_entry(hit->geom_id) : std::nullopt;
     if (entry && std::holds_alternative<NullBsdf>(si.material->bsdf)) {
@@ -401,14 +450,13 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
       ray = {offset_ray_origin(si.p, si.ng, ray.direction), ray.direction, 0.0f, kInfinity};
       continue;
     }
-    if (state.depth == 0) record_first_hit(out, si, hit->t);
-    out.radiance += state.throughput * emitted(scene, state, si, wo);
-    if (!state.may_start_event(settings.max_depth)) break;
+    out.add(state.arriving(LightKind::kSurfaceEmission), state.throughput * emitted(scene, state, si, wo));
+    if (!state.may_bounce(settings.limits.max_bounces)) break;
 
     if (!is_specular(si.material->bsdf))
-      out.radiance +=
-          state.throughput *
-          surface_direct_light(scene, *state.light_sampler, si, wo, sampler, state.vertex(), scratch, counters);
+      out.add(state.connected(false),
+              state.throughput * surface_direct_light(scene, *state.light_sampler, si, wo, sampler, state.vertex(),
+                                                      scratch, counters));
 
     // A dielectric refracts with the IORs of the media actually on either side.
     const Bsdf* bsdf = &si.material->bsdf;
@@ -427,6 +475,7 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
     state.throughput *= bs->weight;
     state.specular_bounce = bs->specular;
     state.camera_view = state.camera_view && bs->specular;
+    if (!bs->specular) state.count_nonspecular_event(false);
     state.scatter_pdf = bs->pdf;
     state.scatter_origin = si.p;
     state.scatter_normal = light_choice_normal(si, wo);
@@ -434,12 +483,13 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
     ray = {offset_ray_origin(si.p, si.ng, bs->wi), bs->wi, 0.0f, kInfinity};
     ++state.surface_bounces;
     state.in_volume_run = false;
-    ++state.depth;
+    ++state.events;
     if (!russian_roulette(state, sampler, settings)) break;
   }
   if (state.deferred_nee && !scratch.deferred.empty())
-    out.radiance += deferred_connections(scene, *state.light_sampler, sampler, settings.deferred_nee,
-                                         state.vertex() + 1, nested, scratch, counters);
+    deferred_connections(scene, *state.light_sampler, sampler, settings.deferred_nee, state.vertex() + 1, nested,
+                         scratch, counters, out);
+  out.alpha = 1.0f - state.visibility;
   return out;
 }
 

@@ -473,7 +473,7 @@ RGB reference_single_scattering(const Scene& scene, const Ray& ray, int samples,
   return sum * (length / float(samples));  // the uniform pdf is 1 / length
 }
 
-RGB reference_delta_tracking(const Scene& scene, const Ray& camera_ray, ReferenceLimits limits, Pcg32& rng) {
+RGB reference_delta_tracking(const Scene& scene, const Ray& camera_ray, PathLimits limits, Pcg32& rng) {
   const int channel = std::min(int(rng.next_float() * 3.0f), 2);
   float radiance = 0.0f, throughput = 1.0f;
   // Emission the ray reaches counts only when the ray left the camera or a specular event;
@@ -484,7 +484,7 @@ RGB reference_delta_tracking(const Scene& scene, const Ray& camera_ray, Referenc
   std::vector<Crossed> crossed;  // false hits in front of the seen surface
   Ray ray = camera_ray;
   int surface_bounces = 0, volume_bounces = 0, boundary_crossings = 0;
-  int volume_runs = 0;  // runs of consecutive volume events count once against max_surface_bounces
+  int volume_runs = 0;  // runs of consecutive volume events count once against max_bounces
   bool in_volume_run = false;
   while (throughput > 0.0f) {
     const auto hit = nearest_seen_hit(scene, ray, stack, crossed);
@@ -493,7 +493,7 @@ RGB reference_delta_tracking(const Scene& scene, const Ray& camera_ray, Referenc
       const ChannelCoefficients c = coefficients(seg, *t, channel);
       // Absorbed (probability sigma_a / sigma_t), or out of scattering events.
       if (rng.next_float() * c.sigma_t >= c.sigma_s || volume_bounces >= limits.max_volume_bounces ||
-          (!in_volume_run && surface_bounces + volume_runs >= limits.max_surface_bounces))
+          (!in_volume_run && surface_bounces + volume_runs >= limits.max_bounces))
         break;
       cross_before(stack, crossed, *t);
       radiance += throughput * medium_direct_light(scene, seg, *t, c.sigma_s, stack, channel, rng);
@@ -523,7 +523,7 @@ RGB reference_delta_tracking(const Scene& scene, const Ray& camera_ray, Referenc
       continue;
     }
     if (count_emission) radiance += throughput * surface_emission(si, wo)[channel];
-    if (surface_bounces + volume_runs >= limits.max_surface_bounces) break;
+    if (surface_bounces + volume_runs >= limits.max_bounces) break;
     std::optional<BsdfSample> bs;
     if (const auto* d = std::get_if<DielectricBsdf>(&bsdf)) {
       // Specular: no next-event estimation, so emission the new ray reaches counts.
@@ -561,11 +561,12 @@ std::vector<RGB> reference_image(const Scene& scene, Vec2i resolution, const Ref
       double r = 0, g = 0, b = 0;
       for (int s = 0; s < options.samples_per_pixel; ++s) {
         const Vec2 jitter = next_2d(rng);
-        const Ray ray = camera.generate_ray({float(x) + jitter.x, float(y) + jitter.y});
+        // The lens sample is drawn only for a thin lens, so pinhole images keep their random stream.
+        const Vec2 lens = camera.has_aperture() ? next_2d(rng) : Vec2{0.5f, 0.5f};
+        const Ray ray = camera.generate_ray({float(x) + jitter.x, float(y) + jitter.y}, lens);
         const RGB v = options.estimator == ReferenceEstimator::kSingleScattering
                           ? reference_single_scattering(scene, ray, options.distance_samples, rng)
-                          : reference_delta_tracking(scene, ray,
-                                                     {options.max_bounces, options.max_surface_bounces}, rng);
+                          : reference_delta_tracking(scene, ray, options.limits, rng);
         r += v.r, g += v.g, b += v.b;
       }
       const double n = std::max(1, options.samples_per_pixel);

@@ -38,6 +38,7 @@
 #include "core/ray.h"
 #include "core/rgb.h"
 #include "core/rng.h"
+#include "integrators/path_settings.h"
 #include "media/medium_stack.h"
 #include "scene/scene.h"
 
@@ -71,17 +72,11 @@ RGB reference_transmittance(const Scene& scene, const Ray& ray, float t_max, int
 // distance pdf exists there).
 RGB reference_single_scattering(const Scene& scene, const Ray& ray, int samples, Pcg32& rng);
 
-// How many scattering events a reference path may have, counted as the production integrator
-// counts them (PathSettings): surface bounces plus runs of consecutive volume events up to
-// max_surface_bounces, and volume events up to max_volume_bounces.
-struct ReferenceLimits {
-  int max_volume_bounces = 64;
-  int max_surface_bounces = 64;
-};
-
-// Radiance along `ray` with all orders of scattering within `limits`, by delta tracking
-// with the piecewise-constant majorant of the volume intervals (a grid's empty blocks are
-// skipped, each run of blocks tracked with its own bound).
+// Radiance along `ray` with all orders of scattering within `limits`, counted as the production
+// integrator counts them (PathLimits, integrators/path_settings.h): surface bounces plus runs of
+// consecutive volume events up to max_bounces, and volume events up to max_volume_bounces. By
+// delta tracking with the piecewise-constant majorant of the volume intervals (a grid's empty
+// blocks are skipped, each run of blocks tracked with its own bound).
 // One colour channel is traced per call, chosen uniformly: the result holds 3x the estimate
 // in that channel and zero in the others, so its expectation is the full RGB radiance and
 // chromatic media need no spectral MIS.
@@ -98,17 +93,18 @@ struct ReferenceLimits {
 // priority surface the stack's media before and after the crossing (MediumStack::peek), for an
 // Off one its IOR over the current medium's. Each dielectric event counts as a surface bounce.
 // Volume emission is ignored.
-RGB reference_delta_tracking(const Scene& scene, const Ray& ray, ReferenceLimits limits, Pcg32& rng);
+RGB reference_delta_tracking(const Scene& scene, const Ray& ray, PathLimits limits, Pcg32& rng);
 
 enum class ReferenceEstimator { kSingleScattering, kDeltaTracking };
 
 struct ReferenceOptions {
   ReferenceEstimator estimator = ReferenceEstimator::kDeltaTracking;
   int samples_per_pixel = 16;  // jittered camera rays per pixel
-  int max_bounces = 64;        // delta tracking: volume scattering events
-  int distance_samples = 1;    // single scattering: distance samples per camera ray
+  // Delta tracking's limits; deeper by default than production's (PathLimits{}), so the
+  // reference is cut only where its tests make it so.
+  PathLimits limits{.max_bounces = 64, .max_volume_bounces = 64};
+  int distance_samples = 1;  // single scattering: distance samples per camera ray
   uint64_t seed = 0;
-  int max_surface_bounces = 64;  // delta tracking: surface scattering events
 };
 
 // Per-pixel means of an estimator over the camera's jittered pixel rays, row-major, like the

@@ -117,8 +117,8 @@ struct ProductionRun {
 std::vector<RGB> render_production(const Scene& scene, const SceneDesc& desc, const ProductionRun& run) {
   RenderSettings settings = default_settings(desc);
   settings.spp = run.spp;
-  settings.max_volume_bounces = run.max_volume_bounces;
-  settings.distance_sampling = run.distance_sampling;
+  settings.path.limits.max_volume_bounces = run.max_volume_bounces;
+  settings.path.distance_sampling = run.distance_sampling;
   settings.seed = run.seed;
   return pixels_of(render(scene, settings).image);
 }
@@ -128,8 +128,8 @@ std::vector<RGB> render_production(const Scene& scene, const SceneDesc& desc, co
 // 256 spp; ladder single scattering ~0.3% at 256 x 4, delta tracking ~0.5% per channel at 4096.
 constexpr ProductionRun kSingleProduction{64, 1};
 constexpr ProductionRun kMultipleProduction{256, 64};
-constexpr ReferenceOptions kSingleReference{ReferenceEstimator::kSingleScattering, 256, 64, 4, 2};
-constexpr ReferenceOptions kDeltaReference{ReferenceEstimator::kDeltaTracking, 4096, 64, 1, 2};
+constexpr ReferenceOptions kSingleReference{ReferenceEstimator::kSingleScattering, 256, {64, 64}, 4, 2};
+constexpr ReferenceOptions kDeltaReference{ReferenceEstimator::kDeltaTracking, 4096, {64, 64}, 1, 2};
 
 // ---- rung 1: transmittance ----
 
@@ -206,8 +206,8 @@ TEST(ReferenceLadder, DeltaTrackingWithOneBounceIsSingleScattering) {
       {0, 0, 0}, 2.0f, shader(RGB(0.05f, 0.1f, 0.2f), RGB(0.5f, 0.4f, 0.2f), HenyeyGreensteinPhase{0.5f})));
   desc.lights.push_back(PointLight{kNearbyPoint, RGB(5.0f)});
   const auto scene = Scene::build(desc);
-  ReferenceOptions single{ReferenceEstimator::kSingleScattering, 256, 64, 4, 3};
-  ReferenceOptions delta{ReferenceEstimator::kDeltaTracking, 8192, 1, 1, 4};
+  ReferenceOptions single{ReferenceEstimator::kSingleScattering, 256, {64, 64}, 4, 3};
+  ReferenceOptions delta{ReferenceEstimator::kDeltaTracking, 8192, {.max_bounces = 64, .max_volume_bounces = 1}, 1, 4};
   expect_means_close(reference_mean_radiance(*scene, desc.camera.resolution, delta),
                      reference_mean_radiance(*scene, desc.camera.resolution, single), 0.02f,
                      "delta(1) vs single");
@@ -222,7 +222,7 @@ TEST(ReferenceLadder, DeltaTrackingDiffuseFurnace) {
   desc.shapes.push_back({SphereShape{{0, 0, 0}, radius}, {}, 0});
   desc.lights.push_back(PointLight{{0, 0, 0}, RGB(intensity)});
   const auto scene = Scene::build(desc);
-  ReferenceOptions options{ReferenceEstimator::kDeltaTracking, 128, 200, 1, 5};
+  ReferenceOptions options{ReferenceEstimator::kDeltaTracking, 128, {.max_bounces = 64, .max_volume_bounces = 200}, 1, 5};
   const RGB mean = reference_mean_radiance(*scene, desc.camera.resolution, options);
   const float expected = rho * intensity / (kPi * radius * radius * (1.0f - rho));
   EXPECT_NEAR(mean.average(), expected, 0.02f * expected);
@@ -231,14 +231,14 @@ TEST(ReferenceLadder, DeltaTrackingDiffuseFurnace) {
 // Rung 3 with a dielectric: a glass sphere in a uniform environment, no absorption, is a
 // furnace: every path ends in the environment, and radiance enters (1/eta^2) and leaves
 // (eta^2) the glass unchanged, so every pixel sees exactly the environment's radiance (paths
-// cut by max_surface_bounces lose a negligible part: Fresnel ~4% per internal reflection).
+// cut by max_bounces lose a negligible part: Fresnel ~4% per internal reflection).
 TEST(ReferenceLadder, DeltaTrackingGlassFurnace) {
   SceneDesc desc = camera_at({0, 0, -4}, {0, 0, 0}, {8, 8}, 25.0f);
   desc.materials.push_back({"glass", DielectricBsdf{1.5f}, RGB(0.0f), false});
   desc.shapes.push_back({SphereShape{{0, 0, 0}, 1.0f}, {}, 0});
   desc.lights.push_back(EnvironmentLight{RGB(0.5f)});
   const auto scene = Scene::build(desc);
-  ReferenceOptions options{ReferenceEstimator::kDeltaTracking, 64, 64, 1, 5};
+  ReferenceOptions options{ReferenceEstimator::kDeltaTracking, 64, {64, 64}, 1, 5};
   const RGB mean = reference_mean_radiance(*scene, desc.camera.resolution, options);
   // The channel picked per sample is the only noise: 3x in one channel, 0 in the others.
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(mean[c], 0.5f, 0.05f) << c;

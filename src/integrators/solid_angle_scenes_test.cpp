@@ -27,14 +27,14 @@ struct PixelStats {
 };
 
 PixelStats render_stats(const std::string& json, int spp, LightSamplingOptions options, DistanceSampling sampling,
-                        int max_depth = 1) {
+                        int max_bounces = 1) {
   const SceneDesc desc = parse_scene_text(json, "test", "");
   const auto scene = Scene::build(desc);
   RenderSettings s = default_settings(desc);
   s.spp = spp;
-  s.max_depth = max_depth;
-  s.max_volume_bounces = 1;
-  s.distance_sampling = sampling;
+  s.path.limits.max_bounces = max_bounces;
+  s.path.limits.max_volume_bounces = 1;
+  s.path.distance_sampling = sampling;
   set_light_sampling_options(options);
   const Image image = render(*scene, s).image;
   set_light_sampling_options({});

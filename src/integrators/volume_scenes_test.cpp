@@ -39,8 +39,8 @@ Image render_desc(const SceneDesc& desc, int spp, DistanceSampling sampling = Di
   const auto scene = Scene::build(desc);
   RenderSettings s = default_settings(desc);
   s.spp = spp;
-  s.max_volume_bounces = max_volume_bounces;
-  s.distance_sampling = sampling;
+  s.path.limits.max_volume_bounces = max_volume_bounces;
+  s.path.distance_sampling = sampling;
   return render(*scene, s).image;
 }
 
@@ -161,8 +161,8 @@ TEST(VolumeScenes, DeferredNeeMatchesPerSegmentNee) {
       RenderSettings s = default_settings(desc);
       s.spp = 64;
       s.seed = seed;
-      s.max_volume_bounces = 64;
-      s.deferred_nee = deferred;
+      s.path.limits.max_volume_bounces = 64;
+      s.path.deferred_nee = deferred;
       means.push_back(image_mean(render(*scene, s).image).average());
     }
     double m = 0, v = 0;

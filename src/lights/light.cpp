@@ -44,8 +44,8 @@ struct Power {
   // profile and gobo enter through their means (for a spot, an approximation: the profile's
   // mean over the sphere is not its mean over the cone).
   float operator()(const PointLight& l) const { return 4.0f * kPi * l.intensity.average() * ies_mean(l.ies); }
-  // The smoothstep falloff integrates to the cone midway between inner and outer (pbrt-v4's
-  // approximation; exact for a linear ramp in cos theta).
+  // The smoothstep falloff integrates to the cone midway (in cos theta) between inner and
+  // outer: exact, as smoothstep integrates to 1/2 over its ramp (light_test.cpp checks it).
   float operator()(const SpotLight& l) const {
     return 2.0f * kPi * (1.0f - 0.5f * (l.cos_inner + l.cos_outer)) * l.intensity.average() *
            ies_mean(l.ies) * gobo_mean(l.gobo);

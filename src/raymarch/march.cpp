@@ -9,6 +9,7 @@ namespace {
 // Coefficients summed over the primitives covering a span, at one point.
 struct StepCoefficients {
   RGB sigma_t, sigma_s, emission;
+  float holdout = 0.0f;
 };
 
 StepCoefficients shade_span(const VolumeScene& volumes, std::span<const uint32_t> primitives, Vec3 p,
@@ -20,6 +21,7 @@ StepCoefficients shade_span(const VolumeScene& volumes, std::span<const uint32_t
     c.sigma_t += m.sigma_t() * scale;
     c.sigma_s += m.sigma_s * scale;
     c.emission += m.emission * scale;
+    c.holdout += m.holdout * scale;
     if (lobes && !m.sigma_s.is_black()) lobes->push_back({m.sigma_s * scale, m.phase});
   }
   // Overlapping primitives mix their phase functions in proportion to sigma_s, per channel.
@@ -119,6 +121,8 @@ void march(const VolumeScene& volumes, const Ray& ray, float jitter, const March
                   const RGB t_start = out.transmittance_end();
                   if (!c.emission.is_black())
                     out.add_emission(integrate_emission(t_start, c.sigma_t, c.emission, b - a));
+                  if (c.holdout > 0.0f)
+                    out.add_holdout(integrate_emission(t_start, c.sigma_t, RGB(c.holdout), b - a).average());
                   out.push(a, b, c.sigma_t, c.sigma_s, scratch.lobes);
                   return out.transmittance_end().max_component() >= settings.opacity_threshold;
                 });

@@ -110,6 +110,7 @@ void TransmittanceRecord::clear() {
   steps_.clear();
   lobes_.clear();
   emission_ = RGB();
+  holdout_ = 0.0f;
   end_transmittance_ = RGB(1.0f);
   scatter_totals_ = RGB(0.0f);
   grey_ = true;

@@ -53,6 +53,9 @@ class TransmittanceRecord {
   void push(float t0, float t1, RGB sigma_t, RGB sigma_s, std::span<const PhaseLobe> lobes);
   // Adds emitted radiance already integrated by the marcher (for the record's owner to read).
   void add_emission(RGB radiance) { emission_ += radiance; }
+  // Adds the integral of sigma_h T over a step, already integrated by the marcher: the share of
+  // the ray's view that holdout media take (channel average).
+  void add_holdout(float amount) { holdout_ += amount; }
 
   bool empty() const { return steps_.empty(); }
   // Every step's sigma_t and sigma_s are grey (equal in all channels): the channel a sampler
@@ -61,6 +64,7 @@ class TransmittanceRecord {
   std::span<const MarchStep> steps() const { return steps_; }
   std::span<const PhaseLobe> lobes(const MarchStep& step) const;
   RGB emission() const { return emission_; }
+  float holdout_total() const { return holdout_; }
   float t_begin() const;  // start of the first step (0 when empty)
   float t_end() const;    // end of the last step (0 when empty)
 
@@ -90,6 +94,7 @@ class TransmittanceRecord {
   std::vector<MarchStep> steps_;
   std::vector<PhaseLobe> lobes_;
   RGB emission_;
+  float holdout_ = 0.0f;
   // Kept up to date by push(): every query reads them, and recomputing them costs three exp
   // and three expm1 in double each time.
   RGB end_transmittance_{1.0f};  // T at the end of the last step

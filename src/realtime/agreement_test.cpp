@@ -67,8 +67,8 @@ void expect_agreement(const std::string& light) {
   const auto scene = Scene::build(desc);
   RenderSettings rs = default_settings(desc);
   rs.spp = kReferenceSpp;
-  rs.max_depth = 1;
-  rs.max_volume_bounces = 1;
+  rs.path.limits.max_bounces = 1;
+  rs.path.limits.max_volume_bounces = 1;
   const Image reference = render(*scene, rs).image;
 
   const ReferenceError err = reference_error(realtime, reference);

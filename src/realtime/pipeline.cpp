@@ -65,6 +65,15 @@ RealtimeSettings realtime_settings(const SceneDesc& desc) {
 
 RealtimePipeline::RealtimePipeline(const SceneDesc& desc, const RealtimeSettings& settings)
     : desc_(desc), settings_(settings) {
+  // Thin-lens and orthographic cameras are path-traced only (the passes assume one eye point).
+  const Camera camera(desc_.camera, settings_.resolution);
+  if (camera.projection() != CameraProjection::perspective)
+    throw InputError({desc_.file, "/camera/projection"},
+                     "the real-time pipeline renders only perspective cameras, got an orthographic one; "
+                     "use `caligo render`");
+  if (camera.has_aperture())
+    throw InputError({desc_.file, "/camera"}, "the real-time pipeline renders only pinhole cameras, got a thin "
+                                              "lens (\"aperture_radius\" or \"fstop\"); use `caligo render`");
   // Geometry never moves: the scene (surfaces, materials) and its triangles are built once.
   scene_ = Scene::build(desc_.at_time(0.0f));
   raster_ = std::make_unique<RasterScene>(RasterScene::build(*scene_));

@@ -59,6 +59,27 @@ TEST(RealtimePipeline, SizesThatDoNotDivideByTheScaleGiveFiniteFrames) {
   }
 }
 
+// Orthographic and thin-lens cameras are the path tracer's only: a located input error, before
+// anything is built.
+TEST(RealtimePipeline, RefusesOrthographicAndThinLensCameras) {
+  for (const char* pointer : {"/camera/projection", "/camera"}) {
+    SceneDesc desc = every_light_type();
+    if (std::string_view(pointer) == "/camera/projection") {
+      desc.camera.projection = CameraProjection::orthographic;
+      desc.camera.ortho_width = 4.0f;
+    } else {
+      desc.camera.fstop = 2.8f;
+    }
+    try {
+      RealtimePipeline pipeline(desc, realtime_settings(desc));
+      ADD_FAILURE() << "no error for " << pointer;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.where().json_path, pointer);
+      EXPECT_NE(std::string(e.what()).find("caligo render"), std::string::npos) << e.what();
+    }
+  }
+}
+
 // A light with volumetric off adds nothing to the volumetric buffer; its surfaces stay lit.
 TEST(RealtimePipeline, NonVolumetricLightsLightOnlySurfaces) {
   SceneDesc desc = every_light_type();

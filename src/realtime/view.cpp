@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/error.h"
 #include "scene/camera.h"
 
 namespace caligo {
@@ -16,6 +17,9 @@ void orthonormal(View& v, Vec3 forward, Vec3 up_hint) {
 }  // namespace
 
 View View::from_camera(const Camera& camera, Vec2i resolution) {
+  if (!camera.is_pinhole())
+    throw InputError("the real-time pipeline renders only pinhole perspective cameras (no \"projection\": "
+                     "\"orthographic\", no \"aperture_radius\" or \"fstop\"); use `caligo render`");
   View v;
   v.projection = Projection::perspective;
   v.eye = camera.position();

@@ -1,40 +1,149 @@
 #include "render/film.h"
 
 #include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+#include <utility>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
 
 namespace caligo {
 
-Film::Film(Vec2i resolution)
-    : resolution_(resolution), pixels_(size_t(resolution.x) * size_t(resolution.y)) {}
-
-void Film::add(int x, int y, const PathSample& s, float depth) {
-  Pixel& p = pixels_[size_t(y) * size_t(resolution_.x) + size_t(x)];
-  // A non-finite sample would poison the pixel forever; it is dropped (and is a bug to find).
-  if (s.radiance.is_finite()) {
-    p.r += s.radiance.r;
-    p.g += s.radiance.g;
-    p.b += s.radiance.b;
-  }
-  p.alpha += s.alpha;
-  p.nearest_depth = std::min(p.nearest_depth, depth);
-  p.normal += s.normal;
-  p.albedo += s.albedo;
+Film::Film(Vec2i resolution, AovSet aovs)
+    : resolution_(resolution), aovs_(aovs) {
+  if (resolution.x <= 0 || resolution.y <= 0) throw std::invalid_argument("film resolution must be positive");
+  light_.fill(-1);
+  if (aovs.has(Aov::kAlpha)) alpha_ = std::exchange(channels_, channels_ + 1);
+  if (aovs.has(Aov::kNormal)) normal_ = std::exchange(channels_, channels_ + 3);
+  if (aovs.has(Aov::kAlbedo)) albedo_ = std::exchange(channels_, channels_ + 3);
+  for (int k = 0; k < kLightKindCount; ++k)
+    if (aovs.has(light_aov(LightKind(k)))) light_[size_t(k)] = std::exchange(channels_, channels_ + 3);
+  const size_t pixels = size_t(resolution.x) * size_t(resolution.y);
+  sums_.resize(pixels * size_t(channels_));
+  counts_.resize(pixels);
+  if (aovs.has(Aov::kDepth)) depth_.assign(pixels, kInfinity);
 }
 
-Image Film::resolve(int spp) const {
-  Image image(resolution_.x, resolution_.y,
-              {"R", "G", "B", "A", "Z", "N.X", "N.Y", "N.Z", "albedo.R", "albedo.G", "albedo.B"});
-  const double inv = 1.0 / double(spp);
+void Film::add(int x, int y, const PathSample& s, float depth) {
+  const size_t i = index(x, y);
+  FixedSum* sum = &sums_[i * size_t(channels_)];
+  ++counts_[i];
+  const auto add3 = [&](int offset, float a, float b, float c) {
+    sum[offset].add(a);
+    sum[offset + 1].add(b);
+    sum[offset + 2].add(c);
+  };
+  const RGB beauty = s.beauty();
+  if (beauty.is_finite()) {
+    add3(0, beauty.r, beauty.g, beauty.b);
+    for (int k = 0; k < kLightKindCount; ++k)
+      if (light_[size_t(k)] >= 0) add3(light_[size_t(k)], s.light[size_t(k)].r, s.light[size_t(k)].g, s.light[size_t(k)].b);
+  }
+  if (alpha_ >= 0 && std::isfinite(s.alpha)) sum[alpha_].add(s.alpha);
+  if (normal_ >= 0 && is_finite(s.normal)) add3(normal_, s.normal.x, s.normal.y, s.normal.z);
+  if (albedo_ >= 0 && s.albedo.is_finite()) add3(albedo_, s.albedo.r, s.albedo.g, s.albedo.b);
+  if (!depth_.empty()) depth_[i] = std::min(depth_[i], depth);
+}
+
+Image Film::resolve() const {
+  Image image(resolution_.x, resolution_.y, aov_channels(aovs_));
+  // Channel order of the image (aov_channels): beauty, A, Z, normal, albedo, light layers; the
+  // summed channels are in the same order with Z left out.
+  const int z_channel = aovs_.has(Aov::kDepth) ? (alpha_ >= 0 ? 4 : 3) : -1;
   for (int y = 0; y < resolution_.y; ++y)
     for (int x = 0; x < resolution_.x; ++x) {
-      const Pixel& p = pixels_[size_t(y) * size_t(resolution_.x) + size_t(x)];
-      const float values[] = {float(p.r * inv),        float(p.g * inv),        float(p.b * inv),
-                              float(p.alpha * inv),    p.nearest_depth,         p.normal.x * float(inv),
-                              p.normal.y * float(inv), p.normal.z * float(inv), p.albedo.r * float(inv),
-                              p.albedo.g * float(inv), p.albedo.b * float(inv)};
-      for (int c = 0; c < 11; ++c) image.at(x, y, c) = values[c];
+      const size_t i = index(x, y);
+      const FixedSum* sum = &sums_[i * size_t(channels_)];
+      const double inv = counts_[i] > 0 ? 1.0 / double(counts_[i]) : 0.0;
+      int out = 0;
+      for (int c = 0; c < channels_; ++c) {
+        if (out == z_channel) image.at(x, y, out++) = depth_[i];
+        image.at(x, y, out++) = float(sum[c].value() * inv);
+      }
+      if (out == z_channel) image.at(x, y, out++) = depth_[i];
     }
   return image;
+}
+
+void Film::merge(const Film& other) {
+  if (other.resolution_ != resolution_ || other.aovs_ != aovs_)
+    throw std::invalid_argument("films of different resolution or outputs cannot be merged");
+  for (size_t i = 0; i < sums_.size(); ++i) sums_[i].add(other.sums_[i]);
+  for (size_t i = 0; i < counts_.size(); ++i) counts_[i] += other.counts_[i];
+  for (size_t i = 0; i < depth_.size(); ++i) depth_[i] = std::min(depth_[i], other.depth_[i]);
+}
+
+namespace {
+
+// The raw film file: a fixed header, then counts (u32 per pixel), depths (f32 per pixel, when the
+// film holds depth) and sums (16-byte little-endian integers, channels per pixel), in the host's
+// byte order (x86-64 and aarch64 alike: little-endian). The size must match the header exactly.
+constexpr char kMagic[12] = {'C', 'A', 'L', 'I', 'G', 'O', '-', 'F', 'I', 'L', 'M', '\n'};
+constexpr uint32_t kVersion = 1;
+constexpr uint32_t kMaxSide = 1u << 16;
+
+struct FilmHeader {
+  char magic[12];
+  uint32_t version;
+  uint32_t width, height;
+  uint32_t aov_bits;
+  uint64_t key;
+};
+
+}  // namespace
+
+void Film::save(const std::string& path, uint64_t key) const {
+  write_file_atomically(path, [&](const std::string& temp) {
+    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+    if (!out) throw std::runtime_error("cannot create " + temp);
+    FilmHeader header{};
+    std::memcpy(header.magic, kMagic, sizeof kMagic);
+    header.version = kVersion;
+    header.width = uint32_t(resolution_.x);
+    header.height = uint32_t(resolution_.y);
+    header.aov_bits = aovs_.bits();
+    header.key = key;
+    out.write(reinterpret_cast<const char*>(&header), sizeof header);
+    out.write(reinterpret_cast<const char*>(counts_.data()), std::streamsize(counts_.size() * sizeof(uint32_t)));
+    out.write(reinterpret_cast<const char*>(depth_.data()), std::streamsize(depth_.size() * sizeof(float)));
+    static_assert(sizeof(FixedSum) == 16);
+    out.write(reinterpret_cast<const char*>(sums_.data()), std::streamsize(sums_.size() * sizeof(FixedSum)));
+    out.flush();
+    if (!out) throw std::runtime_error("cannot write " + path + " (disk full?)");
+  });
+}
+
+Film Film::load(const std::string& path, uint64_t* key) {
+  const SourceLocation where{path, ""};
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) throw InputError(where, "cannot open the film file");
+  const uint64_t size = uint64_t(in.tellg());
+  in.seekg(0);
+  FilmHeader header{};
+  if (size < sizeof header || !in.read(reinterpret_cast<char*>(&header), sizeof header))
+    throw InputError(where, "not a Caligo film file (too short)");
+  if (std::memcmp(header.magic, kMagic, sizeof kMagic) != 0) throw InputError(where, "not a Caligo film file");
+  if (header.version != kVersion)
+    throw InputError(where, "film file version " + std::to_string(header.version) + ", expected " +
+                                std::to_string(kVersion));
+  if (header.width == 0 || header.height == 0 || header.width > kMaxSide || header.height > kMaxSide)
+    throw InputError(where, "film resolution " + std::to_string(header.width) + "x" + std::to_string(header.height) +
+                                " is out of range");
+  if (header.aov_bits >> kAovCount) throw InputError(where, "film file names unknown outputs");
+  Film film({int(header.width), int(header.height)}, AovSet::from_bits(header.aov_bits));
+  const uint64_t expected = sizeof header + film.counts_.size() * sizeof(uint32_t) +
+                            film.depth_.size() * sizeof(float) + film.sums_.size() * sizeof(FixedSum);
+  if (size != expected)
+    throw InputError(where, "film file is " + std::to_string(size) + " bytes, its header needs " +
+                                std::to_string(expected) + " (truncated or corrupt)");
+  in.read(reinterpret_cast<char*>(film.counts_.data()), std::streamsize(film.counts_.size() * sizeof(uint32_t)));
+  in.read(reinterpret_cast<char*>(film.depth_.data()), std::streamsize(film.depth_.size() * sizeof(float)));
+  in.read(reinterpret_cast<char*>(film.sums_.data()), std::streamsize(film.sums_.size() * sizeof(FixedSum)));
+  if (!in) throw InputError(where, "cannot read the film file");
+  if (key) *key = header.key;
+  return film;
 }
 
 }  // namespace caligo

@@ -1,34 +1,69 @@
-// Per-pixel sums of path samples and their AOVs, turned into an Image at the end.
-// Each pixel is written by exactly one tile, so no locking is needed, and its samples are
-// summed in sample-index order, so the result is identical for any thread count.
+// Per-pixel sums of path samples, split into the AOVs chosen at render time, with each pixel's
+// own sample count; resolved into an Image with named EXR layers at the end.
+// Sums are exact (FixedSum), so a film is the same bit for bit however its samples were split
+// into ranges and merged: a render cut into two sample ranges and merged equals one render.
+// Each pixel is written by exactly one tile at a time, so no locking is needed.
 #pragma once
 
+#include <array>
+#include <cstdint>
+#include <string>
 #include <vector>
 
 #include "image/image.h"
-#include "integrators/path_tracer.h"
+#include "integrators/path_sample.h"
+#include "render/aov.h"
+#include "render/fixed_sum.h"
 
 namespace caligo {
 
 class Film {
  public:
-  explicit Film(Vec2i resolution);
+  Film(Vec2i resolution, AovSet aovs);
 
-  // Adds one sample's values to pixel (x, y); `depth` is its camera-space Z (kInfinity for none).
+  Vec2i resolution() const { return resolution_; }
+  AovSet aovs() const { return aovs_; }
+
+  // One sample of pixel (x, y); `depth` is the camera-space Z of its first visible surface
+  // (kInfinity for none). A sample whose radiance is not finite is counted with zero radiance
+  // (it would poison the pixel forever; it is a bug to find, not light).
   void add(int x, int y, const PathSample& s, float depth);
-  // Channels: R G B A Z N.X N.Y N.Z albedo.R albedo.G albedo.B. Colour, alpha, normal and
-  // albedo are averages over the samples; Z is the nearest depth any sample saw.
-  Image resolve(int spp) const;
+
+  uint32_t sample_count(int x, int y) const { return counts_[index(x, y)]; }
+
+  // Averages over each pixel's own samples (a pixel with none is zero, alpha 0): the beauty as
+  // R G B, then A, Z, N.X/Y/Z, albedo.R/G/B and the light layers "surface_direct.R", ... as
+  // selected (aov_channels). Z is the nearest depth any sample of the pixel saw.
+  Image resolve() const;
+
+  // Adds another film's samples: sums and counts add, depths take the nearer. Exact, so
+  // merging is associative and commutative. Throws std::invalid_argument when the resolution
+  // or the AOV set differ.
+  void merge(const Film& other);
+
+  // The raw sums and counts, written atomically (temporary file, then rename), with a caller's
+  // 64-bit key (checkpoints store a hash of scene and settings in it). Throws std::runtime_error
+  // naming the file when it cannot be written.
+  void save(const std::string& path, uint64_t key = 0) const;
+  // Reads a file written by save(). A missing, truncated, foreign or inconsistent file throws
+  // InputError naming it. `key`, when given, receives the saved key.
+  static Film load(const std::string& path, uint64_t* key = nullptr);
+
+  friend bool operator==(const Film&, const Film&) = default;
 
  private:
-  struct Pixel {
-    double r = 0, g = 0, b = 0, alpha = 0;
-    float nearest_depth = kInfinity;
-    Vec3 normal;
-    RGB albedo;
-  };
+  size_t index(int x, int y) const { return size_t(y) * size_t(resolution_.x) + size_t(x); }
+
   Vec2i resolution_;
-  std::vector<Pixel> pixels_;
+  AovSet aovs_;
+  // Summed channels per pixel: beauty RGB, then alpha, normal XYZ, albedo RGB and each light
+  // layer's RGB when selected; the offsets of each (-1: not held).
+  int channels_ = 3;
+  int alpha_ = -1, normal_ = -1, albedo_ = -1;
+  std::array<int, kLightKindCount> light_{};
+  std::vector<FixedSum> sums_;  // pixel-major, channels_ per pixel
+  std::vector<uint32_t> counts_;
+  std::vector<float> depth_;  // nearest depth per pixel (only with Aov::kDepth)
 };
 
 }  // namespace caligo

@@ -9,6 +9,7 @@
 
 #include "core/parallel.h"
 #include "core/sampler.h"
+#include "integrators/path_tracer.h"
 #include "render/film.h"
 
 namespace caligo {
@@ -17,50 +18,65 @@ RenderSettings default_settings(const SceneDesc& desc) {
   RenderSettings s;
   s.resolution = desc.camera.resolution;
   s.spp = desc.render.spp;
-  s.max_depth = desc.render.max_depth;
-  s.max_volume_bounces = desc.render.max_volume_bounces;
+  s.path.limits = desc.render.limits;
   s.seed = desc.render.seed;
+  s.filter = PixelFilter(desc.render.filter);
+  s.crop = desc.render.crop;
   return s;
 }
 
 namespace {
 
-// One tile: every pixel, every sample, in a fixed order.
+// The tiles of the crop window: make_tiles over its size, moved to its corner.
+std::vector<Tile> crop_tiles(const PixelBounds& bounds, int tile_size) {
+  std::vector<Tile> tiles = make_tiles({bounds.width(), bounds.height()}, tile_size);
+  for (Tile& t : tiles) {
+    t.x0 += bounds.min.x;
+    t.x1 += bounds.min.x;
+    t.y0 += bounds.min.y;
+    t.y1 += bounds.min.y;
+  }
+  return tiles;
+}
+
+// One tile: every pixel, its samples of the range in index order.
 PathCounters render_tile(const Scene& scene, const Camera& camera, const RenderSettings& settings,
                          const Tile& tile, Film& film, PathScratch& scratch) {
-  PathSettings path_settings;
-  path_settings.max_depth = settings.max_depth;
-  path_settings.max_volume_bounces = settings.max_volume_bounces;
-  path_settings.distance_sampling = settings.distance_sampling;
-  path_settings.absorption_by_weight = settings.absorption_by_weight;
-  path_settings.deferred_nee = settings.deferred_nee;
-  path_settings.light_sampler = settings.light_sampler;
   scratch.march_settings = settings.march;
   PathCounters counters;
+  const bool lens = camera.has_aperture();
   for (int y = tile.y0; y < tile.y1; ++y)
     for (int x = tile.x0; x < tile.x1; ++x)
-      for (int s = 0; s < settings.spp; ++s) {
+      for (int s = settings.first_sample; s < settings.first_sample + settings.spp; ++s) {
         const Sampler sampler(settings.seed, {x, y}, uint32_t(s));
-        const Vec2 jitter = sampler.get_2d(sample_dim::kFilm);
-        const Ray ray = camera.generate_ray({float(x) + jitter.x, float(y) + jitter.y});
-        const PathSample sample = trace_path(scene, ray, sampler, path_settings, counters, scratch);
-        film.add(x, y, sample, sample.alpha > 0.0f ? camera.depth(ray, sample.hit_t) : kInfinity);
+        // Filter importance sampling: the sample lands where the pixel's filter puts it and
+        // counts with weight 1 for this pixel only (render/pixel_filter.h).
+        const Vec2 offset = settings.filter.sample_offset(sampler.get_2d(sample_dim::kFilm));
+        const Vec2 lens_u = lens ? sampler.get_2d(sample_dim::kLens) : Vec2{0.5f, 0.5f};
+        const Ray ray = camera.generate_ray({float(x) + 0.5f + offset.x, float(y) + 0.5f + offset.y}, lens_u);
+        const PathSample sample = trace_path(scene, ray, sampler, settings.path, counters, scratch);
+        film.add(x, y, sample, sample.hit_t < kInfinity ? camera.depth(ray, sample.hit_t) : kInfinity);
       }
   return counters;
 }
 
 }  // namespace
 
-RenderResult render(const Scene& scene, const RenderSettings& settings, Progress::Style progress_style) {
+RenderStats render_into(Film& film, const Scene& scene, const RenderSettings& settings,
+                        Progress::Style progress_style) {
+  if (film.resolution() != settings.resolution || film.aovs() != settings.aovs)
+    throw std::invalid_argument("render_into: the film does not match the settings' resolution and outputs");
+  if (settings.spp < 0 || settings.first_sample < 0) throw std::invalid_argument("render_into: negative sample range");
   std::unique_ptr<tbb::global_control> thread_limit;
   if (settings.threads > 0)
     thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                          size_t(settings.threads));
   const Camera camera = scene.camera(settings.resolution);
-  Film film(settings.resolution);
-  const auto tiles = make_tiles(settings.resolution, settings.tile_size);
-  const uint64_t paths =
-      uint64_t(settings.resolution.x) * uint64_t(settings.resolution.y) * uint64_t(settings.spp);
+  const PixelBounds bounds = settings.crop.pixels(settings.resolution);
+  const auto tiles = bounds.empty() ? std::vector<Tile>{} : crop_tiles(bounds, settings.tile_size);
+  const uint64_t paths = bounds.empty() ? 0
+                                        : uint64_t(bounds.width()) * uint64_t(bounds.height()) *
+                                              uint64_t(settings.spp);
   std::atomic<uint64_t> rays{0}, march_steps{0};
   tbb::enumerable_thread_specific<PathScratch> scratch;  // per-thread march buffers and record
 
@@ -80,7 +96,13 @@ RenderResult render(const Scene& scene, const RenderSettings& settings, Progress
     stats.march_steps += s.march.steps;
     stats.shader_evaluations += s.march.shader_evaluations;
   }
-  return {film.resolve(settings.spp), stats};
+  return stats;
+}
+
+RenderResult render(const Scene& scene, const RenderSettings& settings, Progress::Style progress_style) {
+  Film film(settings.resolution, settings.aovs);
+  const RenderStats stats = render_into(film, scene, settings, progress_style);
+  return {film.resolve(), stats};
 }
 
 }  // namespace caligo

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "image/image.h"
+#include "render/film.h"
 #include "render/progress.h"
 #include "render/render_settings.h"
 #include "scene/scene.h"
@@ -23,8 +24,15 @@ struct RenderResult {
   RenderStats stats;
 };
 
+// A fresh film of settings.resolution and settings.aovs, rendered and resolved.
 RenderResult render(const Scene& scene, const RenderSettings& settings,
                     Progress::Style progress = Progress::Style::kQuiet);
+
+// Adds samples [first_sample, first_sample + spp) of every pixel in the crop window to `film`
+// (whose resolution and outputs must be settings'). Deterministic: the film ends the same bit
+// for bit for any thread count, tile order or split of the sample range.
+RenderStats render_into(Film& film, const Scene& scene, const RenderSettings& settings,
+                        Progress::Style progress = Progress::Style::kQuiet);
 
 // Settings from the scene's render defaults and camera resolution.
 RenderSettings default_settings(const SceneDesc& desc);

@@ -3,25 +3,33 @@
 
 #include <cstdint>
 
+#include "core/crop_window.h"
 #include "core/vec.h"
-#include "integrators/path_tracer.h"
+#include "integrators/path_settings.h"
 #include "raymarch/march.h"
+#include "render/aov.h"
+#include "render/pixel_filter.h"
 
 namespace caligo {
 
 struct RenderSettings {
   Vec2i resolution{640, 480};
   int spp = 16;
-  int max_depth = 8;
-  int max_volume_bounces = 128;
-  DistanceSampling distance_sampling = DistanceSampling::kMis;
-  bool absorption_by_weight = true;  // PathSettings::absorption_by_weight
-  int deferred_nee = 0;              // PathSettings::deferred_nee
-  LightSamplerKind light_sampler = LightSamplerKind::kTree;  // PathSettings::light_sampler
+  PathSettings path;  // passed to trace_path as it is (integrators/path_settings.h)
   uint64_t seed = 0;
   int threads = 0;  // 0: all hardware threads
   int tile_size = 16;
   MarchSettings march;  // step rules of the decoupled ray marcher
+  // Where each sample lands in its pixel: sample_offset() of the kFilm sample, weight 1
+  // (render/pixel_filter.h shows the loop). Default: box of radius 0.5, the uniform jitter.
+  PixelFilter filter;
+  // The pixels rendered: crop.pixels(resolution); the image keeps the full resolution.
+  CropWindow crop;
+  // The outputs the film holds and the image gets (render/aov.h; --aov).
+  AovSet aovs = AovSet::defaults();
+  // The samples of each pixel this render adds: [first_sample, first_sample + spp). A frame
+  // split into sample ranges (checkpoints, processes) and merged equals one render of them all.
+  int first_sample = 0;
 };
 
 }  // namespace caligo

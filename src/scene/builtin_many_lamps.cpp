@@ -99,7 +99,7 @@ std::string many_lamps_scene() {
   const std::vector<Building> blocks = buildings(rng);
   std::string json = R"json({
   "camera": {"position": [1.5, 2.2, 10], "look_at": [-0.5, 5, -80], "fov": 55, "resolution": [320, 180]},
-  "render": {"spp": 16, "max_depth": 4, "max_volume_bounces": 4},
+  "render": {"spp": 16, "max_bounces": 4, "max_volume_bounces": 4},
   "materials": {
     "asphalt": {"type": "diffuse", "reflectance": 0.15},
     "concrete": {"type": "diffuse", "reflectance": [0.5, 0.47, 0.42]}

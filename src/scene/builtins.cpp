@@ -11,7 +11,7 @@ namespace {
 // scenes/default.json.
 constexpr const char* kDefault = R"json({
   "camera": {"position": [0, 1.7, 4.9], "look_at": [0, 1.3, -2], "fov": 48, "resolution": [640, 480]},
-  "render": {"spp": 64, "max_depth": 8},
+  "render": {"spp": 64, "max_bounces": 8},
   "materials": {
     "white": {"type": "diffuse", "reflectance": 0.75},
     "red": {"type": "diffuse", "reflectance": [0.63, 0.065, 0.05]},
@@ -42,7 +42,7 @@ constexpr const char* kDefault = R"json({
 // Albedo-0.5 walls emitting 1 on both sides, seen from inside: L = E / (1 - a) = 2.
 constexpr const char* kFurnace = R"json({
   "camera": {"position": [0, 0, 0], "look_at": [0, 0, 1], "fov": 60, "resolution": [32, 32]},
-  "render": {"spp": 64, "max_depth": 1000},
+  "render": {"spp": 64, "max_bounces": 1000},
   "materials": {
     "wall": {"type": "diffuse", "reflectance": 0.5, "emission": 1, "two_sided": true}
   },
@@ -56,7 +56,7 @@ constexpr const char* kFurnace = R"json({
 // L = (a / pi) E / (1 - a) = 1 / pi (the first bounce alone: a / pi = 0.159).
 constexpr const char* kPointInSphere = R"json({
   "camera": {"position": [0, 0, 0], "look_at": [0, 0, 1], "fov": 60, "resolution": [32, 32]},
-  "render": {"spp": 64, "max_depth": 1000},
+  "render": {"spp": 64, "max_bounces": 1000},
   "materials": {
     "wall": {"type": "diffuse", "reflectance": 0.5}
   },
@@ -71,7 +71,7 @@ constexpr const char* kPointInSphere = R"json({
 
 constexpr const char* kLightsShowcase = R"json({
   "camera": {"position": [0, 2.5, 8], "look_at": [0, 0.8, 0], "fov": 40, "resolution": [640, 480]},
-  "render": {"spp": 32, "max_depth": 5},
+  "render": {"spp": 32, "max_bounces": 5},
   "materials": {
     "ground": {"type": "diffuse", "reflectance": 0.5},
     "grey": {"type": "diffuse", "reflectance": 0.7},
@@ -115,7 +115,7 @@ constexpr const char* kLampInFog = R"json({
 // noisy (the in-scattered radiance of rays passing at distance D from it grows as 1/D).
 constexpr const char* kSpotShafts = R"json({
   "camera": {"position": [0, 1.6, 6.5], "look_at": [0, 1.4, 0], "fov": 50, "resolution": [320, 240]},
-  "render": {"spp": 64, "max_depth": 1, "max_volume_bounces": 1},
+  "render": {"spp": 64, "max_bounces": 1, "max_volume_bounces": 1},
   "materials": {"ground": {"type": "diffuse", "reflectance": 0.5},
                 "blocker": {"type": "diffuse", "reflectance": 0.3}},
   "media": {"haze": {"sigma_s": 0.25, "sigma_a": 0.02, "phase": {"type": "hg", "g": 0.5}}},
@@ -128,12 +128,53 @@ constexpr const char* kSpotShafts = R"json({
               "outer_angle": 28, "color": [1, 0.9, 0.75], "intensity": 30}]
 })json";
 
+// Depth of field in fog: the spot-shafts stage seen through a thin lens (10 cm aperture radius,
+// far wider than a real lens so the blur shows at 320 x 240) focused 6.5 m away, on the
+// occluding sphere in the middle of the shaft; a sphere in front and one behind are blurred.
+constexpr const char* kDof = R"json({
+  "camera": {"position": [0, 1.6, 6.5], "look_at": [0, 1.4, 0], "fov": 50, "resolution": [320, 240],
+             "aperture_radius": 0.1, "focus_distance": 6.5},
+  "render": {"spp": 128, "max_depth": 1, "max_volume_bounces": 1},
+  "materials": {"ground": {"type": "diffuse", "reflectance": 0.5},
+                "blocker": {"type": "diffuse", "reflectance": 0.3},
+                "near": {"type": "diffuse", "reflectance": [0.7, 0.3, 0.2]},
+                "far": {"type": "diffuse", "reflectance": [0.2, 0.4, 0.7]}},
+  "media": {"haze": {"sigma_s": 0.25, "sigma_a": 0.02, "phase": {"type": "hg", "g": 0.5}}},
+  "shapes": [
+    {"type": "rectangle", "corner": [-4, 0, -4], "edge1": [0, 0, 8], "edge2": [8, 0, 0], "material": "ground"},
+    {"type": "sphere", "center": [0.2, 2.2, 0], "radius": 0.45, "material": "blocker"},
+    {"type": "sphere", "center": [-1.1, 0.45, 3.2], "radius": 0.45, "material": "near"},
+    {"type": "sphere", "center": [1.7, 0.8, -3], "radius": 0.8, "material": "far"}
+  ],
+  "volumes": [{"type": "box", "min": [-3.5, 0, -3.5], "max": [3.5, 4, 3.5], "medium": "haze"}],
+  "lights": [{"type": "spot", "position": [0, 3.9, 0], "look_at": [0, 0, 0], "inner_angle": 22,
+              "outer_angle": 28, "color": [1, 0.9, 0.75], "intensity": 30},
+             {"type": "environment", "radiance": 0.05}]
+})json";
+
+// An orthographic camera looking straight down (a window 6 m x 2 m, 1/16 m per pixel) through
+// three boxes of a purely absorbing medium (sigma_a = 1 per metre, sigma_s = 0) that are 0.5,
+// 1 and 2 m thick, under a uniform sky of radiance 1 and nothing else: a pixel over box k
+// is exactly exp(-d_k) (0.60653, 0.36788, 0.13534), every other pixel exactly 1. Box edges
+// fall on pixel edges (boxes over pixel columns 4-27, 36-59, 68-91 and rows 8-23), so with
+// the box pixel filter no pixel mixes two values.
+constexpr const char* kSlab = R"json({
+  "camera": {"position": [0, 5, 0], "look_at": [0, 0, 0], "up": [0, 0, -1], "projection": "orthographic",
+             "ortho_width": 6, "resolution": [96, 32]},
+  "render": {"spp": 16},
+  "media": {"ink": {"sigma_s": 0, "sigma_a": 1}},
+  "volumes": [{"type": "box", "min": [-2.75, 0, -0.5], "max": [-1.25, 0.5, 0.5], "medium": "ink"},
+              {"type": "box", "min": [-0.75, 0, -0.5], "max": [0.75, 1, 0.5], "medium": "ink"},
+              {"type": "box", "min": [1.25, 0, -0.5], "max": [2.75, 2, 0.5], "medium": "ink"}],
+  "lights": [{"type": "environment", "radiance": 1}]
+})json";
+
 // Neon signs in fog: three emissive torus-knot tubes (closed generated meshes; an emissive
 // material on a mesh makes one TriangleLight per triangle, 2,048 each, sampled by solid
 // angle) over a dark wet-looking floor, in fog that glows around them. No other light.
 constexpr const char* kNeon = R"json({
   "camera": {"position": [0, 1.4, 6.5], "look_at": [0, 1.3, 0], "fov": 45, "resolution": [480, 270]},
-  "render": {"spp": 64, "max_depth": 6, "max_volume_bounces": 8},
+  "render": {"spp": 64, "max_bounces": 6, "max_volume_bounces": 8},
   "materials": {"floor": {"type": "diffuse", "reflectance": 0.25},
                 "pink": {"type": "emissive", "color": [1, 0.15, 0.6], "radiance": 6},
                 "cyan": {"type": "emissive", "color": [0.1, 0.8, 1], "radiance": 6},
@@ -156,7 +197,7 @@ constexpr const char* kNeon = R"json({
 // blue sky. Most of the image is lit indirectly (haze -> lit floor -> eye).
 constexpr const char* kStage = R"json({
   "camera": {"position": [0, 1.5, 5.6], "look_at": [0, 0.8, 0], "fov": 40, "resolution": [480, 270]},
-  "render": {"spp": 64, "max_depth": 6, "max_volume_bounces": 8},
+  "render": {"spp": 64, "max_bounces": 6, "max_volume_bounces": 8},
   "materials": {"floor": {"type": "diffuse", "reflectance": 0.5},
                 "wuson": {"type": "diffuse", "reflectance": [0.8, 0.72, 0.6]}},
   "media": {"haze": {"sigma_s": 0.08, "sigma_a": 0.005, "phase": {"type": "hg", "g": 0.4}}},
@@ -190,7 +231,7 @@ constexpr const char* kOverlap = R"json({
 // paths may scatter hundreds of times. The grid is generated when the scene is loaded.
 constexpr const char* kCloud = R"json({
   "camera": {"position": [0, 1.0, 5.2], "look_at": [0, 1.35, 0], "fov": 40, "resolution": [480, 270]},
-  "render": {"spp": 64, "max_depth": 64, "max_volume_bounces": 512},
+  "render": {"spp": 64, "max_bounces": 64, "max_volume_bounces": 512},
   "media": {"cloud": {"albedo": 0.99, "extinction": 12, "phase": {"type": "hg", "g": 0.7}}},
   "volumes": [{"type": "vdb", "generate": {"kind": "cloud", "resolution": 128, "seed": 7}, "medium": "cloud"}],
   "lights": [{"type": "directional", "direction": [-0.55, -0.45, -0.7], "angular_radius": 0.27,
@@ -202,7 +243,7 @@ constexpr const char* kCloud = R"json({
 // inside dark, absorbing smoke, over a ground it lights.
 constexpr const char* kFire = R"json({
   "camera": {"position": [0, 1.6, 7.5], "look_at": [0, 1.6, 0], "fov": 42, "resolution": [400, 400]},
-  "render": {"spp": 64, "max_depth": 8, "max_volume_bounces": 32},
+  "render": {"spp": 64, "max_bounces": 8, "max_volume_bounces": 32},
   "materials": {"ground": {"type": "diffuse", "reflectance": 0.35}},
   "media": {"fire": {"sigma_a": 1.2, "sigma_s": 0.6, "phase": {"type": "hg", "g": 0.2},
                      "blackbody": {"intensity": 2e-5, "scale": 1, "offset": 0}}},
@@ -217,7 +258,7 @@ constexpr const char* kFire = R"json({
 // inside is found per ray by even/odd counting of all the mesh's crossings.
 constexpr const char* kMeshVolume = R"json({
   "camera": {"position": [0.9, 1.3, 3.4], "look_at": [0.1, 0.85, 0], "fov": 38, "resolution": [400, 300]},
-  "render": {"spp": 64, "max_depth": 16, "max_volume_bounces": 64},
+  "render": {"spp": 64, "max_bounces": 16, "max_volume_bounces": 64},
   "materials": {"floor": {"type": "diffuse", "reflectance": 0.5}},
   "media": {"smoke": {"albedo": [0.95, 0.88, 0.6], "extinction": 6, "phase": {"type": "hg", "g": 0.3}}},
   "shapes": [{"type": "rectangle", "corner": [-5, 0.1, -5], "edge1": [0, 0, 10], "edge2": [10, 0, 0],
@@ -239,7 +280,7 @@ constexpr const char* kMeshVolume = R"json({
 std::string wyman_scene(const char* kind, int triangles, const char* transform, const char* light) {
   return std::string(R"json({
   "camera": {"position": [0, 2.2, 7.5], "look_at": [0, 1.1, 0], "fov": 45, "resolution": [512, 512]},
-  "render": {"spp": 64, "max_depth": 1, "max_volume_bounces": 1},
+  "render": {"spp": 64, "max_bounces": 1, "max_volume_bounces": 1},
   "materials": {"ground": {"type": "diffuse", "reflectance": 0.4},
                 "occluder": {"type": "diffuse", "reflectance": 0.6}},
   "media": {"fog": {"sigma_s": 0.25, "sigma_a": 0.03}},
@@ -275,7 +316,7 @@ const char* const kWymanSpot = R"({"type": "spot", "position": [0.6, 4.2, -0.4],
 // boundary is coplanar with it.
 constexpr const char* kPriorityCubes = R"json({
   "camera": {"position": [0.4, 2.0, 4.2], "look_at": [0, 0.55, 0], "fov": 38, "resolution": [256, 192]},
-  "render": {"spp": 32, "max_depth": 8, "max_volume_bounces": 8},
+  "render": {"spp": 32, "max_bounces": 8, "max_volume_bounces": 8},
   "materials": {
     "ground": {"type": "diffuse", "reflectance": 0.8},
     "red": {"type": "null", "interior": "red", "priority": "high"},
@@ -303,7 +344,7 @@ constexpr const char* kPriorityCubes = R"json({
 // high, faintly cloudy) floats in it. Units: metres (the glass is 8 cm wide, 12 cm tall).
 constexpr const char* kGlassOfWater = R"json({
   "camera": {"position": [0.05, 0.16, 0.36], "look_at": [0, 0.06, 0], "fov": 30, "resolution": [200, 256]},
-  "render": {"spp": 64, "max_depth": 32, "max_volume_bounces": 16, "priority_shadows": true},
+  "render": {"spp": 64, "max_bounces": 32, "max_volume_bounces": 16, "priority_shadows": true},
   "materials": {
     "table": {"type": "diffuse", "reflectance": [0.75, 0.7, 0.6]},
     "wall": {"type": "diffuse", "reflectance": 0.6},
@@ -339,7 +380,7 @@ constexpr const char* kGlassOfWater = R"json({
 std::string pool_scene(const char* camera, const char* extra) {
   return std::string(R"json({
   "camera": )json") + camera + R"json(,
-  "render": {"spp": 32, "max_depth": 12, "max_volume_bounces": 8, "priority_shadows": true},
+  "render": {"spp": 32, "max_bounces": 12, "max_volume_bounces": 8, "priority_shadows": true},
   "materials": {
     "water": {"type": "dielectric", "ior": 1.33, "priority": "normal", "interior": "pool"},
     "clip": {"type": "null", "priority": "very_high"},
@@ -383,7 +424,7 @@ const char* const kSplitBox =
 // estimation, not only by paths that happen to refract out onto the light.
 constexpr const char* kSss = R"json({
   "camera": {"position": [0.9, 1.3, 3.4], "look_at": [0.1, 0.85, 0], "fov": 38, "resolution": [256, 192]},
-  "render": {"spp": 32, "max_depth": 64, "max_volume_bounces": 256, "priority_shadows": true},
+  "render": {"spp": 32, "max_bounces": 64, "max_volume_bounces": 256, "priority_shadows": true},
   "materials": {
     "floor": {"type": "diffuse", "reflectance": 0.5},
     "wax": {"type": "dielectric", "ior": 1.4, "priority": "normal", "interior": "wax"}
@@ -405,7 +446,7 @@ constexpr const char* kSss = R"json({
 // so the scene needs no file and runs from any directory.
 constexpr const char* kHdriFog = R"json({
   "camera": {"position": [0, 1.6, 8], "look_at": [0, 1.8, -4], "fov": 50, "resolution": [320, 240]},
-  "render": {"spp": 64, "max_depth": 6},
+  "render": {"spp": 64, "max_bounces": 6},
   "materials": {
     "ground": {"type": "diffuse", "reflectance": [0.45, 0.42, 0.38]},
     "stone": {"type": "diffuse", "reflectance": 0.65},
@@ -450,6 +491,14 @@ const std::vector<BuiltinScene>& all_builtins() {
        kLightsShowcase},
       {"lamp-in-fog", "a small point light inside a sphere of homogeneous scattering fog", kLampInFog},
       {"spot-shafts", "a spot light through fog past an occluding sphere: a volumetric shadow", kSpotShafts},
+      {"dof",
+       "depth of field: the spot-shafts fog seen through a thin lens (aperture radius 0.1 m) focused 6.5 m "
+       "away on the occluder in the shaft, with a blurred sphere in front and one behind",
+       kDof},
+      {"slab",
+       "orthographic view straight down through three purely absorbing boxes (sigma_a 1/m) 0.5, 1 and 2 m "
+       "thick under a uniform sky of radiance 1: pixels over them are exactly e^-0.5, e^-1, e^-2, others 1",
+       kSlab},
       {"neon", "neon signs in fog: three emissive torus-knot tubes (6,144 triangle lights) over a dark floor",
        kNeon},
       {"stage",

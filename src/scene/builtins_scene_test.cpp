@@ -138,3 +138,49 @@ TEST(NestedDielectricBuiltins, SssDuck) {
 
 }  // namespace
 }  // namespace caligo
+
+namespace caligo {
+namespace {
+
+// `slab`: the optical depth along every pixel-centre camera ray, from the boxes' chords, is
+// 0 or one box's thickness times sigma_a, by pixel column: the documented exact answers
+// 1, e^-0.5, e^-1, e^-2 need nothing else (no surfaces, one uniform sky of radiance 1).
+TEST(CameraBuiltins, SlabPixelsSeeOneThicknessEach) {
+  const SceneDesc s = parse_builtin(*find_builtin("slab"));
+  EXPECT_EQ(s.camera.projection, CameraProjection::orthographic);
+  EXPECT_TRUE(s.shapes.empty());
+  ASSERT_EQ(s.lights.size(), 1u);
+  const auto& sky = std::get<EnvironmentLight>(s.lights[0]);
+  EXPECT_EQ(sky.radiance.r, 1.0f);
+  ASSERT_EQ(s.volumes.size(), 3u);
+  const Camera camera(s.camera, s.camera.resolution);
+  for (const VolumePrimitive& v : s.volumes) {
+    EXPECT_TRUE(v.shader.sigma_s.is_black());
+    EXPECT_EQ(v.shader.sigma_a.g, 1.0f);
+  }
+  const float thickness[3] = {0.5f, 1.0f, 2.0f};
+  for (int y = 0; y < s.camera.resolution.y; ++y)
+    for (int x = 0; x < s.camera.resolution.x; ++x) {
+      const Ray ray = camera.generate_ray({float(x) + 0.5f, float(y) + 0.5f});
+      float depth = 0.0f;
+      for (const VolumePrimitive& v : s.volumes)
+        if (auto t = volume_hull_interval(v.shape, ray)) depth += (t->second - t->first) * v.shader.sigma_a.g;
+      const bool row_in = y >= 8 && y < 24;
+      const int box = x >= 4 && x < 28 ? 0 : (x >= 36 && x < 60 ? 1 : (x >= 68 && x < 92 ? 2 : -1));
+      const float expected = row_in && box >= 0 ? thickness[box] : 0.0f;
+      EXPECT_NEAR(depth, expected, 1e-5f) << x << "," << y;
+    }
+}
+
+TEST(CameraBuiltins, DofIsAThinLensFocusedOnTheShaft) {
+  const SceneDesc s = parse_builtin(*find_builtin("dof"));
+  const Camera camera(s.camera, s.camera.resolution);
+  EXPECT_TRUE(camera.has_aperture());
+  EXPECT_FLOAT_EQ(camera.aperture_radius(), 0.1f);
+  // The occluding sphere at (0.2, 2.2, 0), in the middle of the shaft, is in focus.
+  EXPECT_NEAR(dot(Vec3(0.2f, 2.2f, 0.0f) - camera.position(), camera.forward()), camera.focus_distance(), 0.1f);
+  EXPECT_FALSE(s.volumes.empty());
+}
+
+}  // namespace
+}  // namespace caligo

@@ -51,7 +51,7 @@ TEST(Builtins, FurnaceIsAClosedEmittingSphereAroundTheCamera) {
   EXPECT_TRUE(wall.two_sided_emission);
   EXPECT_TRUE(scene.lights.empty());
   EXPECT_EQ(scene.camera.resolution, (Vec2i{32, 32}));
-  EXPECT_GE(scene.render.max_depth, 1000);
+  EXPECT_GE(scene.render.limits.max_bounces, 1000);
 }
 
 TEST(Builtins, PointInSphereHasTheLightAtTheCentre) {
@@ -83,7 +83,7 @@ TEST(Builtins, DefaultRoomIsClosedAroundTheCamera) {
   ASSERT_EQ(scene.volumes.size(), 1u);
   EXPECT_TRUE(std::holds_alternative<BoxVolumeShape>(scene.volumes[0].shape));
   EXPECT_EQ(scene.render.spp, 64);
-  EXPECT_EQ(scene.render.max_depth, 8);
+  EXPECT_EQ(scene.render.limits.max_bounces, 8);
 }
 
 TEST(Builtins, LightsShowcaseHasEveryFileLightType) {

@@ -164,6 +164,12 @@ int Scene::add_geometry(uint32_t geom_id, GeometryInfo info) {
 }
 
 void Scene::add_shape(const ShapeDesc& shape) {
+  const size_t first = geometry_.size();
+  add_shape_geometry(shape);
+  for (size_t g = first; g < geometry_.size(); ++g) geometry_[g].holdout = shape.holdout;
+}
+
+void Scene::add_shape_geometry(const ShapeDesc& shape) {
   const Material& material = materials_[size_t(shape.material)];
   if (const auto* s = std::get_if<SphereShape>(&shape.geometry)) {
     const Sphere sphere = Sphere::make(s->center, s->radius, shape.transform);

@@ -69,6 +69,8 @@ class Scene {
   const MediumStack& camera_stack() const { return camera_stack_; }
   // The same probe from any point.
   MediumStack stack_at(Vec3 p) const;
+  // A holdout shape (ShapeDesc::holdout).
+  bool is_holdout(uint32_t geom_id) const { return geometry_[geom_id].holdout; }
   const Material& material(const SurfaceHit& hit) const {
     return materials_[size_t(geometry_[hit.geom_id].material)];
   }
@@ -79,10 +81,12 @@ class Scene {
     int material = 0;
     int light = -1;                    // first light of this geometry, or -1
     bool light_per_primitive = false;  // emissive meshes: one TriangleLight per triangle
+    bool holdout = false;              // ShapeDesc::holdout
   };
 
   Scene() = default;
   void add_shape(const ShapeDesc& shape);
+  void add_shape_geometry(const ShapeDesc& shape);
   void add_light_geometry(int light_index);
   void add_emitting_mesh(TriangleMesh mesh, int material, const SourceLocation& where);
   int add_geometry(uint32_t geom_id, GeometryInfo info);

@@ -8,9 +8,11 @@
 #include <variant>
 #include <vector>
 
+#include "core/crop_window.h"
 #include "core/error.h"
 #include "core/transform.h"
 #include "core/vec.h"
+#include "integrators/path_settings.h"
 #include "lights/light.h"
 #include "materials/material.h"
 #include "volumes/volume.h"
@@ -25,6 +27,8 @@ struct CameraKey {
   Vec3 position, look_at;
 };
 
+enum class CameraProjection { perspective, orthographic };
+
 struct CameraDesc {
   Vec3 position{0, 0, 5};
   Vec3 look_at{0, 0, 0};
@@ -35,6 +39,15 @@ struct CameraDesc {
   // first key and after the last the camera holds still.
   std::vector<CameraKey> path;
   Interpolation path_interpolation = Interpolation::linear;
+  // Projection and lens (scene/camera.h). Orthographic: a window `ortho_width` metres wide
+  // (height from the aspect ratio) through `position`, rays parallel to the view axis;
+  // fov and the lens are unused. Perspective: a pinhole unless the lens has an aperture,
+  // given as a radius in metres or as an f-number (at most one of the two is non-zero).
+  CameraProjection projection = CameraProjection::perspective;
+  float ortho_width = 0.0f;      // metres; > 0 when orthographic
+  float aperture_radius = 0.0f;  // metres; 0: pinhole
+  float fstop = 0.0f;            // f-number N (aperture diameter = focal length / N); 0: not given
+  float focus_distance = 0.0f;   // metres along the view axis; 0: |look_at - position|
 };
 
 // A light keyframe: position and/or direction (aim) of a point, spot, box or directional
@@ -71,15 +84,32 @@ struct RealtimeDefaults {
   int frames = 60;
 };
 
+// A pixel reconstruction filter as the scene file gives it; render/pixel_filter.h builds and
+// samples it. Radius in pixels (the support is [-radius, radius]^2; Cycles' "filter width"
+// is 2 x radius); sigma (gaussian only) in pixels.
+enum class PixelFilterType { box, gaussian, blackman_harris };
+struct PixelFilterDesc {
+  PixelFilterType type = PixelFilterType::box;
+  float radius = 0.5f;
+  float sigma = 0.5f;
+  // The radius a type gets when none is given: box 0.5 (the whole pixel, today's jitter),
+  // gaussian 1.5 (pbrt-v4's default, with sigma 0.5), Blackman-Harris 0.75 (Cycles' default
+  // filter width of 1.5 pixels).
+  static float default_radius(PixelFilterType type) {
+    return type == PixelFilterType::box ? 0.5f : (type == PixelFilterType::gaussian ? 1.5f : 0.75f);
+  }
+};
+
 struct RenderDefaults {
   int spp = 16;
-  int max_depth = 8;             // surface bounces
-  int max_volume_bounces = 128;  // scattering events inside media
+  PathLimits limits;  // "max_bounces" (alias "max_depth") and "max_volume_bounces"
   uint64_t seed = 0;
   // Shadow rays pass through dielectrics of priority other than Off, attenuated by the media
   // the priority rules put them in (approximate caustics; lights inside glass or water).
   // Off: those dielectrics block shadow rays like any other. Null medium boundaries never block.
   bool priority_shadows = false;
+  PixelFilterDesc filter;  // "filter": how samples spread over pixels (render/pixel_filter.h)
+  CropWindow crop;         // "crop": the part of the image rendered (core/crop_window.h)
 };
 
 // A named entry of the scene's "media" table: what volume primitives are filled with
@@ -117,6 +147,9 @@ struct ShapeDesc {
   Transform transform;   // object to world
   int material = 0;      // index into SceneDesc::materials
   SourceLocation where;  // e.g. {"room.json", "/shapes/3"}
+  // A holdout (matte) object: the camera sees a hole through it (black beauty, alpha 0), as it
+  // would see the background; every other ray sees its material (it shadows and reflects).
+  bool holdout = false;
 };
 
 struct SceneDesc {

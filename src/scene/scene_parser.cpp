@@ -28,10 +28,11 @@ namespace fs = std::filesystem;
 
 constexpr double kMaxResolution = 16384;
 constexpr double kMaxSpp = 1'000'000;
-constexpr double kMaxDepth = 10'000;
+constexpr double kMaxBounces = 10'000;
 // Dielectrics and null boundaries alike: 1 (vacuum) to 10, beyond any real material.
 constexpr double kMaxIor = 10;
 constexpr double kMaxFrames = 100'000;
+constexpr double kMaxFilterRadius = 16;  // pixels
 
 // ---- camera and render settings ----
 
@@ -82,10 +83,42 @@ void check_up(const CameraDesc& camera, const JsonCursor& where, bool given) {
   for (const CameraKey& k : camera.path) check(normalize(k.look_at - k.position));
 }
 
+// A key that only some kinds of camera read is an error on the others (it would be ignored).
+void reject_key(ObjectReader& r, std::string_view key, const std::string& why) {
+  if (auto c = r.optional(key)) c->fail("\"" + std::string(key) + "\" " + why);
+}
+
+// "aperture_radius" (metres) or "fstop" (f-number), and "focus_distance" (metres along the
+// view axis): a thin lens. Neither aperture key, or a zero radius: a pinhole.
+void read_lens(ObjectReader& r, CameraDesc& camera) {
+  if (r.has("aperture_radius") && r.has("fstop"))
+    r.fail("expected at most one of \"aperture_radius\" or \"fstop\" in " + r.what() + ", got both");
+  camera.aperture_radius = r.number_or("aperture_radius", 0.0f, Range::non_negative());
+  camera.fstop = r.number_or("fstop", 0.0f, Range::positive());
+  if (camera.aperture_radius == 0.0f && camera.fstop == 0.0f)
+    reject_key(r, "focus_distance", "needs an aperture: give \"aperture_radius\" > 0 or \"fstop\"");
+  camera.focus_distance = r.number_or("focus_distance", 0.0f, Range::positive());
+}
+
+// "projection": "perspective" (default) or "orthographic" with "ortho_width" in metres.
+void read_projection(ObjectReader& r, CameraDesc& camera) {
+  const bool ortho = r.has("projection") && r.choice("projection", {"perspective", "orthographic"}) == "orthographic";
+  if (!ortho) {
+    reject_key(r, "ortho_width", "applies only to an orthographic camera (\"projection\": \"orthographic\")");
+    read_lens(r, camera);
+    return;
+  }
+  camera.projection = CameraProjection::orthographic;
+  camera.ortho_width = r.number("ortho_width", Range::positive());
+  for (const char* key : {"fov", "aperture_radius", "fstop", "focus_distance"})
+    reject_key(r, key, "does not apply to an orthographic camera");
+}
+
 // With a path, "position" and "look_at" may be left out: the first key gives them.
 CameraDesc parse_camera(const JsonCursor& c) {
   ObjectReader r(c, "the camera");
-  r.allow({"position", "look_at", "up", "fov", "resolution", "path"});
+  r.allow({"position", "look_at", "up", "fov", "resolution", "path", "projection", "ortho_width",
+           "aperture_radius", "fstop", "focus_distance"});
   CameraDesc camera;
   if (auto p = r.optional("path")) read_camera_path(*p, camera);
   const bool still = camera.path.empty();
@@ -106,20 +139,57 @@ CameraDesc parse_camera(const JsonCursor& c) {
   check_up(camera, up ? *up : c, up.has_value());
   camera.fov_degrees = r.number_or("fov", camera.fov_degrees, Range::open(0, 180));
   if (auto res = r.optional("resolution")) camera.resolution = read_resolution(*res);
+  read_projection(r, camera);
   r.finish();
   return camera;
 }
 
+// "filter": {"type": "box" | "gaussian" | "blackman_harris", "radius": pixels, "sigma": pixels}.
+PixelFilterDesc read_pixel_filter(const JsonCursor& c) {
+  ObjectReader r(c, "a pixel filter");
+  r.allow({"type", "radius", "sigma"});
+  const std::string type = r.choice("type", {"box", "gaussian", "blackman_harris"});
+  r.set_what("a " + type + " pixel filter");
+  PixelFilterDesc f;
+  f.type = type == "box" ? PixelFilterType::box
+                         : (type == "gaussian" ? PixelFilterType::gaussian : PixelFilterType::blackman_harris);
+  f.radius = r.number_or("radius", PixelFilterDesc::default_radius(f.type), Range::above_up_to(0, kMaxFilterRadius));
+  if (f.type == PixelFilterType::gaussian)
+    f.sigma = r.number_or("sigma", f.sigma, Range::above_up_to(0, kMaxFilterRadius));
+  else
+    reject_key(r, "sigma", "applies only to a gaussian pixel filter");
+  r.finish();
+  return f;
+}
+
+// "crop": [x0, x1, y0, y1], fractions of the image from its left and top edges.
+CropWindow read_crop(const JsonCursor& c) {
+  if (!c.is_array() || c.json().size() != 4)
+    c.fail("expected an array of 4 numbers [x0, x1, y0, y1], got " + c.describe());
+  const auto e = c.elements("");
+  const Range unit = Range::closed(0, 1);
+  const CropWindow crop{e[0].number(unit), e[1].number(unit), e[2].number(unit), e[3].number(unit)};
+  if (const std::string why = crop_window_problem(crop); !why.empty()) c.fail(why + ", got " + c.describe());
+  return crop;
+}
+
 RenderDefaults parse_render(const JsonCursor& c) {
   ObjectReader r(c, "the render settings");
-  r.allow({"spp", "max_depth", "max_volume_bounces", "seed", "priority_shadows"});
+  r.allow({"spp", "max_bounces", "max_depth", "max_volume_bounces", "seed", "priority_shadows", "filter", "crop"});
   RenderDefaults render;
   render.spp = int(r.integer_or("spp", render.spp, Range::closed(1, kMaxSpp)));
-  render.max_depth = int(r.integer_or("max_depth", render.max_depth, Range::closed(0, kMaxDepth)));
-  render.max_volume_bounces =
-      int(r.integer_or("max_volume_bounces", render.max_volume_bounces, Range::closed(0, kMaxDepth)));
+  // "max_depth" is the former name of "max_bounces" (PathLimits), kept as an alias.
+  const auto old_name = r.optional("max_depth");
+  if (old_name && r.has("max_bounces"))
+    old_name->fail("\"max_depth\" is an alias of \"max_bounces\" in " + r.what() + "; give one of them, not both");
+  const auto bounces = old_name ? old_name : r.optional("max_bounces");
+  if (bounces) render.limits.max_bounces = int(bounces->integer(Range::closed(0, kMaxBounces)));
+  render.limits.max_volume_bounces =
+      int(r.integer_or("max_volume_bounces", render.limits.max_volume_bounces, Range::closed(0, kMaxBounces)));
   if (auto seed = r.optional("seed")) render.seed = seed->unsigned_integer();
   render.priority_shadows = r.boolean_or("priority_shadows", render.priority_shadows);
+  if (auto f = r.optional("filter")) render.filter = read_pixel_filter(*f);
+  if (auto crop = r.optional("crop")) render.crop = read_crop(*crop);
   r.finish();
   return render;
 }

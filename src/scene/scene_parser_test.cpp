@@ -79,7 +79,7 @@ TEST_F(EverythingTest, CameraAndRenderSettings) {
   EXPECT_FLOAT_EQ(scene.camera.fov_degrees, 50.0f);
   EXPECT_EQ(scene.camera.resolution, (Vec2i{320, 200}));
   EXPECT_EQ(scene.render.spp, 128);
-  EXPECT_EQ(scene.render.max_depth, 12);
+  EXPECT_EQ(scene.render.limits.max_bounces, 12);
   EXPECT_EQ(scene.render.seed, 18446744073709551615ull);
 }
 
@@ -180,6 +180,14 @@ TEST_F(EverythingTest, DistantLights) {
   expect_rgb_near(std::get<EnvironmentLight>(scene.lights[9]).radiance, {1, 1, 2});
 }
 
+// "max_bounces" is the documented name; "max_depth" (EverythingTest) its alias.
+TEST(SceneParser, MaxBounces) {
+  const SceneDesc scene = parse_scene_text(
+      R"({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]}, "render": {"max_bounces": 3}})", "b.json", "");
+  EXPECT_EQ(scene.render.limits.max_bounces, 3);
+  EXPECT_EQ(scene.render.limits.max_volume_bounces, 128);
+}
+
 TEST(SceneParser, DefaultsForOptionalParts) {
   const SceneDesc scene =
       parse_scene_text(R"({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]}})", "min.json", "");
@@ -187,7 +195,7 @@ TEST(SceneParser, DefaultsForOptionalParts) {
   EXPECT_FLOAT_EQ(scene.camera.fov_degrees, 40.0f);
   EXPECT_EQ(scene.camera.resolution, (Vec2i{640, 480}));
   EXPECT_EQ(scene.render.spp, 16);
-  EXPECT_EQ(scene.render.max_depth, 8);
+  EXPECT_EQ(scene.render.limits.max_bounces, 8);
   EXPECT_TRUE(scene.materials.empty());
   EXPECT_TRUE(scene.shapes.empty());
   EXPECT_TRUE(scene.lights.empty());  // allowed: the image is black
@@ -327,6 +335,14 @@ const BadCase kBadCases[] = {
      "in [1, 1000000], got 2000000"},
     {"NegativeMaxDepth", [](OJson& s) { s["render"]["max_depth"] = -1; }, "/render/max_depth",
      "expected an integer in [0, 10000], got -1"},
+    {"HugeMaxBounces", [](OJson& s) { s["render"]["max_bounces"] = 10001; }, "/render/max_bounces",
+     "expected an integer in [0, 10000], got 10001"},
+    {"MaxDepthAliasWithMaxBounces",
+     [](OJson& s) {
+       s["render"]["max_bounces"] = 4;
+       s["render"]["max_depth"] = 4;
+     },
+     "/render/max_depth", R"("max_depth" is an alias of "max_bounces")"},
     {"NegativeSeed", [](OJson& s) { s["render"]["seed"] = -3; }, "/render/seed",
      "expected an integer >= 0, got -3"},
     {"FovTooWide", [](OJson& s) { s["camera"]["fov"] = 180; }, "/camera/fov",
@@ -623,7 +639,7 @@ TEST(SceneParser, MediaAndVolumes) {
     ]
   })json",
                                            "vol.json", "");
-  EXPECT_EQ(scene.render.max_volume_bounces, 1024);
+  EXPECT_EQ(scene.render.limits.max_volume_bounces, 1024);
   ASSERT_EQ(scene.volumes.size(), 3u);
   const VolumeShader& fog = scene.volumes[0].shader;
   EXPECT_EQ(fog.sigma_s, RGB(0.5f, 0.4f, 0.3f));

@@ -171,7 +171,7 @@ struct Shade {
   MediumSample with_density(float d) const {
     const VolumeShader& s = primitive.shader;
     if (s.noise) d *= noise_density(*s.noise, p);
-    return {s.sigma_a * d, s.sigma_s * d, s.emission * d, s.phase};
+    return {s.sigma_a * d, s.sigma_s * d, s.emission * d, s.phase, s.holdout * d};
   }
   MediumSample operator()(const ConstantDensity&) const { return with_density(primitive.shader.density); }
   MediumSample operator()(const RadialFalloffDensity& f) const {
@@ -212,7 +212,7 @@ void append_intervals(const VolumePrimitive& primitive, uint32_t id, const Ray& 
   std::visit(InsideStretches{ray, context}, primitive.shape);
   if (context.mesh_intervals.empty()) return;
   const VolumeShader& s = primitive.shader;
-  const RGB sigma_unit = (s.sigma_a + s.sigma_s) * (s.density * noise_peak(s));
+  const RGB sigma_unit = (s.sigma_a + s.sigma_s + RGB(s.holdout)) * (s.density * noise_peak(s));
   for (const Stretch& stretch : context.mesh_intervals)
     std::visit(FieldIntervals{primitive, id, ray, stretch, context, sigma_unit, !s.noise}, s.field);
 }

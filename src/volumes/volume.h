@@ -83,6 +83,7 @@ struct VolumeShader {
   std::optional<BlackbodyEmission> blackbody;  // grid fields with a temperature channel
   std::optional<FlameEmission> flame;          // grid fields with a flame channel
   bool tint_with_color_grid = true;            // a grid's Cd (clamped to [0, 1]) tints sigma_s
+  float holdout = 0.0f;  // holdout extinction sigma_h, 1/m at density 1 (MediumSample::holdout)
 };
 
 struct VolumePrimitive {

@@ -1,0 +1,60 @@
+// How the volumetric path tracer traces a path: its limits and the choices of its estimators.
+// One value of these is embedded in RenderSettings (render/render_settings.h) and passed to
+// trace_path unchanged; PathLimits alone is also what a scene file's "render" object gives
+// (RenderDefaults, scene/scene_desc.h) and what the reference ladder obeys (ReferenceOptions,
+// integrators/reference.h), so every pipeline counts a path's events the same way.
+#pragma once
+
+#include "lights/light_sampler.h"
+
+namespace caligo {
+
+// How long a path may be. Two counts, both checked before an event happens:
+//   - max_bounces: each surface bounce counts one, and so does each RUN of consecutive
+//     scattering events in media (a path that scatters ten times in fog without meeting a
+//     surface has used one). So 0 is emission and background seen directly, 1 is direct
+//     lighting only (of surfaces and of media), 2 adds one indirect bounce. A path that has
+//     used them up may not start another run in a medium either. Scene key "max_bounces"
+//     (alias "max_depth"), CLI --max-bounces (alias --max-depth).
+//   - max_volume_bounces: every scattering event in media counts one, inside runs too; it
+//     bounds the length of the runs (scene key "max_volume_bounces", CLI --max-volume-bounces).
+// Null-surface and medium-boundary crossings count against neither.
+struct PathLimits {
+  int max_bounces = 8;
+  int max_volume_bounces = 128;
+};
+
+// How next-event estimation in media picks the distance along a ray segment.
+enum class DistanceSampling {
+  kDensity,      // pdf proportional to sigma_s T
+  kEquiangular,  // pdf cancelling the light's inverse-square falloff (density for lights at infinity)
+  kMis,          // one of the two at random, weighted by the balance heuristic (one-sample MIS);
+                 // equiangular's share follows the segment's optical depth (volume_direct.h)
+  kMisFixed,     // the same with equiangular's share fixed at 3/4 (the former default)
+};
+
+struct PathSettings {
+  PathLimits limits;
+  int russian_roulette_depth = 3;  // roulette starts after this many events (surface and volume)
+  int max_null_crossings = 256;    // guards against endless chains of null surfaces
+  DistanceSampling distance_sampling = DistanceSampling::kMis;
+  // Volume next-event estimation runs with probability min(1, scale * P(scatter in segment)).
+  float volume_nee_scale = 2.0f;
+  // How next-event estimation picks a light (lights/light_sampler.h; Scene::light_sampler). The
+  // tree is the default: ~90x less MSE than power at equal time on many-lamps, and the same
+  // choice (bit for bit) as power in scenes with one light.
+  LightSamplerKind light_sampler = LightSamplerKind::kTree;
+  // true: the path scatters with probability P(scatter in segment) and otherwise passes with
+  // the segment's exact transmittance (absorption by weight). false: analog free-flight
+  // sampling, where a collision that absorbs ends the path (kept for comparisons).
+  bool absorption_by_weight = true;
+  // Deferred next-event estimation (the seed's "optimizations for multiple scattering"): 0 (the
+  // default) connects each medium segment to a light as the path goes; K > 0 builds the whole
+  // path first, then connects K of its scattering vertices, chosen with probability
+  // proportional to their throughput (~ sigma_s T along the path) and weighted by the inverse.
+  // Light hits from medium vertices then count zero (the connections alone are unbiased).
+  // See docs/techniques.md for when it pays.
+  int deferred_nee = 0;
+};
+
+}  // namespace caligo

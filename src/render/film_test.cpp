@@ -1,0 +1,181 @@
+// The AOV film: exact sums that merge bit for bit however samples are split, per-pixel counts,
+// the raw file round trip and its located errors, and the AOV list parser.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
+
+#include "core/error.h"
+#include "core/rng.h"
+#include "render/film.h"
+
+namespace caligo {
+namespace {
+
+constexpr Vec2i kSize{7, 5};
+
+// A sample with values spread over many magnitudes (where float sums depend on order).
+PathSample random_sample(Pcg32& rng) {
+  PathSample s;
+  for (RGB& l : s.light) {
+    const float scale = std::exp2(float(int(rng.next_u32() % 40)) - 20.0f);
+    l = RGB(rng.next_float() * scale, rng.next_float() * scale, rng.next_float() * scale);
+  }
+  s.alpha = rng.next_float();
+  s.normal = {rng.next_float(), -rng.next_float(), 0.5f};
+  s.albedo = RGB(rng.next_float());
+  s.hit_t = 1.0f + rng.next_float();
+  return s;
+}
+
+// Adds samples [first, last) of every pixel, each pixel's sequence fixed by its seed.
+void add_range(Film& film, int first, int last) {
+  for (int y = 0; y < kSize.y; ++y)
+    for (int x = 0; x < kSize.x; ++x) {
+      Pcg32 rng(uint64_t(y * kSize.x + x), 7);
+      for (int s = 0; s < last; ++s) {
+        const PathSample sample = random_sample(rng);
+        if (s >= first) film.add(x, y, sample, sample.hit_t);
+      }
+    }
+}
+
+TEST(Film, MergedSampleRangesEqualOneFilmBitForBit) {
+  Film whole(kSize, AovSet::all());
+  add_range(whole, 0, 64);
+  Film a(kSize, AovSet::all()), b(kSize, AovSet::all()), c(kSize, AovSet::all());
+  add_range(a, 0, 13);
+  add_range(b, 13, 40);
+  add_range(c, 40, 64);
+  Film cba = c;
+  cba.merge(b);
+  cba.merge(a);  // another order, too
+  a.merge(b);
+  a.merge(c);
+  EXPECT_TRUE(a == whole);
+  EXPECT_TRUE(cba == whole);
+  EXPECT_TRUE(a.resolve() == whole.resolve());
+  // Float sums would not be exact here: the same values summed in the two orders differ.
+  float forward = 0.0f, backward = 0.0f;
+  Pcg32 rng(3, 7);
+  std::vector<float> values;
+  for (int i = 0; i < 64; ++i) values.push_back(random_sample(rng).light[0].r);
+  for (float v : values) forward += v;
+  for (auto it = values.rbegin(); it != values.rend(); ++it) backward += *it;
+  EXPECT_NE(forward, backward) << "the test's values do not exercise rounding";
+}
+
+TEST(Film, ResolveAveragesEachPixelOverItsOwnCount) {
+  Film film({2, 1}, AovSet::defaults());
+  PathSample s;
+  s.add(LightKind::kSurfaceDirect, RGB(2.0f));
+  s.alpha = 1.0f;
+  film.add(0, 0, s, 3.0f);
+  film.add(0, 0, PathSample{}, 5.0f);  // a second sample of zero radiance
+  film.add(1, 0, s, 4.0f);
+  EXPECT_EQ(film.sample_count(0, 0), 2u);
+  EXPECT_EQ(film.sample_count(1, 0), 1u);
+  const Image image = film.resolve();
+  EXPECT_FLOAT_EQ(image.at(0, 0, 0), 1.0f);
+  EXPECT_FLOAT_EQ(image.at(1, 0, 0), 2.0f);
+  EXPECT_FLOAT_EQ(image.at(0, 0, image.channel_index("A")), 0.5f);
+  EXPECT_FLOAT_EQ(image.at(0, 0, image.channel_index("Z")), 3.0f);  // the nearest depth
+  EXPECT_FLOAT_EQ(image.at(1, 0, image.channel_index("Z")), 4.0f);
+}
+
+TEST(Film, LightLayersAddUpToTheBeauty) {
+  Film film(kSize, AovSet::all());
+  add_range(film, 0, 16);
+  const Image image = film.resolve();
+  for (int y = 0; y < kSize.y; ++y)
+    for (int x = 0; x < kSize.x; ++x) {
+      RGB layers;
+      for (int k = 0; k < kLightKindCount; ++k) {
+        const auto rgb = image.rgb_indices(std::string(aov_name(light_aov(LightKind(k)))) + ".");
+        ASSERT_TRUE(rgb);
+        layers += image.rgb(x, y, *rgb);
+      }
+      const RGB beauty = image.rgb(x, y, 0);
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(layers[c], beauty[c], 1e-5f * beauty[c]);
+    }
+}
+
+TEST(Film, NonFiniteRadianceCountsAsZero) {
+  Film film({1, 1}, AovSet::all());
+  PathSample bad;
+  bad.add(LightKind::kVolumeDirect, RGB(std::nanf(""), 1.0f, 1.0f));
+  bad.add(LightKind::kBackground, RGB(3.0f));
+  film.add(0, 0, bad, kInfinity);
+  PathSample good;
+  good.add(LightKind::kBackground, RGB(4.0f));
+  film.add(0, 0, good, kInfinity);
+  const Image image = film.resolve();
+  EXPECT_FLOAT_EQ(image.at(0, 0, 0), 2.0f);
+  EXPECT_FLOAT_EQ(image.at(0, 0, image.channel_index("background.R")), 2.0f);
+}
+
+std::filesystem::path temp_file(const char* name) {
+  return std::filesystem::temp_directory_path() / (std::string("caligo_film_") + std::to_string(::getpid()) + name);
+}
+
+TEST(Film, SaveLoadRoundTripsExactly) {
+  Film film(kSize, AovSet::defaults().with(Aov::kVolumeDirect));
+  add_range(film, 0, 9);
+  const auto path = temp_file("_roundtrip.film");
+  film.save(path.string(), 0x1234abcdull);
+  uint64_t key = 0;
+  const Film back = Film::load(path.string(), &key);
+  EXPECT_EQ(key, 0x1234abcdull);
+  EXPECT_TRUE(back == film);
+  std::filesystem::remove(path);
+}
+
+TEST(Film, BadFilmFilesAreLocatedErrors) {
+  Film film(kSize, AovSet::defaults());
+  add_range(film, 0, 2);
+  const auto path = temp_file("_bad.film");
+  film.save(path.string());
+  const auto size = std::filesystem::file_size(path);
+  const auto expect_error = [&](const char* what) {
+    try {
+      Film::load(path.string());
+      ADD_FAILURE() << "no error for " << what;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+    }
+  };
+  std::filesystem::resize_file(path, size - 1);
+  expect_error("a truncated file");
+  {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out << "P6\n7 5\n255\n";
+  }
+  expect_error("another format");
+  std::filesystem::remove(path);
+  expect_error("a missing file");
+}
+
+TEST(Film, MergeRefusesAnotherShape) {
+  Film a(kSize, AovSet::defaults()), b({3, 3}, AovSet::defaults()), c(kSize, AovSet::all());
+  EXPECT_THROW(a.merge(b), std::invalid_argument);
+  EXPECT_THROW(a.merge(c), std::invalid_argument);
+}
+
+TEST(AovSet, ParsesNamesAndRejectsUnknownOnes) {
+  EXPECT_EQ(AovSet::parse("beauty"), AovSet{});
+  EXPECT_EQ(AovSet::parse("default"), AovSet::defaults());
+  EXPECT_EQ(AovSet::parse("alpha,volume.direct"), AovSet{}.with(Aov::kAlpha).with(Aov::kVolumeDirect));
+  EXPECT_TRUE(AovSet::parse("lights").has(Aov::kBackground));
+  EXPECT_FALSE(AovSet::parse("lights").has(Aov::kAlpha));
+  EXPECT_EQ(AovSet::parse("all"), AovSet::all());
+  EXPECT_THROW(AovSet::parse("alpha,bogus"), InputError);
+  EXPECT_THROW(AovSet::parse(""), InputError);
+  EXPECT_EQ(aov_channels(AovSet{}.with(Aov::kDepth).with(Aov::kSurfaceDirect)),
+            (std::vector<std::string>{"R", "G", "B", "Z", "surface_direct.R", "surface_direct.G", "surface_direct.B"}));
+}
+
+}  // namespace
+}  // namespace caligo
