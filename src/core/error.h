@@ -2,8 +2,12 @@
 // mesh or command line: exit code 2); anything else escaping main is ours (exit code 1).
 #pragma once
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+
+#include "core/message_text.h"
 
 namespace caligo {
 
@@ -13,10 +17,19 @@ struct SourceLocation {
   std::string file;
   std::string json_path;
 
+  // Both parts as a message shows them: control characters escaped, a long file name or
+  // pointer token (a 1 MB key) abbreviated (core/message_text.h).
   std::string to_string() const {
-    if (file.empty()) return json_path;
-    if (json_path.empty()) return file;
-    return file + ": " + json_path;
+    const std::string f = printable_for_message(file, kMessageFileBytes);
+    std::string p;
+    for (size_t start = 0; start < json_path.size();) {
+      const size_t slash = std::min(json_path.find('/', start + 1), json_path.size());
+      p += printable_for_message(std::string_view(json_path).substr(start, slash - start));
+      start = slash;
+    }
+    if (f.empty()) return p;
+    if (p.empty()) return f;
+    return f + ": " + p;
   }
 };
 
@@ -32,7 +45,18 @@ class InputError : public std::runtime_error {
   SourceLocation where_;
 };
 
+// The machine's fault, not the input's nor ours: an output that cannot be written (read-only
+// folder, permission, disk full, I/O error). Exit code 3; the message names the file.
+class EnvironmentError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 inline constexpr int kExitInputError = 2;
 inline constexpr int kExitInternalError = 1;
+inline constexpr int kExitEnvironmentError = 3;
+// A render stopped by SIGINT or SIGTERM after saving its checkpoint and partial image: 128 + the
+// signal's number, as shells report a process the signal killed.
+inline constexpr int kExitInterruptedBase = 128;
 
 }  // namespace caligo

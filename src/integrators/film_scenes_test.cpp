@@ -4,8 +4,11 @@
 // against the pinhole, and a frame split into sample ranges against one render, bit for bit.
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <memory>
+#include <thread>
 
 #include "integrators/test_scenes.h"
 #include "render/render.h"
@@ -290,6 +293,40 @@ TEST(FilmScenes, CropWindowRendersItsPixelsOnly) {
         }
       }
     }
+}
+
+}  // namespace
+}  // namespace caligo
+
+namespace caligo {
+namespace {
+
+// Progressive passes, and a pass stopped part-way (as a signal stops it) then resumed, end bit
+// for bit where one render of all the samples does: each pixel continues from its own count.
+TEST(FilmScenes, StoppedAndResumedPassesEqualOneRenderBitForBit) {
+  const SceneDesc desc = every_kind_of_light();
+  const auto scene = Scene::build(desc);
+  RenderSettings s = settings_for(desc, 9);
+  Film whole(s.resolution, s.aovs);
+  render_into(whole, *scene, s);
+
+  Film passes(s.resolution, s.aovs);
+  render_up_to(passes, *scene, s, 2);
+  render_up_to(passes, *scene, s, 5);
+  render_up_to(passes, *scene, s, 9);
+  EXPECT_TRUE(passes == whole);
+
+  // Stopped from another thread while the pass runs (at an unknown pixel), then resumed.
+  Film stopped(s.resolution, s.aovs);
+  std::atomic<bool> stop{false};
+  std::thread stopper([&stop] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    stop = true;
+  });
+  render_up_to(stopped, *scene, s, 9, &stop);
+  stopper.join();
+  render_up_to(stopped, *scene, s, 9);
+  EXPECT_TRUE(stopped == whole);
 }
 
 }  // namespace

@@ -17,6 +17,7 @@ std::string_view aov_name(Aov a) {
     case Aov::kSurfaceEmission: return "surface_emission";
     case Aov::kVolumeEmission: return "volume_emission";
     case Aov::kBackground: return "background";
+    case Aov::kVariance: return "variance";
   }
   return "?";
 }
@@ -74,6 +75,8 @@ std::vector<std::string> aov_channels(AovSet set) {
     if (!set.has(a)) continue;
     for (const char* c : {".R", ".G", ".B"}) names.push_back(std::string(aov_name(a)) + c);
   }
+  if (set.has(Aov::kVariance))
+    for (const char* c : {"variance.R", "variance.G", "variance.B"}) names.push_back(c);
   return names;
 }
 

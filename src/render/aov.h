@@ -26,8 +26,11 @@ enum class Aov : uint8_t {
   kSurfaceEmission,
   kVolumeEmission,
   kBackground,
+  // The variance of each pixel's mean, per channel of the beauty: (sum x^2 / n - mean^2) / (n - 1),
+  // for denoisers and for --target-rmse, which estimates the image's error from it.
+  kVariance,
 };
-inline constexpr int kAovCount = 11;
+inline constexpr int kAovCount = 12;
 
 constexpr Aov light_aov(LightKind kind) { return Aov(int(Aov::kSurfaceDirect) + int(kind)); }
 
@@ -54,7 +57,11 @@ class AovSet {
     return s;
   }
   constexpr bool has(Aov a) const { return (bits_ >> unsigned(a)) & 1u; }
-  constexpr bool has_light_layers() const { return (bits_ >> unsigned(Aov::kSurfaceDirect)) != 0; }
+  constexpr bool has_light_layers() const {
+    for (int k = 0; k < kLightKindCount; ++k)
+      if (has(light_aov(LightKind(k)))) return true;
+    return false;
+  }
   constexpr uint32_t bits() const { return bits_; }
   static constexpr AovSet from_bits(uint32_t bits) {
     AovSet s;

@@ -1,6 +1,7 @@
 #include "render/film.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
@@ -20,6 +21,7 @@ Film::Film(Vec2i resolution, AovSet aovs)
   if (aovs.has(Aov::kAlbedo)) albedo_ = std::exchange(channels_, channels_ + 3);
   for (int k = 0; k < kLightKindCount; ++k)
     if (aovs.has(light_aov(LightKind(k)))) light_[size_t(k)] = std::exchange(channels_, channels_ + 3);
+  if (aovs.has(Aov::kVariance)) squares_ = std::exchange(channels_, channels_ + 3);
   const size_t pixels = size_t(resolution.x) * size_t(resolution.y);
   sums_.resize(pixels * size_t(channels_));
   counts_.resize(pixels);
@@ -38,6 +40,7 @@ void Film::add(int x, int y, const PathSample& s, float depth) {
   const RGB beauty = s.beauty();
   if (beauty.is_finite()) {
     add3(0, beauty.r, beauty.g, beauty.b);
+    if (squares_ >= 0) add3(squares_, beauty.r * beauty.r, beauty.g * beauty.g, beauty.b * beauty.b);
     for (int k = 0; k < kLightKindCount; ++k)
       if (light_[size_t(k)] >= 0) add3(light_[size_t(k)], s.light[size_t(k)].r, s.light[size_t(k)].g, s.light[size_t(k)].b);
   }
@@ -60,11 +63,36 @@ Image Film::resolve() const {
       int out = 0;
       for (int c = 0; c < channels_; ++c) {
         if (out == z_channel) image.at(x, y, out++) = depth_[i];
+        if (c >= squares_ && squares_ >= 0) {
+          // The variance of the mean from the two sums (zero below two samples).
+          const double n = double(counts_[i]), mean = sum[c - squares_].value() * inv;
+          const double var = n > 1.0 ? std::max(0.0, sum[c].value() * inv - mean * mean) / (n - 1.0) : 0.0;
+          image.at(x, y, out++) = float(var);
+          continue;
+        }
         image.at(x, y, out++) = float(sum[c].value() * inv);
       }
       if (out == z_channel) image.at(x, y, out++) = depth_[i];
     }
   return image;
+}
+
+std::optional<double> Film::estimated_rmse() const {
+  if (squares_ < 0) return std::nullopt;
+  double total = 0.0;
+  uint64_t pixels = 0;
+  for (size_t i = 0; i < counts_.size(); ++i) {
+    if (counts_[i] < 2) continue;
+    const FixedSum* sum = &sums_[i * size_t(channels_)];
+    const double n = double(counts_[i]);
+    for (int c = 0; c < 3; ++c) {
+      const double mean = sum[c].value() / n;
+      total += std::max(0.0, sum[squares_ + c].value() / n - mean * mean) / (n - 1.0);
+    }
+    ++pixels;
+  }
+  if (pixels == 0) return std::nullopt;
+  return std::sqrt(total / (3.0 * double(pixels)));
 }
 
 void Film::merge(const Film& other) {
@@ -142,6 +170,52 @@ Film Film::load(const std::string& path, uint64_t* key) {
   in.read(reinterpret_cast<char*>(film.depth_.data()), std::streamsize(film.depth_.size() * sizeof(float)));
   in.read(reinterpret_cast<char*>(film.sums_.data()), std::streamsize(film.sums_.size() * sizeof(FixedSum)));
   if (!in) throw InputError(where, "cannot read the film file");
+  if (key) *key = header.key;
+  return film;
+}
+
+std::string Film::to_bytes(uint64_t key) const {
+  FilmHeader header{};
+  std::memcpy(header.magic, kMagic, sizeof kMagic);
+  header.version = kVersion;
+  header.width = uint32_t(resolution_.x);
+  header.height = uint32_t(resolution_.y);
+  header.aov_bits = aovs_.bits();
+  header.key = key;
+  const size_t counts = counts_.size() * sizeof(uint32_t), depths = depth_.size() * sizeof(float),
+               sums = sums_.size() * sizeof(FixedSum);
+  std::string bytes(sizeof header + counts + depths + sums, '\0');
+  char* out = bytes.data();
+  std::memcpy(out, &header, sizeof header);
+  std::memcpy(out += sizeof header, counts_.data(), counts);
+  if (depths > 0) std::memcpy(out + counts, depth_.data(), depths);  // no depth: data() may be null
+  std::memcpy(out + counts + depths, sums_.data(), sums);
+  return bytes;
+}
+
+Film Film::from_bytes(std::string_view bytes, const std::string& source, uint64_t* key) {
+  const SourceLocation where{source, ""};
+  FilmHeader header{};
+  if (bytes.size() < sizeof header) throw InputError(where, "not a Caligo film (too short)");
+  std::memcpy(&header, bytes.data(), sizeof header);
+  if (std::memcmp(header.magic, kMagic, sizeof kMagic) != 0) throw InputError(where, "not a Caligo film");
+  if (header.version != kVersion)
+    throw InputError(where, "film version " + std::to_string(header.version) + ", expected " +
+                                std::to_string(kVersion));
+  if (header.width == 0 || header.height == 0 || header.width > kMaxSide || header.height > kMaxSide)
+    throw InputError(where, "film resolution " + std::to_string(header.width) + "x" + std::to_string(header.height) +
+                                " is out of range");
+  if (header.aov_bits >> kAovCount) throw InputError(where, "film names unknown outputs");
+  Film film({int(header.width), int(header.height)}, AovSet::from_bits(header.aov_bits));
+  const size_t counts = film.counts_.size() * sizeof(uint32_t), depths = film.depth_.size() * sizeof(float),
+               sums = film.sums_.size() * sizeof(FixedSum);
+  if (bytes.size() != sizeof header + counts + depths + sums)
+    throw InputError(where, "film is " + std::to_string(bytes.size()) + " bytes, its header needs " +
+                                std::to_string(sizeof header + counts + depths + sums) + " (truncated or corrupt)");
+  const char* in = bytes.data() + sizeof header;
+  std::memcpy(film.counts_.data(), in, counts);
+  if (depths > 0) std::memcpy(film.depth_.data(), in + counts, depths);
+  std::memcpy(film.sums_.data(), in + counts + depths, sums);
   if (key) *key = header.key;
   return film;
 }

@@ -7,7 +7,9 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "image/image.h"
@@ -31,6 +33,11 @@ class Film {
 
   uint32_t sample_count(int x, int y) const { return counts_[index(x, y)]; }
 
+  // The estimated RMSE of the resolved beauty against its converged value: the square root of
+  // the mean, over pixels with two samples or more and over R, G, B, of the variance of each
+  // pixel's mean. nullopt without Aov::kVariance or without such a pixel.
+  std::optional<double> estimated_rmse() const;
+
   // Averages over each pixel's own samples (a pixel with none is zero, alpha 0): the beauty as
   // R G B, then A, Z, N.X/Y/Z, albedo.R/G/B and the light layers "surface_direct.R", ... as
   // selected (aov_channels). Z is the nearest depth any sample of the pixel saw.
@@ -49,6 +56,12 @@ class Film {
   // InputError naming it. `key`, when given, receives the saved key.
   static Film load(const std::string& path, uint64_t* key = nullptr);
 
+  // The same raw sums and counts in memory, byte for byte what save() writes: for sending a film
+  // between processes (src/distributed/ over MPI). from_bytes checks what load() checks and
+  // throws InputError naming `source` (e.g. "film from rank 3").
+  std::string to_bytes(uint64_t key = 0) const;
+  static Film from_bytes(std::string_view bytes, const std::string& source, uint64_t* key = nullptr);
+
   friend bool operator==(const Film&, const Film&) = default;
 
  private:
@@ -59,7 +72,7 @@ class Film {
   // Summed channels per pixel: beauty RGB, then alpha, normal XYZ, albedo RGB and each light
   // layer's RGB when selected; the offsets of each (-1: not held).
   int channels_ = 3;
-  int alpha_ = -1, normal_ = -1, albedo_ = -1;
+  int alpha_ = -1, normal_ = -1, albedo_ = -1, squares_ = -1;  // squares_: sum of beauty^2
   std::array<int, kLightKindCount> light_{};
   std::vector<FixedSum> sums_;  // pixel-major, channels_ per pixel
   std::vector<uint32_t> counts_;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include <unistd.h>
 
@@ -158,6 +159,30 @@ TEST(Film, BadFilmFilesAreLocatedErrors) {
   expect_error("a missing file");
 }
 
+// The in-memory bytes (sent between MPI ranks) are the saved file's bytes; both round-trip exactly.
+TEST(Film, BytesAreTheSavedFileAndRoundTrip) {
+  for (const AovSet aovs : {AovSet{}, AovSet::defaults(), AovSet::all()}) {
+    Film film(kSize, aovs);
+    add_range(film, 0, 5);
+    const std::string bytes = film.to_bytes(42);
+    const auto path = temp_file("_bytes.film");
+    film.save(path.string(), 42);
+    std::ifstream in(path, std::ios::binary);
+    const std::string saved((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::filesystem::remove(path);
+    EXPECT_EQ(bytes, saved);
+    uint64_t key = 0;
+    EXPECT_TRUE(Film::from_bytes(bytes, "film from rank 1", &key) == film);
+    EXPECT_EQ(key, 42u);
+    try {
+      Film::from_bytes(std::string_view(bytes).substr(0, bytes.size() - 1), "film from rank 1");
+      ADD_FAILURE() << "no error for truncated bytes";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("film from rank 1"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(Film, MergeRefusesAnotherShape) {
   Film a(kSize, AovSet::defaults()), b({3, 3}, AovSet::defaults()), c(kSize, AovSet::all());
   EXPECT_THROW(a.merge(b), std::invalid_argument);
@@ -175,6 +200,41 @@ TEST(AovSet, ParsesNamesAndRejectsUnknownOnes) {
   EXPECT_THROW(AovSet::parse(""), InputError);
   EXPECT_EQ(aov_channels(AovSet{}.with(Aov::kDepth).with(Aov::kSurfaceDirect)),
             (std::vector<std::string>{"R", "G", "B", "Z", "surface_direct.R", "surface_direct.G", "surface_direct.B"}));
+}
+
+}  // namespace
+}  // namespace caligo
+
+namespace caligo {
+namespace {
+
+// The variance layer is the variance of each pixel's mean, and estimated_rmse its root mean:
+// checked against the same statistics computed directly from the samples.
+TEST(Film, VarianceLayerIsTheVarianceOfThePixelMean) {
+  Film film({2, 1}, AovSet{}.with(Aov::kVariance));
+  Pcg32 rng(9, 1);
+  double sum[2] = {0, 0}, sum2[2] = {0, 0};
+  const int n[2] = {50, 7};
+  for (int x = 0; x < 2; ++x)
+    for (int i = 0; i < n[x]; ++i) {
+      const float v = rng.next_float() * 4.0f;
+      PathSample s;
+      s.add(LightKind::kBackground, RGB(v, v, v));
+      film.add(x, 0, s, kInfinity);
+      sum[x] += v;
+      sum2[x] += double(v) * v;
+    }
+  const Image image = film.resolve();
+  double mean_var = 0.0;
+  for (int x = 0; x < 2; ++x) {
+    const double mean = sum[x] / n[x];
+    const double var_of_mean = (sum2[x] / n[x] - mean * mean) / (n[x] - 1);
+    EXPECT_NEAR(image.at(x, 0, image.channel_index("variance.G")), var_of_mean, 1e-6 * (1.0 + var_of_mean));
+    mean_var += var_of_mean / 2.0;
+  }
+  ASSERT_TRUE(film.estimated_rmse());
+  EXPECT_NEAR(*film.estimated_rmse(), std::sqrt(mean_var), 1e-6);
+  EXPECT_FALSE(Film({1, 1}, AovSet::defaults()).estimated_rmse());
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "render/render.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <memory>
@@ -22,6 +23,7 @@ RenderSettings default_settings(const SceneDesc& desc) {
   s.seed = desc.render.seed;
   s.filter = PixelFilter(desc.render.filter);
   s.crop = desc.render.crop;
+  s.aovs = desc.render.aovs ? AovSet::from_bits(*desc.render.aovs) : AovSet::defaults();
   return s;
 }
 
@@ -39,15 +41,25 @@ std::vector<Tile> crop_tiles(const PixelBounds& bounds, int tile_size) {
   return tiles;
 }
 
-// One tile: every pixel, its samples of the range in index order.
+// The samples a pass adds to one pixel: [first, last).
+struct SampleSpan {
+  int first, last;
+};
+
+// One tile: every pixel, its span's samples in index order. Stops between pixels once `stop`
+// is set, so every pixel holds a prefix of its samples; returns the paths traced.
+template <typename SpanOf>
 PathCounters render_tile(const Scene& scene, const Camera& camera, const RenderSettings& settings,
-                         const Tile& tile, Film& film, PathScratch& scratch) {
+                         const Tile& tile, Film& film, PathScratch& scratch, const SpanOf& span_of,
+                         const std::atomic<bool>* stop, uint64_t& paths) {
   scratch.march_settings = settings.march;
   PathCounters counters;
   const bool lens = camera.has_aperture();
   for (int y = tile.y0; y < tile.y1; ++y)
-    for (int x = tile.x0; x < tile.x1; ++x)
-      for (int s = settings.first_sample; s < settings.first_sample + settings.spp; ++s) {
+    for (int x = tile.x0; x < tile.x1; ++x) {
+      if (stop && stop->load(std::memory_order_relaxed)) return counters;
+      const SampleSpan span = span_of(x, y);
+      for (int s = span.first; s < span.last; ++s) {
         const Sampler sampler(settings.seed, {x, y}, uint32_t(s));
         // Filter importance sampling: the sample lands where the pixel's filter puts it and
         // counts with weight 1 for this pixel only (render/pixel_filter.h).
@@ -57,16 +69,17 @@ PathCounters render_tile(const Scene& scene, const Camera& camera, const RenderS
         const PathSample sample = trace_path(scene, ray, sampler, settings.path, counters, scratch);
         film.add(x, y, sample, sample.hit_t < kInfinity ? camera.depth(ray, sample.hit_t) : kInfinity);
       }
+      paths += uint64_t(std::max(0, span.last - span.first));
+    }
   return counters;
 }
 
-}  // namespace
-
-RenderStats render_into(Film& film, const Scene& scene, const RenderSettings& settings,
-                        Progress::Style progress_style) {
+// The tile loop over the crop window shared by render_into and render_up_to.
+template <typename SpanOf>
+RenderStats run_pass(Film& film, const Scene& scene, const RenderSettings& settings, uint64_t total_paths,
+                     const SpanOf& span_of, const std::atomic<bool>* stop, Progress::Style progress_style) {
   if (film.resolution() != settings.resolution || film.aovs() != settings.aovs)
-    throw std::invalid_argument("render_into: the film does not match the settings' resolution and outputs");
-  if (settings.spp < 0 || settings.first_sample < 0) throw std::invalid_argument("render_into: negative sample range");
+    throw std::invalid_argument("render: the film does not match the settings' resolution and outputs");
   std::unique_ptr<tbb::global_control> thread_limit;
   if (settings.threads > 0)
     thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
@@ -74,29 +87,57 @@ RenderStats render_into(Film& film, const Scene& scene, const RenderSettings& se
   const Camera camera = scene.camera(settings.resolution);
   const PixelBounds bounds = settings.crop.pixels(settings.resolution);
   const auto tiles = bounds.empty() ? std::vector<Tile>{} : crop_tiles(bounds, settings.tile_size);
-  const uint64_t paths = bounds.empty() ? 0
-                                        : uint64_t(bounds.width()) * uint64_t(bounds.height()) *
-                                              uint64_t(settings.spp);
-  std::atomic<uint64_t> rays{0}, march_steps{0};
+  std::atomic<uint64_t> rays{0}, march_steps{0}, paths{0};
   tbb::enumerable_thread_specific<PathScratch> scratch;  // per-thread march buffers and record
 
   const auto start = std::chrono::steady_clock::now();
   {
-    Progress progress("render", paths, progress_style);
+    Progress progress("render", total_paths, progress_style);
     parallel_for_tiles(tiles, [&](const Tile& tile) {
-      const PathCounters c = render_tile(scene, camera, settings, tile, film, scratch.local());
+      uint64_t tile_paths = 0;
+      const PathCounters c =
+          render_tile(scene, camera, settings, tile, film, scratch.local(), span_of, stop, tile_paths);
       rays.fetch_add(c.rays, std::memory_order_relaxed);
       march_steps.fetch_add(c.camera_march_steps, std::memory_order_relaxed);
-      progress.advance(uint64_t(tile.x1 - tile.x0) * uint64_t(tile.y1 - tile.y0) * uint64_t(settings.spp));
+      paths.fetch_add(tile_paths, std::memory_order_relaxed);
+      progress.advance(tile_paths);
     });
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  RenderStats stats{seconds, paths, rays.load(), march_steps.load()};
+  RenderStats stats{seconds, paths.load(), rays.load(), march_steps.load()};
   for (const PathScratch& s : scratch) {
     stats.march_steps += s.march.steps;
     stats.shader_evaluations += s.march.shader_evaluations;
   }
   return stats;
+}
+
+uint64_t crop_pixels(const RenderSettings& settings) {
+  const PixelBounds b = settings.crop.pixels(settings.resolution);
+  return b.empty() ? 0 : uint64_t(b.width()) * uint64_t(b.height());
+}
+
+}  // namespace
+
+RenderStats render_into(Film& film, const Scene& scene, const RenderSettings& settings,
+                        Progress::Style progress_style) {
+  if (settings.spp < 0 || settings.first_sample < 0) throw std::invalid_argument("render_into: negative sample range");
+  const SampleSpan span{settings.first_sample, settings.first_sample + settings.spp};
+  return run_pass(film, scene, settings, crop_pixels(settings) * uint64_t(settings.spp),
+                  [span](int, int) { return span; }, nullptr, progress_style);
+}
+
+RenderStats render_up_to(Film& film, const Scene& scene, const RenderSettings& settings, int target,
+                         const std::atomic<bool>* stop, Progress::Style progress_style) {
+  if (target < 0) throw std::invalid_argument("render_up_to: negative sample count");
+  uint64_t remaining = 0;
+  const PixelBounds b = settings.crop.pixels(settings.resolution);
+  for (int y = b.min.y; y < b.max.y; ++y)
+    for (int x = b.min.x; x < b.max.x; ++x) remaining += uint64_t(std::max(0, target - int(film.sample_count(x, y))));
+  return run_pass(
+      film, scene, settings, remaining,
+      [&film, target](int x, int y) { return SampleSpan{int(film.sample_count(x, y)), target}; }, stop,
+      progress_style);
 }
 
 RenderResult render(const Scene& scene, const RenderSettings& settings, Progress::Style progress_style) {

@@ -2,6 +2,8 @@
 // sample generation and the statistics of the summary line.
 #pragma once
 
+#include <atomic>
+
 #include "image/image.h"
 #include "render/film.h"
 #include "render/progress.h"
@@ -33,6 +35,15 @@ RenderResult render(const Scene& scene, const RenderSettings& settings,
 // for bit for any thread count, tile order or split of the sample range.
 RenderStats render_into(Film& film, const Scene& scene, const RenderSettings& settings,
                         Progress::Style progress = Progress::Style::kQuiet);
+
+// Progressive and resumed rendering: brings every pixel of the crop window from its own sample
+// count in `film` up to `target` samples (settings.spp and first_sample are not used). When
+// `stop` becomes true (a signal), the pass ends between pixels: every pixel then holds a prefix
+// of its samples, so a later call continues it and ends bit for bit where one uninterrupted
+// call would have.
+RenderStats render_up_to(Film& film, const Scene& scene, const RenderSettings& settings, int target,
+                         const std::atomic<bool>* stop = nullptr,
+                         Progress::Style progress = Progress::Style::kQuiet);
 
 // Settings from the scene's render defaults and camera resolution.
 RenderSettings default_settings(const SceneDesc& desc);
