@@ -26,6 +26,10 @@ find_package(assimp CONFIG REQUIRED)
 # `xtl` library that Debian's package does not need or ship: drop the link.
 find_package(xsimd CONFIG REQUIRED)
 set_target_properties(xsimd PROPERTIES INTERFACE_LINK_LIBRARIES "")
+# Open MPI (optional): `mpirun caligo render` splits a frame over processes (src/distributed/).
+# The C API only (no deprecated C++ bindings). Without it the project builds single-process.
+set(MPI_CXX_SKIP_MPICXX ON)
+find_package(MPI COMPONENTS CXX)
 if(CALIGO_BUILD_TESTS)
   find_package(GTest CONFIG REQUIRED)
 endif()

@@ -4,11 +4,14 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+
+#include "image/exr_io.h"
 
 namespace {
 
@@ -269,6 +272,56 @@ TEST_F(Cli, BadCommandLinesExitWithTwo) {
     EXPECT_EQ(r.err.rfind("caligo: error: ", 0), 0u) << args << ": " << r.err;
     EXPECT_NE(r.err.find(expected), std::string::npos) << args << ": " << r.err;
     EXPECT_TRUE(outputs().empty()) << args;
+  }
+}
+
+// --aov all writes every output as EXR channels; the light layers add up to the beauty in each
+// pixel (up to float rounding of the resolve), and alpha is a coverage in [0, 1].
+TEST_F(Cli, AovAllWritesEveryLayer) {
+  const fs::path exr = dir_ / "aovs.exr";
+  const RunResult r = run("render default --res 12x8 --spp 2 --aov all -q -o " + exr.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_TRUE(fs::exists(dir_ / "aovs.png"));
+  const caligo::Image image = caligo::read_exr(exr.string());
+  std::vector<std::string> expected = {"R", "G", "B", "A", "Z", "N.X", "N.Y", "N.Z", "albedo.R", "albedo.G",
+                                       "albedo.B"};
+  const std::vector<std::string> layers = {"surface_direct",   "surface_indirect", "volume_direct",
+                                           "volume_indirect",  "surface_emission", "volume_emission",
+                                           "background"};
+  for (const std::string& l : layers)
+    for (const char* c : {".R", ".G", ".B"}) expected.push_back(l + c);
+  for (const std::string& name : expected) EXPECT_TRUE(image.has_channel(name)) << name;
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x) {
+      const float a = image.at(x, y, image.channel_index("A"));
+      EXPECT_TRUE(a >= 0.0f && a <= 1.0f) << x << "," << y << ": " << a;
+      for (const char* c : {"R", "G", "B"}) {
+        double sum = 0.0;
+        for (const std::string& l : layers) sum += image.at(x, y, image.channel_index(l + "." + c));
+        const float beauty = image.at(x, y, image.channel_index(c));
+        EXPECT_NEAR(sum, beauty, 1e-5 * (1.0 + std::abs(beauty))) << x << "," << y << " " << c;
+      }
+    }
+  // The default is the beauty with alpha, depth, normal and albedo; "volume.direct" is the dotted
+  // spelling of volume_direct.
+  const fs::path small = dir_ / "small.exr";
+  ASSERT_EQ(run("render lamp-in-fog --res 4x4 --spp 1 --aov alpha,volume.direct -q -o " + small.string()).exit_code, 0);
+  EXPECT_EQ(caligo::read_exr(small.string()).channels(),
+            (std::vector<std::string>{"R", "G", "B", "A", "volume_direct.R", "volume_direct.G", "volume_direct.B"}));
+}
+
+// A bad --aov entry is a command-line error that names it, before anything is rendered.
+TEST_F(Cli, BadAovIsAnInputError) {
+  const fs::path exr = dir_ / "x.exr";
+  for (const std::string& list : std::vector<std::string>{"bogus", "alpha,bogus", "alpha,,depth"}) {
+    const RunResult r = run("render default --res 8x8 --spp 1 --aov " + list + " -o " + exr.string());
+    EXPECT_EQ(r.exit_code, 2) << list << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("caligo: error: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find("--aov"), std::string::npos) << r.err;
+    if (list != "alpha,,depth") {
+      EXPECT_NE(r.err.find("'bogus'"), std::string::npos) << r.err;
+    }
+    EXPECT_TRUE(outputs().empty()) << list;
   }
 }
 
@@ -664,4 +717,56 @@ TEST_F(Cli, HeavyLibrariesAreLoadedOnlyByRunsThatUseThem) {
   EXPECT_TRUE(any_named(with_vdb, "caligo_vdb.so"));
   EXPECT_TRUE(any_named(with_vdb, "libopenvdb"));
   EXPECT_FALSE(any_named(with_vdb, "libOpenImageIO"));
+}
+
+// --- Hostile input (issue 12): limits, and errors that stay one short line, escaped. ---
+
+TEST_F(Cli, HostileScenesGiveShortLocatedErrorsNotCrashes) {
+  std::string deep_pointer = "/camera";
+  for (int i = 0; i < 63; ++i) deep_pointer += "/0";  // level 65 opens here
+  const std::string mesh = R"({"type": "mesh", "file": "FILE", "material": "white"})";
+  const auto mesh_scene = [&](const std::string& file) {
+    return scene_with("", "", std::string(mesh).replace(mesh.find("FILE"), 4, file));
+  };
+  const std::vector<BadCase> cases = {
+      // Used to recurse 100,000 deep describing the value (SIGSEGV, exit 139).
+      {"deep", R"({"camera": )" + std::string(100000, '[') + std::string(100000, ']') + "}",
+       deep_pointer + ": JSON nested more than 64 levels deep"},
+      // Used to print the key twice in full: a 2 MB line.
+      {"megabyte_key", scene_with("\"fov\"", "\"" + std::string(1 << 20, 'k') + "\": 1, \"fov\""),
+       "... (1048576 bytes)\" in the camera"},
+      {"huge_index", mesh_scene("huge_index.obj"),
+       "huge_index.obj: line 4: a face refers to vertex 100000000000000000000, but the file has 3 vertices"},
+      {"short_face", mesh_scene("short_face.obj"), "short_face.obj: line 5: a face has 2 vertices"},
+      {"zero_normal", mesh_scene("zero_normal.obj"),
+       "zero_normal.obj: line 5: a face uses normal 1, which has zero"},
+  };
+  write("huge_index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 100000000000000000000\n");
+  write("short_face.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2\n");
+  write("zero_normal.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 0\nf 1//1 2//1 3//1\n");
+  for (const BadCase& c : cases) {
+    const fs::path scene = write(std::string(c.name) + ".json", c.scene);
+    const RunResult r = run("render " + scene.string() + " -q -o " + (dir_ / "out.exr").string());
+    EXPECT_EQ(r.exit_code, 2) << c.name << ": " << r.err.substr(0, 500);
+    EXPECT_EQ(r.err.rfind("caligo: error: " + scene.string(), 0), 0u)
+        << c.name << ": " << r.err.substr(0, 500);
+    EXPECT_NE(r.err.find(c.expected), std::string::npos) << c.name << ": " << r.err.substr(0, 500);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.name;
+    EXPECT_LT(r.err.size(), 400u) << c.name << ": " << r.err.substr(0, 500);
+    EXPECT_TRUE(outputs().empty()) << c.name;
+  }
+}
+
+TEST_F(Cli, ControlCharactersInFileNamesAndArgumentsAreEscaped) {
+  // Single quotes carry the newline and the escape sequence through the shell.
+  const fs::path scene = write("bad\nname\x1b[1m.json", scene_with("\"spp\": 1", "\"spp\": 0"));
+  const RunResult r = run("render '" + scene.string() + "' -q -o " + (dir_ / "out.exr").string());
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(r.err.rfind("caligo: error: " + dir_.string() + "/bad\\nname\\x1b[1m.json: /render/spp", 0), 0u)
+      << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_EQ(r.err.find('\x1b'), std::string::npos) << r.err;
+  const RunResult command = run("'ren\nder'");
+  EXPECT_EQ(command.exit_code, 2);
+  EXPECT_EQ(command.err.rfind("caligo: error: unknown command \"ren\\nder\"", 0), 0u) << command.err;
 }

@@ -29,11 +29,19 @@ struct RenderOptions {
   std::optional<std::string> light_sampler;
   std::optional<std::string> filter;  // --filter box|gaussian|blackman_harris (its default radius)
   std::optional<std::string> crop;    // --crop x0,x1,y0,y1: fractions of the image
+  std::optional<std::string> aovs;    // --aov LIST: the outputs besides the beauty (render/aov.h)
   float time = 0.0f;  // seconds: the camera on its path and the lights on their keys at this time
   float exposure = 0.0f;
   std::vector<std::string> priorities;  // --priority MATERIAL=LEVEL, applied in order
   bool list_builtins = false;
   bool quiet = false;
+  std::string mpi_split = "samples";  // --mpi-split samples|rows: under mpirun (distributed/share.h)
+  // Checkpoints and progressive rendering (render_command.cpp).
+  std::optional<std::string> checkpoint;        // --checkpoint FILE
+  std::optional<std::string> checkpoint_every;  // --checkpoint-every 60s
+  std::optional<std::string> resume;            // --resume FILE
+  std::optional<std::string> time_limit;        // --time-limit 90s
+  std::optional<double> target_rmse;            // --target-rmse X
 };
 
 struct CompareOptions {

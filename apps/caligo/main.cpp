@@ -7,11 +7,15 @@
 
 #include "commands.h"
 #include "core/error.h"
+#include "distributed/rank_failure.h"
 
 namespace {
 
+// A safety net under the messages' own quoting (core/message_text.h): whatever a message
+// holds, it is printed as one line of bounded length with control characters escaped.
 int print_error(const char* what, int code) {
-  std::fprintf(stderr, "caligo: error: %s\n", what);
+  const std::string line = caligo::printable_for_message(what, caligo::kMessageLineBytes);
+  std::fprintf(stderr, "caligo: error: %s\n", line.c_str());
   return code;
 }
 
@@ -42,9 +46,9 @@ int main(int argc, char** argv) {
   if (argc > 1 && argv[1][0] != '-' && !is_command(argv[1])) {
     std::fprintf(
         stderr,
-        "caligo: error: unknown command \"%s\" (commands: render, realtime, compare, generate, info, "
+        "caligo: error: unknown command %s (commands: render, realtime, compare, generate, info, "
         "bench-table)\n",
-        argv[1]);
+        caligo::quote_for_message(argv[1]).c_str());
     return caligo::kExitInputError;
   }
   try {
@@ -67,8 +71,12 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("generate")) return caligo::run_generate(generate);
     if (app.got_subcommand("info")) return caligo::run_info(info);
     if (app.got_subcommand("bench-table")) return caligo::run_bench_table(bench_table);
+  } catch (const caligo::distributed::RankFailure& e) {
+    return e.exit_code();  // an MPI job failed: rank 0 printed why
   } catch (const caligo::InputError& e) {
     return print_error(e.what(), caligo::kExitInputError);
+  } catch (const caligo::EnvironmentError& e) {
+    return print_error(e.what(), caligo::kExitEnvironmentError);
   } catch (const std::exception& e) {
     return print_error((std::string("internal: ") + e.what()).c_str(), caligo::kExitInternalError);
   }

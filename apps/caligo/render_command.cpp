@@ -1,7 +1,10 @@
 // caligo render [SCENE.json | BUILTIN] [-o out.exr] [--spp N] [--res WxH] [--threads N] [--seed S]
-//               [--priority MATERIAL=LEVEL ...] [--light-sampler tree|power|uniform]
+//               [--priority MATERIAL=LEVEL ...] [--light-sampler tree|power|uniform] [--aov LIST]
 #include <CLI/CLI.hpp>
 
+#include <chrono>
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <optional>
@@ -13,6 +16,10 @@
 #include "image/exr_io.h"
 #include "image/png_io.h"
 #include "image/tonemap.h"
+#include "checkpoint.h"
+#include "core/output_transaction.h"
+#include "distributed/frame.h"
+#include "interrupt.h"
 #include "render/render.h"
 #include "scene/builtins.h"
 #include "scene/material_priority.h"
@@ -48,6 +55,12 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--crop", o.crop,
                   "x0,x1,y0,y1: render only this part of the image, as fractions of its width and height from "
                   "the top-left corner, e.g. 0.25,0.75,0,0.5 (overrides the scene's render.crop)");
+  cmd->add_option("--aov", o.aovs,
+                  "Outputs written besides the beauty (R, G, B), comma-separated: alpha, depth, normal, albedo, "
+                  "surface_direct, surface_indirect, volume_direct, volume_indirect, surface_emission, "
+                  "volume_emission, background, or lights (the seven light layers, which add up to the "
+                  "beauty), default (alpha, depth, normal, albedo) or all (overrides the scene's render.aovs)")
+      ->default_str("default");
   cmd->add_option("--time", o.time, "Render the scene at this time in seconds (camera path, light keys)");
   cmd->add_option("--exposure", o.exposure, "Exposure of the PNG preview, in stops");
   cmd->add_option("--priority", o.priorities,
@@ -57,6 +70,25 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   cmd->add_flag("--list-builtins", o.list_builtins, "List the built-in scenes and exit");
   cmd->add_flag("-q,--quiet", o.quiet, "No progress output");
+  cmd->add_option("--checkpoint", o.checkpoint,
+                  "Save the film's raw sums to FILE as the render goes (every --checkpoint-every) and at the end, "
+                  "so --resume can continue it; an interrupt (Ctrl-C, SIGTERM) saves one too");
+  cmd->add_option("--checkpoint-every", o.checkpoint_every,
+                  "How often to save the checkpoint: seconds, or 90s, 5m, 2h (default 60s)");
+  cmd->add_option("--resume", o.resume,
+                  "Continue the render saved in this checkpoint (same scene and settings; --spp may be raised); "
+                  "the result equals an uninterrupted render bit for bit");
+  cmd->add_option("--time-limit", o.time_limit,
+                  "Progressive: stop when the next pass would not fit in this time (90, 90s, 5m), every pixel at "
+                  "the same sample count (at most --spp)");
+  cmd->add_option("--target-rmse", o.target_rmse,
+                  "Progressive: stop once the image's estimated RMSE (from each pixel's sample variance; adds the "
+                  "variance layer) is at most this, in linear radiance (at most --spp samples)");
+  cmd->add_option("--mpi-split", o.mpi_split,
+                  "Under mpirun or srun, how the ranks split the frame: samples (each rank a range of every "
+                  "pixel's samples) or rows (each rank a band of rows, all samples); rank 0 merges and writes")
+      ->check(CLI::IsMember({"samples", "rows"}))
+      ->capture_default_str();
 }
 
 namespace {
@@ -129,6 +161,13 @@ void apply_image_options(const RenderOptions& o, const SceneDesc& desc, RenderSe
     s.filter = PixelFilter({*type, PixelFilterDesc::default_radius(*type), PixelFilterDesc{}.sigma});
   }
   if (o.crop) s.crop = parse_crop(*o.crop);
+  if (o.aovs) {
+    try {
+      s.aovs = AovSet::parse(*o.aovs);
+    } catch (const InputError& e) {
+      throw InputError(kCommandLine, e.what());
+    }
+  }
   if (s.crop.pixels(s.resolution).empty()) {
     const SourceLocation where = o.crop ? kCommandLine : SourceLocation{desc.file, "/render/crop"};
     throw InputError(where, "the crop window holds no pixel at " + std::to_string(s.resolution.x) + "x" +
@@ -167,16 +206,6 @@ RenderSettings settings_from(const RenderOptions& o, const SceneDesc& desc) {
 
 std::string default_output(const std::string& scene) {
   return std::filesystem::path(scene).stem().string() + ".exr";
-}
-
-// Checks the output location before rendering, so a long render never ends in a failed write.
-void check_output(const std::filesystem::path& exr) {
-  if (exr.extension() != ".exr")
-    throw InputError(SourceLocation{exr.string(), ""}, "output must be an .exr file");
-  const std::filesystem::path dir = exr.parent_path().empty() ? "." : exr.parent_path();
-  if (!std::filesystem::is_directory(dir))
-    throw InputError(SourceLocation{exr.string(), ""},
-                     "output directory \"" + dir.string() + "\" does not exist");
 }
 
 void print_summary(const std::string& scene, const RenderSettings& s, const RenderStats& stats,
@@ -226,24 +255,193 @@ int list_builtins() {
 
 }  // namespace
 
+namespace {
+
+// How a single-process render goes: passes up to a sample count, saving checkpoints between
+// them, until the target, the time limit, the error target or an interrupt.
+struct Progressive {
+  std::optional<double> checkpoint_every;  // seconds (with --checkpoint)
+  std::optional<double> time_limit;        // seconds
+  std::optional<double> target_rmse;
+  bool passes() const { return checkpoint_every || time_limit || target_rmse; }
+};
+
+Progressive progressive_from(const RenderOptions& o) {
+  Progressive p;
+  const auto duration = [](const std::optional<std::string>& text, const char* flag) -> std::optional<double> {
+    if (!text) return std::nullopt;
+    const auto seconds = parse_duration(*text);
+    if (!seconds)
+      throw InputError(kCommandLine, std::string(flag) + ": expected a positive duration such as 90, 90s, 5m or 2h, got " +
+                                         quote_for_message(*text));
+    return seconds;
+  };
+  p.time_limit = duration(o.time_limit, "--time-limit");
+  if (o.checkpoint_every && !o.checkpoint) throw InputError(kCommandLine, "--checkpoint-every needs --checkpoint FILE");
+  if (o.checkpoint) p.checkpoint_every = o.checkpoint_every ? duration(o.checkpoint_every, "--checkpoint-every") : 60.0;
+  if (o.target_rmse) {
+    if (!std::isfinite(*o.target_rmse) || !(*o.target_rmse > 0.0))
+      throw InputError(kCommandLine, "--target-rmse: expected a positive finite number");
+    p.target_rmse = *o.target_rmse;
+  }
+  return p;
+}
+
+// The fewest and the most samples any pixel of the crop window has.
+std::pair<int, int> sample_range(const Film& film, const RenderSettings& s) {
+  const PixelBounds b = s.crop.pixels(s.resolution);
+  uint32_t fewest = UINT32_MAX, most = 0;
+  for (int y = b.min.y; y < b.max.y; ++y)
+    for (int x = b.min.x; x < b.max.x; ++x) {
+      fewest = std::min(fewest, film.sample_count(x, y));
+      most = std::max(most, film.sample_count(x, y));
+    }
+  return b.empty() ? std::pair{0, 0} : std::pair{int(fewest), int(most)};
+}
+
+int samples_done(const Film& film, const RenderSettings& s) { return sample_range(film, s).first; }
+
+// A checkpoint to resume: its film must be this render's (key, resolution, outputs).
+Film load_checkpoint(const std::string& path, uint64_t key, const RenderSettings& s) {
+  uint64_t saved_key = 0;
+  Film film = Film::load(path, &saved_key);
+  const SourceLocation where{path, ""};
+  if (saved_key != key)
+    throw InputError(where, "this checkpoint is of another scene or other settings (scene text, resolution, "
+                            "seed, path, filter, crop, outputs, time or priorities differ); it cannot be resumed here");
+  if (film.resolution() != s.resolution || film.aovs() != s.aovs)
+    throw InputError(where, "this checkpoint's resolution or outputs differ from the render's");
+  return film;
+}
+
+}  // namespace
+
 int run_render(const RenderOptions& o) {
   if (o.list_builtins) return list_builtins();
   if (!(o.time >= 0.0f && o.time <= 1e6f)) throw InputError(kCommandLine, "--time: expected seconds in [0, 1e6]");
   SceneDesc desc = load_scene(o.scene).at_time(o.time);
   for (const std::string& p : o.priorities) apply_priority(p, desc);
-  const RenderSettings settings = settings_from(o, desc);
-  const std::filesystem::path exr = o.output.empty() ? default_output(o.scene) : o.output;
-  check_output(exr);
+  RenderSettings settings = settings_from(o, desc);
+  const Progressive progressive = progressive_from(o);
+  if (progressive.target_rmse) settings.aovs = settings.aovs.with(Aov::kVariance);
+  const std::string exr = o.output.empty() ? default_output(o.scene) : o.output;
+  std::filesystem::path png_path = exr;
+  png_path.replace_extension(".png");
+  const std::string png = png_path.string();
+  // Every output is checked before any work: a bad -o fails now, not after the render.
+  if (std::filesystem::path(exr).extension() != ".exr")
+    throw InputError(SourceLocation{exr, ""}, "output must be an .exr file");
+  OutputTransaction outputs;
+  outputs.add(exr, "image");
+  outputs.add(png, "preview");
+  const std::string checkpoint = o.checkpoint ? *o.checkpoint : exr.substr(0, exr.size() - 4) + ".ckpt";
+  if (o.checkpoint) outputs.add(checkpoint, "checkpoint");
+  const uint64_t key = checkpoint_key(scene_source(o.scene), settings, o.time, o.priorities);
   const auto scene = Scene::build(desc);
+  const Progress::Style style = o.quiet ? Progress::Style::kQuiet : Progress::Style::kAuto;
 
-  const RenderResult result =
-      render(*scene, settings, o.quiet ? Progress::Style::kQuiet : Progress::Style::kAuto);
-  std::filesystem::path png = exr;
-  png.replace_extension(".png");
-  write_exr(exr.string(), result.image);
-  write_png(png.string(), result.image.width(), result.image.height(),
-            to_srgb8_preview(result.image, PreviewSettings{o.exposure, true}));
-  if (!o.quiet) print_summary(o.scene, settings, result.stats, exr.string());
+  const auto write_outputs = [&](const Image& image, const Film* film, bool with_checkpoint) {
+    std::vector<OutputTransaction::Writer> writers = {
+        [&](const std::string& temp) { write_exr(temp, image); },
+        [&](const std::string& temp) {
+          write_png(temp, image.width(), image.height(), to_srgb8_preview(image, PreviewSettings{o.exposure, true}));
+        }};
+    OutputTransaction tx = outputs;
+    if (with_checkpoint) {
+      if (!o.checkpoint) tx.add(checkpoint, "checkpoint");
+      writers.push_back([&](const std::string& temp) { film->save(temp, key); });
+    } else if (o.checkpoint) {
+      writers.push_back([&](const std::string& temp) { film->save(temp, key); });
+    }
+    tx.commit(writers);
+  };
+
+  // Under mpirun/srun each rank renders its share and rank 0 alone gets the frame (src/distributed/).
+  if (distributed::launcher_world_size()) {
+    if (o.checkpoint || o.resume || progressive.passes())
+      throw InputError(kCommandLine, "--checkpoint, --resume, --time-limit and --target-rmse are for single-process "
+                                     "renders, not under mpirun");
+    const std::optional<RenderResult> frame =
+        distributed::render_frame(*scene, settings, *distributed::split_from_name(o.mpi_split), style);
+    if (!frame) return 0;  // an MPI rank other than 0: rank 0 writes the outputs
+    write_outputs(frame->image, nullptr, false);
+    if (!o.quiet) print_summary(o.scene, settings, frame->stats, exr);
+    return 0;
+  }
+
+  Film film = o.resume ? load_checkpoint(*o.resume, key, settings) : Film(settings.resolution, settings.aovs);
+  const int target = settings.spp;
+  const InterruptGuard interrupt;
+  RenderStats total;
+  const auto start = std::chrono::steady_clock::now();
+  const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  const auto add = [&](const RenderStats& s) {
+    total.paths += s.paths;
+    total.rays += s.rays;
+    total.camera_march_steps += s.camera_march_steps;
+    total.march_steps += s.march_steps;
+    total.shader_evaluations += s.shader_evaluations;
+  };
+  std::string stopped_by;
+  if (!progressive.passes()) {
+    add(render_up_to(film, *scene, settings, target, &interrupt.stop(), style));
+  } else {
+    // Passes of whole sample counts: 1 sample first, then as many as the last pass's time per
+    // sample says fit before the next checkpoint or the time limit.
+    double last_checkpoint = 0.0, seconds_per_sample = 0.0;
+    for (int done = samples_done(film, settings); done < target && !interrupt.stopped();) {
+      int batch = done == 0 || seconds_per_sample <= 0.0 ? 1 : std::max(1, done);
+      if (progressive.checkpoint_every && seconds_per_sample > 0.0)
+        batch = std::min(batch, std::max(1, int(*progressive.checkpoint_every / seconds_per_sample)));
+      if (progressive.time_limit && seconds_per_sample > 0.0) {
+        const int fit = int((*progressive.time_limit - elapsed()) / seconds_per_sample);
+        if (fit < 1) {
+          stopped_by = "the time limit";
+          break;
+        }
+        batch = std::min(batch, fit);
+      }
+      const int next = std::min(target, done + batch);
+      const RenderStats pass = render_up_to(film, *scene, settings, next, &interrupt.stop(), Progress::Style::kQuiet);
+      add(pass);
+      if (interrupt.stopped()) break;
+      seconds_per_sample = pass.seconds / double(next - done);
+      done = next;
+      if (!o.quiet) std::fprintf(stderr, "caligo: %d of %d samples per pixel (%s)\n", done, target, format_duration(elapsed()).c_str());
+      if (progressive.target_rmse) {
+        const auto rmse = film.estimated_rmse();
+        if (rmse && *rmse <= *progressive.target_rmse) {
+          stopped_by = "the target RMSE (estimated " + std::to_string(*rmse) + ")";
+          break;
+        }
+      }
+      if (progressive.time_limit && elapsed() >= *progressive.time_limit) {
+        stopped_by = "the time limit";
+        break;
+      }
+      if (progressive.checkpoint_every && done < target && elapsed() - last_checkpoint >= *progressive.checkpoint_every) {
+        film.save(checkpoint, key);
+        last_checkpoint = elapsed();
+      }
+    }
+  }
+  total.seconds = elapsed();
+  const Image image = film.resolve();
+  if (interrupt.stopped()) {
+    write_outputs(image, &film, true);
+    const auto [fewest, most] = sample_range(film, settings);
+    std::fprintf(stderr,
+                 "caligo: interrupted (signal %d) with %d to %d of %d samples per pixel: wrote the partial image %s "
+                 "and the checkpoint %s; continue with --resume %s\n",
+                 interrupt.signal_number(), fewest, most, target, quote_for_message(exr).c_str(),
+                 quote_for_message(checkpoint).c_str(), quote_for_message(checkpoint).c_str());
+    return kExitInterruptedBase + interrupt.signal_number();
+  }
+  write_outputs(image, &film, false);
+  if (!stopped_by.empty() && !o.quiet)
+    std::fprintf(stderr, "caligo: stopped by %s at %d of %d samples per pixel\n", stopped_by.c_str(),
+                 samples_done(film, settings), target);
+  if (!o.quiet) print_summary(o.scene, settings, total, exr);
   return 0;
 }
 

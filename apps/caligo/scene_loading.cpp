@@ -15,9 +15,10 @@ Vec2i parse_resolution(const std::string& text) {
   int w = 0, h = 0;
   char x = 0, extra = 0;
   if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X'))
-    throw InputError(kCommandLine, "--res: expected WxH such as 640x480, got \"" + text + "\"");
+    throw InputError(kCommandLine, "--res: expected WxH such as 640x480, got " + quote_for_message(text));
   if (w < 1 || h < 1 || w > 16384 || h > 16384)
-    throw InputError(kCommandLine, "--res: each side must be between 1 and 16384, got \"" + text + "\"");
+    throw InputError(kCommandLine,
+                     "--res: each side must be between 1 and 16384, got " + quote_for_message(text));
   return {w, h};
 }
 

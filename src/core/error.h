@@ -24,7 +24,8 @@ struct SourceLocation {
     std::string p;
     for (size_t start = 0; start < json_path.size();) {
       const size_t slash = std::min(json_path.find('/', start + 1), json_path.size());
-      p += printable_for_message(std::string_view(json_path).substr(start, slash - start));
+      const std::string_view token = std::string_view(json_path).substr(start, slash - start);
+      p += printable_for_message(token, kMessageTokenBytes);
       start = slash;
     }
     if (f.empty()) return p;

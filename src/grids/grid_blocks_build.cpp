@@ -29,7 +29,6 @@ inline float vmin(float a, float b) { return std::min(a, b); }
 inline float vmax(float a, float b) { return std::max(a, b); }
 inline nanovdb::Vec3f vmin(nanovdb::Vec3f a, const nanovdb::Vec3f& b) { return a.minComponent(b); }
 inline nanovdb::Vec3f vmax(nanovdb::Vec3f a, const nanovdb::Vec3f& b) { return a.maxComponent(b); }
-inline bool all_equal(float a, float b) { return a == b; }
 inline bool all_equal(const nanovdb::Vec3f& a, const nanovdb::Vec3f& b) {
   return a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
 }

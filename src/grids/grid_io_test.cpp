@@ -8,6 +8,7 @@
 
 #include <nanovdb/NanoVDB.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -186,6 +187,40 @@ TEST_F(GridIo, RejectsMissingEmptyAndRandomFiles) {
   // The scene location is part of the message.
   expect_located_error([&] { read_grid_channels(path("missing.vdb"), GridChannels{}, kWhere); },
                        "missing.vdb", "scene.json: /volumes/0/file");
+}
+
+// Found by fuzz/grid_fuzz.cpp (a leak, seen under the asan preset): the message for another
+// NanoVDB major version leaked the string nanovdb::Version::c_str() allocates.
+TEST_F(GridIo, RejectsAnotherNanoVdbMajorVersionNamingIt) {
+  write_grid_file(path("cloud.nvdb"), generate_grids({GeneratedVolume::kCloud, 8, 1}));
+  std::string bytes = slurp(path("cloud.nvdb"));
+  const uint32_t version = 31u << 21 | 1u << 10 | 2u;  // nanovdb::Version: major.minor.patch
+  std::memcpy(bytes.data() + 8, &version, sizeof(version));  // after the 8-byte segment magic
+  expect_unreadable(write_bytes("old.nvdb", bytes), "version 31.1.2 is not supported");
+}
+
+// Found by fuzz/grid_fuzz.cpp (UBSan): a codec number past the known ones was looked up in
+// nanovdb::io::toStr's table out of bounds to name it.
+TEST_F(GridIo, RejectsAnUnknownNanoVdbCodec) {
+  write_grid_file(path("cloud.nvdb"), generate_grids({GeneratedVolume::kCloud, 8, 1}));
+  std::string bytes = slurp(path("cloud.nvdb"));
+  const uint16_t codec = 58;  // nanovdb::io::Codec has NONE, ZIP, BLOSC
+  std::memcpy(bytes.data() + 14, &codec, sizeof(codec));  // magic (8), version (4), grid count (2)
+  expect_unreadable(write_bytes("codec.nvdb", bytes), "unknown codec");
+}
+
+// Found by fuzz/grid_fuzz.cpp (UBSan): a root offset pointing outside the grid was bound to a
+// reference (tree().root()) before the layout check looked at it.
+TEST_F(GridIo, RejectsANanoVdbRootOutsideTheGrid) {
+  write_grid_file(path("cloud.nvdb"), generate_grids({GeneratedVolume::kCloud, 8, 1}));
+  std::string bytes = slurp(path("cloud.nvdb"));
+  ASSERT_EQ(bytes.compare(16 + 176, 8, std::string("density\0", 8)), 0);  // one grid, "density"
+  // Header (16), metadata (176), name (8), GridData (672), then the tree: the root's offset
+  // is its mNodeOffset[3].
+  const size_t root_offset_at = 16 + 176 + 8 + 672 + 3 * sizeof(uint64_t);
+  const uint64_t far = 0x3042a5d66f71606eull;  // the fuzzer's
+  std::memcpy(bytes.data() + root_offset_at, &far, sizeof(far));
+  expect_unreadable(write_bytes("root.nvdb", bytes), "root outside the buffer");
 }
 
 TEST_F(GridIo, RejectsTruncatedAndCorruptFiles) {

@@ -50,6 +50,11 @@ const char* type_name(nanovdb::GridType type) {
   }
 }
 
+// nanovdb::Version::c_str() returns a malloc'ed buffer the caller must free; this does not.
+std::string version_string(const nanovdb::Version& v) {
+  return std::to_string(v.getMajor()) + "." + std::to_string(v.getMinor()) + "." + std::to_string(v.getPatch());
+}
+
 class NvdbReader {
  public:
   NvdbReader(const std::string& path, const SourceLocation& where) : path_(path), where_(where) {
@@ -71,8 +76,10 @@ class NvdbReader {
       pos += sizeof(header);
       if (header.magic != NANOVDB_MAGIC_NUMBER) fail("corrupt NanoVDB file (bad segment magic number)");
       if (header.version.getMajor() != NANOVDB_MAJOR_VERSION_NUMBER)
-        fail("NanoVDB file version " + std::string(header.version.c_str()) + " is not supported (expected " +
+        fail("NanoVDB file version " + version_string(header.version) + " is not supported (expected " +
              std::to_string(NANOVDB_MAJOR_VERSION_NUMBER) + ".x)");
+      // nanovdb::io::toStr indexes a table by the codec without a bounds check.
+      if (header.codec >= nanovdb::io::Codec::END) fail("corrupt NanoVDB file (unknown codec)");
       if (header.codec != nanovdb::io::Codec::NONE)
         fail(std::string("compressed NanoVDB files (") + nanovdb::io::toStr(header.codec) +
              ") are not supported; write it uncompressed");
@@ -110,7 +117,10 @@ class NvdbReader {
     read_at(r.data_offset, buffer.data(), r.meta.gridSize, "grid \"" + r.name + "\"");
     NanoGridHandle handle(std::move(buffer));
     const nanovdb::GridMetaData* meta = handle.gridMetaData();
-    if (!meta->isValid() || meta->gridSize() != r.meta.gridSize || meta->gridType() != r.meta.gridType)
+    // A buffer holds this one grid: GridHandle::grid() would step past its end, by the grid's
+    // stated size, looking for a grid index other than 0.
+    if (!meta->isValid() || meta->gridSize() != r.meta.gridSize || meta->gridType() != r.meta.gridType ||
+        meta->gridIndex() != 0)
       fail("corrupt NanoVDB file (grid \"" + r.name + "\" disagrees with its header)");
     return handle;
   }
@@ -140,14 +150,17 @@ std::string check_layout(const nanovdb::NanoGrid<T>& grid, uint64_t buffer_size)
            (reinterpret_cast<uintptr_t>(b) % NANOVDB_DATA_ALIGNMENT) == 0;
   };
   if (!inside(&grid.tree(), sizeof(grid.tree()))) return "tree outside the buffer";
-  const auto& root = grid.tree().root();
-  if (!inside(&root, sizeof(root)) || !inside(&root, root.memUsage())) return "root outside the buffer";
-  for (auto upper = root.beginChild(); upper; ++upper) {
-    if (!inside(&*upper, sizeof(*upper))) return "node outside the buffer";
+  // Nodes are handled through pointers until checked: binding a reference to a misaligned or
+  // outside address (as tree().root() and *iterator do) is already undefined behaviour.
+  using RootT = typename nanovdb::NanoGrid<T>::RootType;
+  const RootT* root = grid.tree().data()->template getRoot<RootT>();
+  if (!inside(root, sizeof(RootT)) || !inside(root, root->memUsage())) return "root outside the buffer";
+  for (auto upper = root->beginChild(); upper; ++upper) {
+    if (!inside(upper.operator->(), sizeof(*upper))) return "node outside the buffer";
     for (auto lower = upper->beginChild(); lower; ++lower) {
-      if (!inside(&*lower, sizeof(*lower))) return "node outside the buffer";
+      if (!inside(lower.operator->(), sizeof(*lower))) return "node outside the buffer";
       for (auto leaf = lower->beginChild(); leaf; ++leaf)
-        if (!inside(&*leaf, sizeof(*leaf))) return "leaf outside the buffer";
+        if (!inside(leaf.operator->(), sizeof(*leaf))) return "leaf outside the buffer";
     }
   }
   return nanovdb::GridValidator<T>::check(grid, /*detailed=*/true);

@@ -127,10 +127,16 @@ IesProfile IesProfile::parse(const std::string& text, const std::string& file) {
   p.horizontal_ = read_angles(r, nh, "horizontal angle");
   check_vertical(p.vertical_, r);
   check_horizontal(p.horizontal_, r);
+  // Allocated only once the file is known to hold the whole table (up to 10^8 values).
+  if (r.remaining() < static_cast<size_t>(nv) * nh)
+    r.fail("truncated: " + std::to_string(r.remaining()) + " values follow the angles; the " + std::to_string(nv) +
+           " x " + std::to_string(nh) + " candela table needs " + std::to_string(static_cast<size_t>(nv) * nh));
   p.values_.resize(static_cast<size_t>(nv) * nh);
   for (float& c : p.values_) {
     c = static_cast<float>(r.next("a candela value") * multiplier);
     if (c < 0.0f) r.fail("negative candela value " + std::to_string(c));
+    // Beyond float's range the table would normalise to NaN (inf / inf).
+    if (!std::isfinite(c)) r.fail("a candela value times the multiplier exceeds the float range (3.4e38)");
   }
   if (r.remaining() != 0)
     r.fail("wrong counts: " + std::to_string(r.remaining()) + " values follow the " + std::to_string(nv) +

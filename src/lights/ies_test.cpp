@@ -111,6 +111,26 @@ TEST(IesProfile, BrokenFilesGiveErrorsThatSayWhatIsWrong) {
   EXPECT_NE(error_of(type_b).find("type C"), std::string::npos);
 }
 
+// Found by fuzz/ies_fuzz.cpp: a candela value beyond float's range (on its own, or once
+// multiplied: lm63's multiplier is 2) made the peak infinite and the normalised table NaN.
+TEST(IesProfile, CandelaValuesBeyondFloatRangeAreErrorsNotNaN) {
+  EXPECT_NE(error_of(lm63("0 90", "0", 2, 1, "1e39 1")).find("float range"), std::string::npos);
+  EXPECT_NE(error_of(lm63("0 90", "0", 2, 1, "2e38 1")).find("float range"), std::string::npos);
+  const IesProfile p = IesProfile::parse(lm63("0 90", "0", 2, 1, "1.5e38 0"), "big.ies");
+  EXPECT_FLOAT_EQ(p.evaluate(0.0f, 0.0f), 1.0f);
+  EXPECT_TRUE(std::isfinite(p.mean()));
+}
+
+// A header promising a 10^4 x 10^4 table is refused before the table (400 MB) is allocated.
+TEST(IesProfile, TableLargerThanTheFileIsRefusedBeforeAllocating) {
+  std::string vertical, horizontal;
+  for (int i = 0; i < 10000; ++i) {
+    vertical += std::to_string(180.0 * i / 9999) + " ";
+    horizontal += std::to_string(360.0 * i / 9999) + " ";
+  }
+  EXPECT_NE(error_of(lm63(vertical, horizontal, 10000, 10000, "1 1")).find("needs 100000000"), std::string::npos);
+}
+
 TEST(IesProfile, MissingFileIsAnInputErrorNamingIt) {
   try {
     IesProfile::load("/nonexistent/lamp.ies");

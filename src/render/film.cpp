@@ -125,7 +125,7 @@ struct FilmHeader {
 void Film::save(const std::string& path, uint64_t key) const {
   write_file_atomically(path, [&](const std::string& temp) {
     std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    if (!out) throw std::runtime_error("cannot create " + temp);
+    if (!out) throw EnvironmentError(path + ": cannot create " + temp);
     FilmHeader header{};
     std::memcpy(header.magic, kMagic, sizeof kMagic);
     header.version = kVersion;
@@ -139,7 +139,7 @@ void Film::save(const std::string& path, uint64_t key) const {
     static_assert(sizeof(FixedSum) == 16);
     out.write(reinterpret_cast<const char*>(sums_.data()), std::streamsize(sums_.size() * sizeof(FixedSum)));
     out.flush();
-    if (!out) throw std::runtime_error("cannot write " + path + " (disk full?)");
+    if (!out) throw EnvironmentError(path + ": cannot write the film (disk full?)");
   });
 }
 

@@ -6,6 +6,7 @@
 #include <assimp/scene.h>
 
 #include <exception>
+#include <string_view>
 #include <utility>
 
 namespace caligo {
@@ -56,16 +57,58 @@ bool copy_nodes(const aiNode& root, std::vector<AssimpNodeCopy>& nodes) {
   return true;
 }
 
+// A face without indices (a truncated binary PLY makes one) passes assimp's validation, marks
+// its mesh as holding polygons, and the triangulation then asserts (aborting the process) on
+// a "polygon" mesh without one. Such faces are refused and each mesh's primitive types are
+// recomputed from its faces before triangulating. `scene` is the importer's own, not const.
+bool has_empty_face_or_fix_types(const aiScene& scene) {
+  for (unsigned m = 0; m < scene.mNumMeshes; ++m) {
+    aiMesh* mesh = scene.mMeshes[m];
+    if (mesh == nullptr) continue;
+    unsigned types = 0;
+    for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+      const unsigned n = mesh->mFaces[f].mNumIndices;
+      if (n == 0) return true;
+      types |= n == 1 ? aiPrimitiveType_POINT
+               : n == 2 ? aiPrimitiveType_LINE
+               : n == 3 ? aiPrimitiveType_TRIANGLE
+                        : aiPrimitiveType_POLYGON;
+    }
+    mesh->mPrimitiveTypes = types;
+  }
+  return false;
+}
+
+// assimp 5.2's PLY reader runs past the end of its buffer (a crash) when no header line is
+// "end_header" (the fuzzer's had "end_header*"): it keeps looking for one in the binary data.
+// The PLY header ends with such a line; trailing blanks and a CR are allowed.
+bool has_ply_end_header_line(std::string_view data) {
+  constexpr std::string_view kLine = "\nend_header";
+  for (size_t at = data.find(kLine); at != std::string_view::npos; at = data.find(kLine, at + 1)) {
+    size_t i = at + kLine.size();
+    while (i < data.size() && (data[i] == ' ' || data[i] == '\t' || data[i] == '\r')) ++i;
+    if (i < data.size() && data[i] == '\n') return true;
+  }
+  return false;
+}
+
 // Triangulate and weld only: the other post-processing steps would change the geometry. The
-// validation step comes first (assimp runs it before the others): without it, a face that
-// refers to a missing vertex crashes the triangulation.
+// validation step comes first (with the reading): without it, a face that refers to a missing
+// vertex crashes the triangulation.
 AssimpReadStatus read(const char* data, size_t size, const char* format, AssimpSceneCopy* out, std::string* error) {
+  if (std::string_view(format) == "ply" && !has_ply_end_header_line(std::string_view(data, size))) {
+    *error = "the header does not end with an \"end_header\" line";
+    return AssimpReadStatus::kCannotParse;
+  }
   Assimp::Importer importer;
   const aiScene* scene = nullptr;
-  constexpr unsigned kSteps =
-      aiProcess_ValidateDataStructure | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices;
   try {
-    scene = importer.ReadFileFromMemory(data, size, kSteps, format);
+    scene = importer.ReadFileFromMemory(data, size, aiProcess_ValidateDataStructure, format);
+    if (scene != nullptr && has_empty_face_or_fix_types(*scene)) {
+      *error = "a face has no vertex indices (is the file truncated?)";
+      return AssimpReadStatus::kCannotParse;
+    }
+    if (scene != nullptr) scene = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_JoinIdenticalVertices);
   } catch (const std::exception& e) {
     *error = e.what();
     return AssimpReadStatus::kCannotParse;

@@ -169,6 +169,32 @@ constexpr const char* kSlab = R"json({
   "lights": [{"type": "environment", "radiance": 1}]
 })json";
 
+// Holdouts for compositing: a bank of fog over a plate whose real objects are held out. The
+// ground, a torus knot that pokes out of the fog's front face and a sphere half out of its back
+// face are holdouts (black in the beauty, transparent in alpha where the camera sees them, but
+// they still cast shadows into the fog); the orange sphere inside the fog is the one CG object.
+// The sky lights the fog but is invisible to the camera ("visible": false), so alpha is exactly
+// the fog's and the CG sphere's coverage: 1 - e^(-sigma_t d) through clear fog (the fog bank is
+// 3.5 m deep), lower in front of a holdout's hole by the fog between it and the camera.
+constexpr const char* kHoldout = R"json({
+  "camera": {"position": [0, 1.6, 7], "look_at": [0, 1.2, 0], "fov": 45, "resolution": [320, 240]},
+  "render": {"spp": 64, "max_bounces": 4, "max_volume_bounces": 16, "aovs": ["default", "lights"]},
+  "materials": {"plate": {"type": "diffuse", "reflectance": 0.4},
+                "cg": {"type": "diffuse", "reflectance": [0.8, 0.45, 0.2]}},
+  "media": {"fog": {"sigma_s": 0.3, "sigma_a": 0.01, "phase": {"type": "hg", "g": 0.3}}},
+  "shapes": [
+    {"type": "rectangle", "corner": [-8, 0, -8], "edge1": [0, 0, 16], "edge2": [16, 0, 0], "material": "plate",
+     "holdout": true},
+    {"type": "mesh", "generate": {"kind": "torus_knot", "triangles": 4608}, "material": "plate", "holdout": true,
+     "transform": [{"scale": 0.6}, {"rotate": {"angle": 40, "axis": [0, 1, 0]}}, {"translate": [-1.3, 1.4, 1.5]}]},
+    {"type": "sphere", "center": [1.3, 1.0, -2], "radius": 1.0, "material": "plate", "holdout": true},
+    {"type": "sphere", "center": [0.2, 0.6, -0.2], "radius": 0.6, "material": "cg"}
+  ],
+  "volumes": [{"type": "box", "min": [-3.5, 0, -2], "max": [3.5, 3, 1.5], "medium": "fog"}],
+  "lights": [{"type": "directional", "direction": [-0.5, -0.7, -0.35], "color": [1, 0.92, 0.8], "irradiance": 3},
+             {"type": "environment", "color": [0.5, 0.65, 1], "radiance": 0.25, "visible": false}]
+})json";
+
 // Neon signs in fog: three emissive torus-knot tubes (closed generated meshes; an emissive
 // material on a mesh makes one TriangleLight per triangle, 2,048 each, sampled by solid
 // angle) over a dark wet-looking floor, in fog that glows around them. No other light.
@@ -499,6 +525,11 @@ const std::vector<BuiltinScene>& all_builtins() {
        "orthographic view straight down through three purely absorbing boxes (sigma_a 1/m) 0.5, 1 and 2 m "
        "thick under a uniform sky of radiance 1: pixels over them are exactly e^-0.5, e^-1, e^-2, others 1",
        kSlab},
+      {"holdout",
+       "compositing: a fog bank over held-out plate objects (ground, a torus knot poking out of the fog's front, "
+       "a sphere half behind it) and one CG sphere, under an invisible sky: alpha is the fog's and the CG "
+       "sphere's coverage, the holdouts are holes (black, transparent) that still shadow the fog",
+       kHoldout},
       {"neon", "neon signs in fog: three emissive torus-knot tubes (6,144 triangle lights) over a dark floor",
        kNeon},
       {"stage",

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "lights/gobo.h"
+#include "render/aov.h"
 
 namespace caligo {
 namespace {
@@ -66,6 +67,35 @@ TEST(Builtins, PointInSphereHasTheLightAtTheCentre) {
   EXPECT_EQ(point.position, sphere.center);
   EXPECT_EQ(point.intensity, RGB(4.0f));
   EXPECT_EQ(scene.camera.resolution, (Vec2i{32, 32}));
+}
+
+// The compositing scene: held-out plate objects around a fog bank, one CG object, an invisible
+// sky (so every pixel's alpha comes from the fog and the CG sphere), the light layers on.
+TEST(Builtins, HoldoutHasHeldOutShapesInAndAroundTheFog) {
+  const SceneDesc scene = parse_builtin(*find_builtin("holdout"));
+  int holdouts = 0, visible = 0;
+  for (const ShapeDesc& s : scene.shapes) (s.holdout ? holdouts : visible) += 1;
+  EXPECT_EQ(holdouts, 3);
+  EXPECT_EQ(visible, 1);
+  ASSERT_EQ(scene.volumes.size(), 1u);
+  const Bounds3 fog = volume_bounds(scene.volumes[0].shape);
+  // The held-out sphere straddles the fog's back face (behind it and inside it).
+  const auto& back = std::get<SphereShape>(scene.shapes[2].geometry);
+  EXPECT_TRUE(scene.shapes[2].holdout);
+  EXPECT_LT(back.center.z - back.radius, fog.lo.z);
+  EXPECT_GT(back.center.z + back.radius, fog.lo.z);
+  // The knot is placed at the fog's front face, the side the camera is on.
+  EXPECT_TRUE(scene.shapes[1].holdout);
+  EXPECT_FLOAT_EQ(scene.shapes[1].transform.point({0, 0, 0}).z, fog.hi.z);
+  EXPECT_GT(scene.camera.position.z, fog.hi.z);
+  bool invisible_sky = false;
+  for (const Light& l : scene.lights)
+    if (const auto* env = std::get_if<EnvironmentLight>(&l)) invisible_sky = !env->visible;
+  EXPECT_TRUE(invisible_sky);
+  ASSERT_TRUE(scene.render.aovs.has_value());
+  const AovSet aovs = AovSet::from_bits(*scene.render.aovs);
+  EXPECT_TRUE(aovs.has(Aov::kAlpha));
+  for (int k = 0; k < kLightKindCount; ++k) EXPECT_TRUE(aovs.has(light_aov(LightKind(k)))) << k;
 }
 
 TEST(Builtins, DefaultRoomIsClosedAroundTheCamera) {

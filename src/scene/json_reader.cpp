@@ -24,7 +24,8 @@ std::string escape_pointer_token(std::string_view key) {
   return out;
 }
 
-std::string quote_json(std::string_view s) { return Json(std::string(s)).dump(); }
+// Keys and names as messages quote them: escaped, and abbreviated when long.
+std::string quote_json(std::string_view s) { return quote_for_message(s); }
 
 // 1-based line and column of the byte at `offset`; columns count UTF-8 characters.
 std::pair<size_t, size_t> line_and_column(std::string_view text, size_t offset) {
@@ -67,6 +68,7 @@ class StrictDomBuilder {
   bool string(Json::string_t& v) { return put(std::move(v)) != nullptr; }
   bool binary(Json::binary_t& v) { return put(Json::binary(std::move(v))) != nullptr; }
   bool start_object(std::size_t) {
+    check_depth();
     stack_.push_back({put(Json::object()), {}});
     return true;
   }
@@ -84,6 +86,7 @@ class StrictDomBuilder {
     return true;
   }
   bool start_array(std::size_t) {
+    check_depth();
     stack_.push_back({put(Json::array()), {}});
     return true;
   }
@@ -103,6 +106,19 @@ class StrictDomBuilder {
     Json* value;
     std::string key;  // the key being read, for objects
   };
+
+  // nlohmann's parser keeps its own stack and would read any depth, but dump(), the
+  // destructor of some versions and every reader walking the DOM recurse: stop here.
+  void check_depth() const {
+    if (stack_.size() < kMaxJsonDepth) return;
+    // The pointer of the value being opened: the next element or the current key.
+    const Frame& top = stack_.back();
+    std::string pointer = pointer_of_open_values();
+    pointer += '/';
+    pointer += top.value->is_array() ? std::to_string(top.value->size()) : escape_pointer_token(top.key);
+    throw InputError({file_, pointer}, "JSON nested more than " + std::to_string(kMaxJsonDepth) +
+                                           " levels deep (the limit for scene files)");
+  }
 
   Json* put(Json v) {
     if (stack_.empty()) {
@@ -124,7 +140,8 @@ class StrictDomBuilder {
     std::string p;
     for (size_t i = 0; i + 1 < stack_.size(); ++i) {
       const Frame& f = stack_[i];
-      p += "/" + (f.value->is_array() ? std::to_string(f.value->size() - 1) : escape_pointer_token(f.key));
+      p += '/';  // appended piecewise: GCC 12 warns falsely (-Wrestrict) on "/" + temporary
+      p += f.value->is_array() ? std::to_string(f.value->size() - 1) : escape_pointer_token(f.key);
     }
     return p;
   }
@@ -153,6 +170,10 @@ size_t edit_distance(std::string_view a, std::string_view b) {
 }  // namespace
 
 Json parse_json_text(std::string_view text, const std::string& file_label) {
+  if (text.size() > kMaxJsonBytes)
+    throw InputError({file_label, ""}, "the file is " + std::to_string(text.size()) +
+                                           " bytes; JSON input is limited to " +
+                                           std::to_string(kMaxJsonBytes) + " bytes (64 MiB)");
   Json root;
   StrictDomBuilder builder(root, text, file_label);
   Json::sax_parse(text, &builder);
@@ -216,7 +237,8 @@ void JsonCursor::fail(const std::string& message) const { throw InputError(where
 
 std::string JsonCursor::describe() const {
   constexpr size_t kMax = 48;
-  std::string text = value_->dump();
+  // Values hold valid UTF-8 (the parser checks), but replace rather than throw regardless.
+  std::string text = value_->dump(-1, ' ', false, Json::error_handler_t::replace);
   if (text.size() <= kMax) return text;
   return text.substr(0, kMax - 3) + "...";
 }
@@ -417,10 +439,10 @@ size_t find_definition(const JsonCursor& c, const std::vector<std::string>& name
   if (it != names.end()) return size_t(it - names.begin());
   std::string message = "unknown ";
   message += kind;
-  message += " \"" + name + "\"";
+  message += " " + quote_for_message(name);
   if (names.empty()) c.fail(message + ": the scene defines no " + std::string(plural));
   if (std::string guess = closest_match(name, names); !guess.empty())
-    message += " (did you mean \"" + guess + "\"?)";
+    message += " (did you mean " + quote_for_message(guess) + "?)";
   c.fail(message + "; defined " + std::string(plural) + ": " + join_names(names));
 }
 

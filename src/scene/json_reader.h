@@ -11,6 +11,7 @@
 // not as a 32-bit float (1e39) is rejected. Thread-safety: none needed, readers are local.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <initializer_list>
 #include <limits>
@@ -30,8 +31,16 @@ namespace caligo {
 // Objects keep the order of the file, so errors come in file order.
 using Json = nlohmann::ordered_json;
 
+// Limits on JSON input (docs/scene-format.md, "Limits"). Real scenes nest under ten levels
+// and weigh kilobytes (meshes and grids live in their own files); the limits keep hostile
+// input from exhausting the stack (every reader of the DOM recurses) or the memory.
+inline constexpr size_t kMaxJsonDepth = 64;               // nested arrays and objects
+inline constexpr size_t kMaxJsonBytes = size_t(64) << 20;  // 64 MiB
+
 // Parses strict JSON (no comments, no trailing commas). Syntax errors name the line and
-// column (counted in characters, from 1); a key repeated within one object is an error.
+// column (counted in characters, from 1); a key repeated within one object is an error, as
+// is text over kMaxJsonBytes or nesting deeper than kMaxJsonDepth (located at the value that
+// opens level kMaxJsonDepth + 1).
 Json parse_json_text(std::string_view text, const std::string& file_label);
 
 // The numbers a value may take; either end may be open. Describes itself for messages.

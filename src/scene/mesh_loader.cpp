@@ -10,6 +10,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -35,7 +36,9 @@ class MeshFileError : public std::runtime_error {
 
 [[noreturn]] void fail(const std::string& what) { throw MeshFileError(what); }
 
-std::string in_quotes(std::string_view s) { return "\"" + std::string(s) + "\""; }
+// User text in messages: escaped and abbreviated (core/message_text.h).
+std::string in_quotes(std::string_view s) { return quote_for_message(s); }
+std::string path_in_quotes(std::string_view path) { return quote_for_message(path, kMessageFileBytes); }
 
 // The libraries end their messages with newlines (and sometimes hold several lines).
 std::string tidy_library_message(std::string message) {
@@ -54,9 +57,9 @@ std::string read_whole_file(const std::string& path, const SourceLocation& where
   std::error_code ec;
   std::ifstream in(path, std::ios::binary);
   if (!in || std::filesystem::is_directory(path, ec))
-    throw InputError(where, "cannot open mesh file " + in_quotes(path));
+    throw InputError(where, "cannot open mesh file " + path_in_quotes(path));
   std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw InputError(where, "cannot read mesh file " + in_quotes(path));
+  if (in.bad()) throw InputError(where, "cannot read mesh file " + path_in_quotes(path));
   return data;
 }
 
@@ -86,6 +89,27 @@ class MeshBuilder {
   TriangleMesh mesh_;
   bool all_parts_have_normals_ = true;
 };
+
+// A zero normal has no direction to shade with. Exports write them for zero-area faces, so
+// they follow the degenerate-triangle rule: an error, unless "skip_degenerate" removed every
+// triangle that uses one (checked after the removal; unused vertices do not matter).
+void check_no_zero_normals(const TriangleMesh& mesh) {
+  if (mesh.normals.empty()) return;
+  for (size_t i = 0; i < mesh.indices.size(); ++i)
+    if (!(length_squared(mesh.normals[mesh.indices[i]]) > 0.0f))
+      fail("triangle " + std::to_string(i / 3) + " uses a zero-length normal (vertex " +
+           std::to_string(mesh.indices[i]) + "); a shading normal needs a direction");
+}
+
+// Every format's result, whatever its loader counted on the way.
+void check_mesh_limits(const TriangleMesh& mesh) {
+  if (mesh.triangle_count() > kMaxMeshTriangles)
+    fail("the mesh has " + std::to_string(mesh.triangle_count()) + " triangles; meshes are limited to " +
+         std::to_string(kMaxMeshTriangles));
+  if (mesh.positions.size() > kMaxMeshVertices)
+    fail("the mesh has " + std::to_string(mesh.positions.size()) + " vertices; meshes are limited to " +
+         std::to_string(kMaxMeshVertices));
+}
 
 // ---- Wavefront OBJ -------------------------------------------------------------------------
 
@@ -117,22 +141,128 @@ size_t first_words(std::string_view line, std::array<std::string_view, N>& words
   return count;
 }
 
-// Checks the first three numbers of every position ("v") and normal ("vn") line.
-void check_obj_numbers(std::string_view text) {
+// What the first pass over an OBJ file counts: the elements that face indices refer to, and
+// which normals are zero (a zero normal cannot be normalised; shading with it gives NaN).
+struct ObjCounts {
+  int64_t vertices = 0, texcoords = 0, normals = 0;
+  std::vector<bool> zero_normal;  // per "vn" line
+};
+
+std::string obj_line(size_t line) { return "line " + std::to_string(line) + ": "; }
+
+// Calls `visit(line_number, words)` for every line with the first `N` words of the line.
+template <size_t N, typename Visit>
+void for_each_obj_line(std::string_view text, Visit&& visit) {
   size_t line_number = 0;
   for (size_t start = 0; start < text.size();) {
     const size_t newline = std::min(text.find('\n', start), text.size());
     const std::string_view line = text.substr(start, newline - start);
     start = newline + 1;
     ++line_number;
-    std::array<std::string_view, 4> words;
+    std::array<std::string_view, N> words;
     const size_t count = first_words(line, words);
-    if (count == 0 || (words[0] != "v" && words[0] != "vn")) continue;
-    if (count < 4)
-      fail("line " + std::to_string(line_number) + ": " + std::string(words[0]) + " needs three coordinates");
-    for (size_t i = 1; i <= 3; ++i)
-      check_obj_number(words[i], line_number, words[0] == "v" ? "vertex" : "normal");
+    if (count > 0) visit(line_number, line, words, count);
   }
+}
+
+// Counts the elements and checks the first three numbers of every position ("v") and normal
+// ("vn") line.
+ObjCounts count_obj_elements(std::string_view text) {
+  ObjCounts counts;
+  for_each_obj_line<4>(text, [&](size_t line, std::string_view, const auto& words, size_t count) {
+    if (words[0] == "vt") ++counts.texcoords;
+    if (words[0] != "v" && words[0] != "vn") return;
+    if (count < 4) fail(obj_line(line) + std::string(words[0]) + " needs three coordinates");
+    bool zero = true;
+    for (size_t i = 1; i <= 3; ++i) {
+      check_obj_number(words[i], line, words[0] == "v" ? "vertex" : "normal");
+      double value = 0.0;
+      std::string_view digits = words[i];
+      if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
+      std::from_chars(digits.data(), digits.data() + digits.size(), value);
+      zero = zero && float(value) == 0.0f;
+    }
+    if (words[0] == "v") {
+      ++counts.vertices;
+    } else {
+      ++counts.normals;
+      counts.zero_normal.push_back(zero);
+    }
+  });
+  if (counts.vertices > int64_t(kMaxMeshVertices))
+    fail("the file has " + std::to_string(counts.vertices) + " vertices; meshes are limited to " +
+         std::to_string(kMaxMeshVertices));
+  return counts;
+}
+
+struct ObjIndexKind {
+  const char* singular;
+  const char* plural;
+};
+constexpr ObjIndexKind kObjVertex{"vertex", "vertices"};
+constexpr ObjIndexKind kObjTexcoord{"texture coordinate", "texture coordinates"};
+constexpr ObjIndexKind kObjNormal{"normal", "normals"};
+
+// One index of a face corner (its "v", "vt" or "vn" part): a number from 1 to `total`, or a
+// negative one counting back from the `seen` elements defined above the face. Returns the
+// 0-based index. tinyobjloader reads indices with atoi (10^20 becomes -1, the last vertex)
+// and leaves ranges to the caller, so every index is checked here, with its line.
+int64_t obj_index(std::string_view token, ObjIndexKind kind, int64_t seen, int64_t total, size_t line) {
+  int64_t value = 0;
+  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+  if (ec == std::errc::invalid_argument || end != token.data() + token.size())
+    fail(obj_line(line) + "cannot read the " + kind.singular + " index " + quote_for_message(token));
+  const std::string refers =
+      obj_line(line) + "a face refers to " + kind.singular + " " + printable_for_message(token);
+  if (ec == std::errc::result_out_of_range || value > total)
+    fail(refers + ", but the file has " + std::to_string(total) + " " + kind.plural);
+  if (value == 0) fail(refers + " (OBJ counts from 1)");
+  if (value < 0 && -value > seen)
+    fail(refers + " (relative), but only " + std::to_string(seen) + " " + kind.plural + " precede the face");
+  return value > 0 ? value - 1 : seen + value;
+}
+
+// Checks every face ("f") line: at least 3 corners (a face with fewer is degenerate: an
+// error, or skipped with "skip_degenerate"), every index in range, no zero normal used, and
+// at most kMaxMeshTriangles triangles after triangulation.
+void check_obj_faces_text(std::string_view text, const ObjCounts& counts, DegenerateTriangles degenerate) {
+  ObjCounts seen;
+  uint64_t triangles = 0;
+  for_each_obj_line<1>(text, [&](size_t line, std::string_view whole, const auto& words, size_t) {
+    if (words[0] == "v") ++seen.vertices;
+    if (words[0] == "vt") ++seen.texcoords;
+    if (words[0] == "vn") ++seen.normals;
+    if (words[0] != "f") return;
+    size_t corners = 0;
+    for (size_t pos = whole.find('f') + 1;;) {
+      pos = whole.find_first_not_of(" \t\r", pos);
+      if (pos == std::string_view::npos) break;
+      const size_t end = std::min(whole.find_first_of(" \t\r", pos), whole.size());
+      const std::string_view corner = whole.substr(pos, end - pos);
+      pos = end;
+      ++corners;
+      const size_t slash1 = corner.find('/');
+      const size_t slash2 = slash1 == std::string_view::npos ? slash1 : corner.find('/', slash1 + 1);
+      obj_index(corner.substr(0, slash1), kObjVertex, seen.vertices, counts.vertices, line);
+      if (slash1 == std::string_view::npos) continue;
+      const size_t vt_length = slash2 == std::string_view::npos ? slash2 : slash2 - slash1 - 1;
+      const std::string_view vt = corner.substr(slash1 + 1, vt_length);
+      if (!vt.empty()) obj_index(vt, kObjTexcoord, seen.texcoords, counts.texcoords, line);
+      if (slash2 == std::string_view::npos) continue;
+      const int64_t n = obj_index(corner.substr(slash2 + 1), kObjNormal, seen.normals, counts.normals, line);
+      if (counts.zero_normal[size_t(n)] && degenerate == DegenerateTriangles::kReject)
+        fail(obj_line(line) + "a face uses normal " + std::to_string(n + 1) +
+             ", which has zero length (a shading normal needs a direction; \"skip_degenerate\": true "
+             "accepts it on faces it removes)");
+    }
+    if (corners < 3 && degenerate == DegenerateTriangles::kReject)
+      fail(obj_line(line) + "a face has " + std::to_string(corners) +
+           " vertices; a face needs at least 3 (\"skip_degenerate\": true drops such faces)");
+    if (corners >= 3) triangles += corners - 2;
+  });
+  if (triangles > kMaxMeshTriangles)
+    fail("the file has " + std::to_string(triangles) + " triangles; meshes are limited to " +
+         std::to_string(kMaxMeshTriangles));
 }
 
 void check_obj_faces(const tinyobj::attrib_t& attrib, const std::vector<tinyobj::shape_t>& shapes) {
@@ -196,8 +326,8 @@ TriangleMesh obj_mesh_with_normals(const tinyobj::attrib_t& attrib,
   return mesh;
 }
 
-TriangleMesh read_obj(const std::string& text) {
-  check_obj_numbers(text);
+TriangleMesh read_obj(const std::string& text, DegenerateTriangles degenerate) {
+  check_obj_faces_text(text, count_obj_elements(text), degenerate);
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;
@@ -309,6 +439,17 @@ std::vector<uint32_t> sequential_indices(size_t count) {
   return indices;
 }
 
+// Refuses a primitive over the mesh limits. Called after reading: its accessors have been
+// checked against their buffers, so what was allocated is bounded by the file's size.
+void check_gltf_counts(size_t vertices, size_t indices) {
+  if (vertices > kMaxMeshVertices)
+    fail("has " + std::to_string(vertices) + " vertices; meshes are limited to " +
+         std::to_string(kMaxMeshVertices));
+  if (indices / 3 > kMaxMeshTriangles)
+    fail("has " + std::to_string(indices / 3) + " triangles; meshes are limited to " +
+         std::to_string(kMaxMeshTriangles));
+}
+
 TriangleMesh read_primitive(const tinygltf::Model& model, size_t mesh_index, size_t primitive_index) {
   const tinygltf::Primitive& primitive = model.meshes[mesh_index].primitives[primitive_index];
   const std::string label = primitive_label(mesh_index, primitive_index);
@@ -327,6 +468,7 @@ TriangleMesh read_primitive(const tinygltf::Model& model, size_t mesh_index, siz
     }
     part.indices = primitive.indices >= 0 ? read_index_accessor(model, primitive.indices)
                                           : sequential_indices(part.positions.size());
+    check_gltf_counts(part.positions.size(), part.indices.size());
     if (part.indices.size() % 3 != 0)
       fail("has " + std::to_string(part.indices.size()) + " indices, which is not a multiple of 3");
     for (uint32_t i : part.indices)
@@ -539,8 +681,14 @@ void check_ply_header(const std::string& data) {
     const auto [end, ec] = std::from_chars(words[2].data(), words[2].data() + words[2].size(), n);
     if (ec != std::errc() || end != words[2].data() + words[2].size())
       fail("cannot parse PLY: element " + in_quotes(words[1]) + " has the count " + in_quotes(words[2]));
+    const bool vertices = words[1] == "vertex", faces = words[1] == "face";
+    if ((vertices && n > kMaxMeshVertices) || (faces && n > kMaxMeshTriangles))
+      fail("the PLY header declares " + std::string(words[2]) + " " + printable_for_message(words[1]) +
+           " elements; meshes are limited to " +
+           (vertices ? std::to_string(kMaxMeshVertices) + " vertices"
+                     : std::to_string(kMaxMeshTriangles) + " triangles"));
     if (n > data.size() || declared + n > data.size())
-      fail("the PLY header declares " + std::string(words[2]) + " " + std::string(words[1]) +
+      fail("the PLY header declares " + std::string(words[2]) + " " + printable_for_message(words[1]) +
            " elements, more than the file's " + std::to_string(data.size()) + " bytes can hold");
     declared += n;
   }
@@ -642,13 +790,13 @@ TriangleMesh read_with_assimp(const std::string& data, const char* format, const
 
 // ---- Clean-up -------------------------------------------------------------------------------
 
-TriangleMesh read_mesh(const std::string& path, const SourceLocation& where) {
+TriangleMesh read_mesh(const std::string& path, const SourceLocation& where, DegenerateTriangles degenerate) {
   const std::string extension = lowercase_extension(path);
   if (extension != ".obj" && extension != ".gltf" && extension != ".glb" && extension != ".ply" &&
       extension != ".dae")
     fail("unsupported mesh format " + in_quotes(extension) + " (expected .obj, .gltf, .glb, .ply or .dae)");
   const std::string data = read_whole_file(path, where);
-  if (extension == ".obj") return read_obj(data);
+  if (extension == ".obj") return read_obj(data, degenerate);
   if (extension == ".ply") {
     check_ply_header(data);
     return read_with_assimp(data, "ply", "PLY");
@@ -661,16 +809,18 @@ TriangleMesh read_mesh(const std::string& path, const SourceLocation& where) {
 
 TriangleMesh load_mesh(const std::string& path, const SourceLocation& where, DegenerateTriangles degenerate) {
   try {
-    TriangleMesh mesh = read_mesh(path, where);
+    TriangleMesh mesh = read_mesh(path, where, degenerate);
     if (degenerate == DegenerateTriangles::kRemove) {
       const size_t removed = remove_degenerate_triangles(mesh);
       if (mesh.indices.empty() && removed > 0)
         fail("all " + std::to_string(removed) + " triangles are degenerate (zero area)");
     }
+    check_mesh_limits(mesh);
     if (const std::string problem = validate_mesh(mesh); !problem.empty()) fail(problem);
+    check_no_zero_normals(mesh);
     return mesh;
   } catch (const MeshFileError& e) {
-    throw InputError(where, path + ": " + e.what());
+    throw InputError(where, printable_for_message(path, kMessageFileBytes) + ": " + e.what());
   }
 }
 

@@ -3,6 +3,7 @@
 // stay behind this header so only mesh_loader.cpp compiles against them.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 #include "core/error.h"
@@ -20,7 +21,14 @@ namespace caligo {
 // Zero-area triangles are an error by default (a broken export should not render silently);
 // many real files carry a few, so a scene may ask for them to be removed instead
 // ("skip_degenerate": true on the mesh shape).
+// The same rule covers OBJ faces with fewer than 3 corners: an error, or dropped on request.
 enum class DegenerateTriangles { kReject, kRemove };
+
+// The largest mesh a file may hold (docs/scene-format.md, "Limits"): about 10 GB of indices,
+// positions and BVH. Counted before the bulk of the data is read where the format allows
+// (OBJ lines, glTF accessor counts, PLY header counts).
+inline constexpr size_t kMaxMeshTriangles = 100'000'000;
+inline constexpr size_t kMaxMeshVertices = 100'000'000;
 TriangleMesh load_mesh(const std::string& path, const SourceLocation& where,
                        DegenerateTriangles degenerate = DegenerateTriangles::kReject);
 

@@ -309,9 +309,66 @@ TEST_F(MeshLoaderTest, ObjIndexOutOfRangeIsRejected) {
                "a face refers to normal 4, but the file has 1 normals"));
 }
 
-TEST_F(MeshLoaderTest, ObjParseErrorCarriesTheLibraryMessage) {
+TEST_F(MeshLoaderTest, ObjZeroIndexIsALocatedError) {
+  // tinyobjloader would fail too, without the line; the pre-scan says where.
   EXPECT_TRUE(contains(load_error(write("zero.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n")),
-                       "cannot parse OBJ: Failed parse `f' line"));
+                       "line 4: a face refers to vertex 0 (OBJ counts from 1)"));
+}
+
+// ---- OBJ hardening (issue 12): every defect is an error with its line ---------------------
+
+TEST_F(MeshLoaderTest, ObjFaceWithFewerThanThreeVerticesFollowsTheDegenerateRule) {
+  const std::string path = write("two.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2\n");
+  EXPECT_TRUE(contains(load_error(path), "line 5: a face has 2 vertices; a face needs at least 3"));
+  EXPECT_TRUE(contains(load_error(write("one.obj", "v 0 0 0\nf 1\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")),
+                       "line 2: a face has 1 vertices"));
+  // "skip_degenerate": the short face is dropped, the triangle kept.
+  EXPECT_EQ(load_mesh(path, kWhere, DegenerateTriangles::kRemove).triangle_count(), 1u);
+}
+
+TEST_F(MeshLoaderTest, ObjHugeIndexIsRejectedNotWrapped) {
+  // atoi would turn 10^20 into -1, silently the last vertex.
+  EXPECT_TRUE(
+      contains(load_error(write("huge.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 100000000000000000000\n")),
+               "line 4: a face refers to vertex 100000000000000000000, but the file has 3 vertices"));
+  EXPECT_TRUE(contains(load_error(write("huge_n.obj",
+                                        "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\n"
+                                        "f 1//1 2//1 3//99999999999\n")),
+                       "line 5: a face refers to normal 99999999999, but the file has 1 normals"));
+  EXPECT_TRUE(
+      contains(load_error(write("huge_t.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/4294967297\n")),
+               "line 5: a face refers to texture coordinate 4294967297, but the file has 1"));
+  EXPECT_TRUE(contains(load_error(write("word.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3x\n")),
+                       "line 4: cannot read the vertex index \"3x\""));
+  // A relative index reaches back only over the vertices above the face.
+  EXPECT_TRUE(
+      contains(load_error(write("back.obj", "v 0 0 0\nv 1 0 0\nf -1 -2 -3\nv 0 1 0\n")),
+               "line 3: a face refers to vertex -3 (relative), but only 2 vertices precede the face"));
+}
+
+TEST_F(MeshLoaderTest, ObjZeroNormalIsRejectedUnlessItsFaceIsRemoved) {
+  const std::string used =
+      write("zero_n.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvn 0 0 0\nf 1//1 2//2 3//1\n");
+  EXPECT_TRUE(contains(load_error(used), "line 6: a face uses normal 2, which has zero length"));
+  // skip_degenerate keeps a real triangle, so its zero normal is still an error (now unlocated).
+  try {
+    load_mesh(used, kWhere, DegenerateTriangles::kRemove);
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& e) {
+    EXPECT_TRUE(contains(e.what(), "triangle 0 uses a zero-length normal (vertex 1)")) << e.what();
+  }
+  // On a zero-area face that skip_degenerate removes, it is accepted (exports write them there).
+  const std::string on_degenerate = write("zero_deg.obj",
+                                          "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nvn 0 0 1\nvn -0 0.0 +0e3\n"
+                                          "f 1//1 2//1 3//1\nf 1//2 2//2 4//2\n");
+  EXPECT_TRUE(contains(load_error(on_degenerate), "line 8: a face uses normal 2, which has zero length"));
+  const TriangleMesh mesh = load_mesh(on_degenerate, kWhere, DegenerateTriangles::kRemove);
+  EXPECT_EQ(mesh.triangle_count(), 1u);
+  ASSERT_EQ(mesh.normals.size(), mesh.positions.size());
+  // An unused zero normal is no problem.
+  EXPECT_EQ(load_mesh(write("unused.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 0\nf 1 2 3\n"), kWhere)
+                .triangle_count(),
+            1u);
 }
 
 TEST_F(MeshLoaderTest, ObjWithoutFacesIsRejected) {
@@ -422,6 +479,27 @@ TEST_F(MeshLoaderTest, CorruptPlyFilesAreInputErrors) {
   EXPECT_TRUE(contains(load_error(write("header_only.ply", "ply\nformat ascii 1.0\n")), "no header"));
 }
 
+// Found by fuzz/mesh_fuzz.cpp (ply): a face with no indices (here a count byte of 0; the
+// fuzzer's was a binary file shifted by one byte) passed assimp's validation and then failed an
+// assertion in its triangulation that aborted the whole process (exit 134, no message).
+TEST_F(MeshLoaderTest, PlyFaceWithoutIndicesIsAnInputErrorNotAnAbort) {
+  std::string ply = binary_ply_triangle({0, 0, 0});
+  ply.replace(ply.find("element face 1"), 14, "element face 2");
+  append_bytes(ply, uint8_t(0));
+  EXPECT_TRUE(contains(load_error(write("empty_face.ply", ply)), "a face has no vertex indices"));
+}
+
+// Found by fuzz/mesh_fuzz.cpp (ply): without a line that is exactly "end_header", assimp's PLY
+// reader searched on through the binary data and past the end of its buffer (SIGSEGV).
+TEST_F(MeshLoaderTest, PlyHeaderWithoutAnEndHeaderLineIsAnInputErrorNotACrash) {
+  std::string ply = binary_ply_triangle({0, 0, 0});
+  ply.replace(ply.find("end_header\n"), 11, "end_header*\n");
+  EXPECT_TRUE(contains(load_error(write("star.ply", ply)), "does not end with an \"end_header\" line"));
+  ply = binary_ply_triangle({0, 0, 0});
+  ply.replace(ply.find("end_header\n"), 11, "end_header \r\n");  // blanks and CR LF are fine
+  EXPECT_EQ(load_mesh(write("crlf.ply", ply), kWhere).triangle_count(), 1u);
+}
+
 TEST_F(MeshLoaderTest, PlyHeaderCannotClaimMoreElementsThanTheFileHolds) {
   std::string ply = binary_ply_triangle({0, 0, 0});
   ply.replace(ply.find("element vertex 3"), 16, "element vertex 4000000000");
@@ -429,6 +507,33 @@ TEST_F(MeshLoaderTest, PlyHeaderCannotClaimMoreElementsThanTheFileHolds) {
   ply = binary_ply_triangle({0, 0, 0});
   ply.replace(ply.find("element face 1"), 14, "element face -1");
   EXPECT_TRUE(contains(load_error(write("negative.ply", ply)), "has the count \"-1\""));
+}
+
+TEST_F(MeshLoaderTest, PlyHeaderOverTheMeshLimitsIsRefusedWithTheNumbers) {
+  // The limit comes before the file-size plausibility check, so the message names it.
+  std::string ply = binary_ply_triangle({0, 0, 0});
+  ply.replace(ply.find("element face 1"), 14, "element face " + std::to_string(kMaxMeshTriangles + 1));
+  EXPECT_TRUE(contains(load_error(write("faces.ply", ply)),
+                       "declares " + std::to_string(kMaxMeshTriangles + 1) +
+                           " face elements; meshes are limited to " + std::to_string(kMaxMeshTriangles) +
+                           " triangles"));
+  ply = binary_ply_triangle({0, 0, 0});
+  ply.replace(ply.find("element vertex 3"), 16, "element vertex " + std::to_string(kMaxMeshVertices + 1));
+  EXPECT_TRUE(contains(load_error(write("vertices.ply", ply)),
+                       "meshes are limited to " + std::to_string(kMaxMeshVertices) + " vertices"));
+}
+
+TEST_F(MeshLoaderTest, ControlCharactersInAMeshPathAreEscaped) {
+  const std::string path = write("bad\nname\x1b[31m.obj", "v 0 0 0\n");
+  try {
+    load_mesh(path, kWhere);
+    ADD_FAILURE() << "expected an InputError";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    EXPECT_EQ(message.find('\x1b'), std::string::npos) << message;
+    EXPECT_TRUE(contains(message, "bad\\nname\\x1b[31m.obj")) << message;
+  }
 }
 
 TEST_F(MeshLoaderTest, PlyWithoutFacesHasNoTriangles) {

@@ -110,6 +110,9 @@ struct RenderDefaults {
   bool priority_shadows = false;
   PixelFilterDesc filter;  // "filter": how samples spread over pixels (render/pixel_filter.h)
   CropWindow crop;         // "crop": the part of the image rendered (core/crop_window.h)
+  // "aovs": the outputs besides the beauty, as AovSet::bits() (render/aov.h, which this header
+  // does not include); none: AovSet::defaults().
+  std::optional<uint32_t> aovs;
 };
 
 // A named entry of the scene's "media" table: what volume primitives are filled with

@@ -13,6 +13,7 @@
 
 #include "core/math.h"
 #include "geometry/mesh_closure.h"
+#include "render/aov.h"
 #include "scene/mesh_loader.h"
 #include "scene/json_reader.h"
 #include "scene/light_parser.h"
@@ -173,9 +174,32 @@ CropWindow read_crop(const JsonCursor& c) {
   return crop;
 }
 
+// "aovs": the names --aov takes (render/aov.h), one per element; the beauty is always written.
+uint32_t read_aovs(const JsonCursor& c) {
+  AovSet set;
+  for (const JsonCursor& e : c.elements("an array of output names")) {
+    const std::string name = e.string();
+    try {
+      if (name.find(',') != std::string::npos) throw InputError("a list");
+      set = AovSet::from_bits(set.bits() | AovSet::parse(name).bits());
+    } catch (const InputError&) {
+      std::vector<std::string> names = {"beauty", "default", "all", "lights"};
+      for (int a = 0; a < kAovCount; ++a) names.emplace_back(aov_name(Aov(a)));
+      std::string message = "unknown output " + e.describe() + " in render.aovs";
+      if (const std::string guess = closest_match(name, names); !guess.empty())
+        message += " (did you mean \"" + guess + "\"?)";
+      std::string list;
+      for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+      e.fail(message + "; valid names: " + list);
+    }
+  }
+  return set.bits();
+}
+
 RenderDefaults parse_render(const JsonCursor& c) {
   ObjectReader r(c, "the render settings");
-  r.allow({"spp", "max_bounces", "max_depth", "max_volume_bounces", "seed", "priority_shadows", "filter", "crop"});
+  r.allow({"spp", "max_bounces", "max_depth", "max_volume_bounces", "seed", "priority_shadows", "filter", "crop",
+           "aovs"});
   RenderDefaults render;
   render.spp = int(r.integer_or("spp", render.spp, Range::closed(1, kMaxSpp)));
   // "max_depth" is the former name of "max_bounces" (PathLimits), kept as an alias.
@@ -190,6 +214,7 @@ RenderDefaults parse_render(const JsonCursor& c) {
   render.priority_shadows = r.boolean_or("priority_shadows", render.priority_shadows);
   if (auto f = r.optional("filter")) render.filter = read_pixel_filter(*f);
   if (auto crop = r.optional("crop")) render.crop = read_crop(*crop);
+  if (auto aovs = r.optional("aovs")) render.aovs = read_aovs(*aovs);
   r.finish();
   return render;
 }
@@ -243,8 +268,8 @@ void read_bounded_medium(ObjectReader& r, const std::string& type, const std::ve
     m.interior = find_medium(*interior, media);
     const NamedMedium& medium = media[size_t(m.interior)];
     if (!is_homogeneous(medium.shader))
-      interior->fail("medium \"" + medium.name +
-                     "\" has a falloff or noise, but a surface's interior medium must be homogeneous "
+      interior->fail("medium " + quote_for_message(medium.name) +
+                     " has a falloff or noise, but a surface's interior medium must be homogeneous "
                      "(constant density); only volume primitives may use it");
   }
   if ((interior || m.priority != kPriorityOff) && type != "dielectric" && type != "null")
@@ -320,22 +345,22 @@ MeshFileShape read_mesh(ObjectReader& r, const std::string& base_dir) {
 
 ShapeGeometry read_geometry(ObjectReader& r, const std::string& type, const std::string& base_dir) {
   if (type == "sphere") {
-    r.allow({"type", "center", "radius", "material", "transform", "open"});
+    r.allow({"type", "center", "radius", "material", "transform", "open", "holdout"});
     const Vec3 center = r.vec3("center");
     return SphereShape{center, r.number("radius", size_range())};
   }
   if (type == "box") {
-    r.allow({"type", "min", "max", "material", "transform", "open"});
+    r.allow({"type", "min", "max", "material", "transform", "open", "holdout"});
     const BoxCorners box = read_box_corners(r);
     return BoxShape{box.min, box.max};
   }
   if (type == "rectangle") {
-    r.allow({"type", "corner", "edge1", "edge2", "material", "transform", "open"});
+    r.allow({"type", "corner", "edge1", "edge2", "material", "transform", "open", "holdout"});
     RectangleShape rect;
     read_parallelogram(r, rect.corner, rect.edge1, rect.edge2);
     return rect;
   }
-  r.allow({"type", "file", "generate", "skip_degenerate", "material", "transform", "open"});
+  r.allow({"type", "file", "generate", "skip_degenerate", "material", "transform", "open", "holdout"});
   if (const auto g = r.optional("generate")) {
     if (r.has("file")) r.fail("a mesh takes either \"file\" or \"generate\", not both");
     ObjectReader gr(*g, "a generated mesh");
@@ -357,7 +382,7 @@ ShapeGeometry read_geometry(ObjectReader& r, const std::string& type, const std:
 // now and its edges counted (mesh_closure.h).
 void check_closed(const ObjectReader& r, const ShapeDesc& shape, const Material& material) {
   if (material.priority == kPriorityOff) return;
-  const std::string bounds = "material \"" + material.name + "\" bounds a medium but ";
+  const std::string bounds = "material " + quote_for_message(material.name) + " bounds a medium but ";
   const std::string fix = "; close it or mark the shape \"open\": true";
   if (std::holds_alternative<RectangleShape>(shape.geometry)) r.fail(bounds + "a rectangle is open" + fix);
   const auto* file = std::get_if<MeshFileShape>(&shape.geometry);
@@ -387,6 +412,7 @@ ShapeDesc parse_shape(const JsonCursor& c, const std::vector<Material>& material
   if (auto t = r.optional("transform")) shape.transform = parse_transform(*t);
   const bool open = r.boolean_or("open", false);
   if (!open) check_closed(r, shape, materials[size_t(shape.material)]);
+  shape.holdout = r.boolean_or("holdout", false);
   r.finish();
   return shape;
 }
@@ -429,6 +455,11 @@ SceneDesc parse_scene_file(const std::string& path) {
   if (!fs::exists(path, ec)) throw InputError({path, ""}, "cannot read the scene file: no such file");
   if (fs::is_directory(path, ec))
     throw InputError({path, ""}, "cannot read the scene file: it is a directory");
+  // Refused before reading: a huge file would be read whole into memory first.
+  if (const auto size = fs::file_size(path, ec); !ec && size > kMaxJsonBytes)
+    throw InputError({path, ""}, "the scene file is " + std::to_string(size) +
+                                     " bytes; scene files are limited to " + std::to_string(kMaxJsonBytes) +
+                                     " bytes (64 MiB)");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError({path, ""}, std::string("cannot open the scene file: ") + std::strerror(errno));
   std::ostringstream text;

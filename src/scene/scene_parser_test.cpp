@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/math.h"
+#include "render/aov.h"
 
 namespace caligo {
 namespace {
@@ -186,6 +187,44 @@ TEST(SceneParser, MaxBounces) {
       R"({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]}, "render": {"max_bounces": 3}})", "b.json", "");
   EXPECT_EQ(scene.render.limits.max_bounces, 3);
   EXPECT_EQ(scene.render.limits.max_volume_bounces, 128);
+}
+
+// "holdout" marks a shape as a matte; it is off unless given.
+TEST(SceneParser, HoldoutShapes) {
+  const SceneDesc scene = parse_scene_text(R"json({
+    "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},
+    "materials": {"w": {"type": "diffuse", "reflectance": 0.5}},
+    "shapes": [
+      {"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "w", "holdout": true},
+      {"type": "box", "min": [-1, -1, -1], "max": [1, 1, 1], "material": "w", "holdout": false},
+      {"type": "rectangle", "corner": [0, 0, 0], "edge1": [1, 0, 0], "edge2": [0, 0, 1], "material": "w"},
+      {"type": "mesh", "generate": {"kind": "sphere", "triangles": 80}, "material": "w", "holdout": true}
+    ]})json",
+                                           "h.json", "");
+  ASSERT_EQ(scene.shapes.size(), 4u);
+  EXPECT_TRUE(scene.shapes[0].holdout);
+  EXPECT_FALSE(scene.shapes[1].holdout);
+  EXPECT_FALSE(scene.shapes[2].holdout);
+  EXPECT_TRUE(scene.shapes[3].holdout);
+}
+
+// "render.aovs": exactly the listed outputs (the beauty always), with --aov's names and shortcuts.
+TEST(SceneParser, RenderAovs) {
+  const auto aovs_of = [](const std::string& render) {
+    return parse_scene_text(R"({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]}, "render": )" + render + "}",
+                            "a.json", "")
+        .render.aovs;
+  };
+  const auto set = [](AovSet a) { return std::optional<uint32_t>(a.bits()); };
+  EXPECT_EQ(aovs_of("{}"), std::nullopt);  // the renderer's default, AovSet::defaults()
+  EXPECT_EQ(aovs_of(R"({"aovs": []})"), set(AovSet{}));
+  EXPECT_EQ(aovs_of(R"({"aovs": ["alpha", "volume.direct", "beauty"]})"),
+            set(AovSet{}.with(Aov::kAlpha).with(Aov::kVolumeDirect)));
+  EXPECT_EQ(aovs_of(R"({"aovs": ["all"]})"), set(AovSet::all()));
+  AovSet lights_and_default = AovSet::defaults();
+  for (int k = 0; k < kLightKindCount; ++k) lights_and_default = lights_and_default.with(light_aov(LightKind(k)));
+  EXPECT_EQ(aovs_of(R"({"aovs": ["lights", "default"]})"), set(lights_and_default));
+  EXPECT_EQ(aovs_of(R"({"aovs": ["default"]})"), set(AovSet::defaults()));
 }
 
 TEST(SceneParser, DefaultsForOptionalParts) {
@@ -470,6 +509,15 @@ const BadCase kBadCases[] = {
      },
      "/shapes/0/file", R"(expected a mesh file ending in .obj, .gltf, .glb, .ply or .dae, got "bunny.stl")"},
     {"SceneNotObject", [](OJson& s) { s = OJson::array(); }, "", "expected a scene (a JSON object), got []"},
+    {"HoldoutNotBoolean", [](OJson& s) { s["shapes"][2]["holdout"] = 1; }, "/shapes/2/holdout",
+     "expected true or false, got 1"},
+    {"HoldoutAsString", [](OJson& s) { s["shapes"][0]["holdout"] = "yes"; }, "/shapes/0/holdout",
+     R"(expected true or false, got "yes")"},
+    {"AovsNotArray", [](OJson& s) { s["render"] = {{"aovs", "alpha"}}; }, "/render/aovs",
+     R"(expected an array of output names, got "alpha")"},
+    {"UnknownAov", [](OJson& s) { s["render"] = {{"aovs", {"alpha", "volume_drect"}}}; }, "/render/aovs/1",
+     R"(unknown output "volume_drect" in render.aovs)"},
+    {"AovNotString", [](OJson& s) { s["render"] = {{"aovs", {3}}}; }, "/render/aovs/0", "expected a string"},
 };
 
 class BadInput : public ::testing::TestWithParam<BadCase> {};
@@ -682,6 +730,12 @@ TEST(SceneParser, BadMediaAreLocated) {
             std::string::npos);
   EXPECT_NE(error_of(R"({"m": {"density": -2}})", sphere).find("/media/m/density"), std::string::npos);
   EXPECT_NE(error_of(R"({"m": {"step_size": 0}})", sphere).find("/media/m/step_size"), std::string::npos);
+  EXPECT_NE(error_of(R"({"m": {"holdout": -0.5}})", sphere).find("/media/m/holdout: expected a number >= 0"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"m": {"holdout": 1e39}})", sphere).find("/media/m/holdout: expected a finite number"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"m": {"holdout": [1, 1, 1]}})", sphere).find("/media/m/holdout: expected a number"),
+            std::string::npos);
   EXPECT_NE(error_of(R"({"m": {"colour": 1}})", sphere).find("/media/m/colour: unknown key"),
             std::string::npos);
   EXPECT_NE(error_of(R"({"fog": {}})", sphere).find("/volumes/0/medium: unknown medium \"m\""),

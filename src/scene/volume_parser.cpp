@@ -82,7 +82,7 @@ FlameEmission parse_flame(const JsonCursor& c) {
 VolumeShader parse_medium(const JsonCursor& c) {
   ObjectReader r(c, "a medium");
   r.allow({"sigma_a", "sigma_s", "albedo", "extinction", "emission", "density", "phase", "falloff", "noise",
-           "step_size", "step_scale", "blackbody", "flame", "color_tint"});
+           "step_size", "step_scale", "blackbody", "flame", "color_tint", "holdout"});
   VolumeShader s;
   if (r.has("albedo") || r.has("extinction")) {
     // The artist's form: how much light is lost per metre, and which fraction of it scatters.
@@ -97,6 +97,9 @@ VolumeShader parse_medium(const JsonCursor& c) {
     s.sigma_s = r.rgb_or("sigma_s", RGB(0.0f));
   }
   s.emission = r.rgb_or("emission", RGB(0.0f));
+  // Holdout extinction sigma_h (grey, 1/m at density 1): the medium hides what is behind it
+  // and shows the background plate instead (VolumeShader::holdout).
+  s.holdout = r.number_or("holdout", 0.0f, Range::non_negative());
   s.density = r.number_or("density", 1.0f, Range::non_negative());
   if (auto p = r.optional("phase")) s.phase = parse_phase(*p);
   if (auto f = r.optional("falloff")) {

@@ -9,6 +9,7 @@
 
 #include "scene/scene_parser.h"
 #include "volumes/mesh_volume.h"
+#include "volumes/volume_context.h"
 
 namespace caligo {
 namespace {
@@ -61,6 +62,25 @@ TEST(VolumeParser, AlbedoAndExtinctionGiveTheCoefficients) {
   EXPECT_NE(error_of(R"({"m": {"albedo": 1.5, "extinction": 1}})",
                      R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1, "medium": "m"}])")
                 .find("/media/m/albedo"),
+            std::string::npos);
+}
+
+// "holdout": the grey holdout extinction sigma_h, beside sigma_a and sigma_s or albedo/extinction;
+// it scales with density like them (MediumSample::holdout).
+TEST(VolumeParser, HoldoutExtinction) {
+  const std::string sphere = R"([{"type": "sphere", "center": [0, 0, 0], "radius": 1, "medium": "m"}])";
+  EXPECT_FLOAT_EQ(parse(R"({"m": {"sigma_s": 1}})", sphere).volumes[0].shader.holdout, 0.0f);
+  const VolumeShader a = parse(R"({"m": {"sigma_s": 1, "holdout": 2.5}})", sphere).volumes[0].shader;
+  EXPECT_FLOAT_EQ(a.holdout, 2.5f);
+  EXPECT_EQ(a.sigma_s, RGB(1.0f));
+  const SceneDesc b = parse(R"({"m": {"albedo": 0.5, "extinction": 2, "holdout": 4, "density": 0.5}})", sphere);
+  EXPECT_FLOAT_EQ(b.volumes[0].shader.holdout, 4.0f);
+  VolumeContext context;
+  const MediumSample m = shade_volume(b.volumes[0], Vec3(0.0f), context);
+  EXPECT_FLOAT_EQ(m.holdout, 2.0f);  // 4 x density 0.5
+  EXPECT_EQ(m.sigma_t(), RGB(0.5f + 0.5f + 2.0f));
+  EXPECT_NE(error_of(R"({"m": {"holdout": -1}})", sphere).find("/media/m/holdout"), std::string::npos);
+  EXPECT_NE(error_of(R"({"m": {"holdout": true}})", sphere).find("/media/m/holdout: expected a number"),
             std::string::npos);
 }
 
