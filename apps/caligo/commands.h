@@ -16,11 +16,11 @@ namespace caligo {
 
 struct RenderOptions {
   std::string scene;   // a scene file or a built-in's name
-  std::string output;  // .exr path; a .png preview is written beside it
+  std::optional<std::string> output;  // .exr path (default: the scene's name); a .png preview beside it
   std::optional<int> spp;
   std::optional<std::string> resolution;  // "WxH"
   std::optional<int> threads;
-  std::optional<uint64_t> seed;
+  std::optional<int64_t> seed;  // signed so that -1 is seen (and refused), not wrapped
   // PathSettings (integrators/path_settings.h), each overriding the scene's or the default.
   std::optional<int> max_bounces;  // --max-bounces, alias --max-depth
   std::optional<int> max_volume_bounces;

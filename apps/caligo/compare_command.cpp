@@ -1,6 +1,7 @@
 // caligo compare A.exr B.exr [--max-rmse X]: error metrics of A against the reference B.
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <cstdio>
 
 #include "commands.h"
@@ -18,6 +19,9 @@ void add_compare_command(CLI::App& app, CompareOptions& o) {
 }
 
 int run_compare(const CompareOptions& o) {
+  // A NaN limit would pass every comparison (rmse > NaN is false): refused like any bad number.
+  if (o.max_rmse && !(std::isfinite(*o.max_rmse) && *o.max_rmse >= 0.0))
+    throw InputError(kCommandLine, "--max-rmse: expected a finite number >= 0");
   const Image a = read_exr(o.a);
   const Image b = read_exr(o.b);
   ImageMetrics m;

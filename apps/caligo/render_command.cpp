@@ -198,7 +198,10 @@ RenderSettings settings_from(const RenderOptions& o, const SceneDesc& desc) {
     if (*o.threads < 1 || *o.threads > 1024) throw InputError(kCommandLine, "--threads: expected 1 to 1024");
     s.threads = *o.threads;
   }
-  if (o.seed) s.seed = *o.seed;
+  if (o.seed) {
+    if (*o.seed < 0) throw InputError(kCommandLine, "--seed: expected a non-negative integer");
+    s.seed = uint64_t(*o.seed);
+  }
   apply_path_options(o, s.path);
   apply_image_options(o, desc, s);
   return s;
@@ -324,7 +327,10 @@ int run_render(const RenderOptions& o) {
   RenderSettings settings = settings_from(o, desc);
   const Progressive progressive = progressive_from(o);
   if (progressive.target_rmse) settings.aovs = settings.aovs.with(Aov::kVariance);
-  const std::string exr = o.output.empty() ? default_output(o.scene) : o.output;
+  if (!(std::isfinite(o.exposure) && std::abs(o.exposure) <= 64.0f))
+    throw InputError(kCommandLine, "--exposure: expected stops in [-64, 64]");
+  if (o.output && o.output->empty()) throw InputError(kCommandLine, "-o: the output path is empty");
+  const std::string exr = o.output ? *o.output : default_output(o.scene);
   std::filesystem::path png_path = exr;
   png_path.replace_extension(".png");
   const std::string png = png_path.string();
