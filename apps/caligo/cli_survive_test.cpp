@@ -191,3 +191,26 @@ TEST_F(Survive, NumericOptionsAreValidated) {
 }
 
 }  // namespace
+
+namespace {
+
+using namespace caligo_cli;
+
+class Limits : public CliFixture {};
+
+// A film larger than the machine's free memory is refused before the render, with the estimate.
+TEST_F(Limits, AFilmTooLargeForMemoryIsRefusedFirst) {
+  const uint64_t need = caligo::Film::memory_estimate({16384, 4096}, caligo::AovSet::all());
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key, unit;
+  uint64_t kib = 0, available = 0;
+  while (meminfo >> key >> kib >> unit)
+    if (key == "MemAvailable:") available = kib * 1024;
+  if (available == 0 || available >= need) GTEST_SKIP() << "this machine has room for the film";
+  const RunResult r = run("render furnace --res 16384x4096 --aov all --spp 1 -q -o " + (dir_ / "big.exr").string());
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find(std::to_string(need >> 20) + " MiB"), std::string::npos) << r.err;
+  EXPECT_TRUE(outputs().empty());
+}
+
+}  // namespace

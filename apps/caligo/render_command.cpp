@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <fstream>
 #include <cstdlib>
 #include <optional>
 #include <filesystem>
@@ -304,6 +305,28 @@ std::pair<int, int> sample_range(const Film& film, const RenderSettings& s) {
 
 int samples_done(const Film& film, const RenderSettings& s) { return sample_range(film, s).first; }
 
+// The memory this machine can still give (MemAvailable), or nullopt where it cannot be read.
+std::optional<uint64_t> available_memory() {
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  uint64_t kib = 0;
+  std::string unit;
+  while (meminfo >> key >> kib >> unit)
+    if (key == "MemAvailable:") return kib * 1024;
+  return std::nullopt;
+}
+
+// A render whose film would not fit in the machine's memory is refused before it starts.
+void check_memory(const RenderSettings& s) {
+  const uint64_t need = Film::memory_estimate(s.resolution, s.aovs);
+  const auto have = available_memory();
+  if (have && need > *have)
+    throw EnvironmentError("the film of a " + std::to_string(s.resolution.x) + "x" + std::to_string(s.resolution.y) +
+                           " render with these outputs needs about " + std::to_string(need >> 20) +
+                           " MiB, but only " + std::to_string(*have >> 20) +
+                           " MiB of memory are available (use fewer --aov layers, a smaller --res or --crop)");
+}
+
 // A checkpoint to resume: its film must be this render's (key, resolution, outputs).
 Film load_checkpoint(const std::string& path, uint64_t key, const RenderSettings& s) {
   uint64_t saved_key = 0;
@@ -343,6 +366,7 @@ int run_render(const RenderOptions& o) {
   const std::string checkpoint = o.checkpoint ? *o.checkpoint : exr.substr(0, exr.size() - 4) + ".ckpt";
   if (o.checkpoint) outputs.add(checkpoint, "checkpoint");
   const uint64_t key = checkpoint_key(scene_source(o.scene), settings, o.time, o.priorities);
+  check_memory(settings);
   const auto scene = Scene::build(desc);
   const Progress::Style style = o.quiet ? Progress::Style::kQuiet : Progress::Style::kAuto;
 

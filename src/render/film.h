@@ -23,6 +23,10 @@ class Film {
  public:
   Film(Vec2i resolution, AovSet aovs);
 
+  // Bytes a film of this shape holds, and what resolving it into an Image adds: what a render
+  // needs besides the scene (checked against the machine's memory before rendering).
+  static uint64_t memory_estimate(Vec2i resolution, AovSet aovs);
+
   Vec2i resolution() const { return resolution_; }
   AovSet aovs() const { return aovs_; }
 
