@@ -209,8 +209,9 @@ TEST_F(GridIo, RejectsAnUnknownNanoVdbCodec) {
   expect_unreadable(write_bytes("codec.nvdb", bytes), "unknown codec");
 }
 
-// Found by fuzz/grid_fuzz.cpp (UBSan): a root offset pointing outside the grid was bound to a
-// reference (tree().root()) before the layout check looked at it.
+// Found by fuzz/grid_fuzz.cpp (UBSan, twice): a root offset pointing outside the grid was added
+// to the tree's address (a pointer overflow) and bound to a reference (tree().root()) before
+// the layout check looked at it; it is now checked as a number first.
 TEST_F(GridIo, RejectsANanoVdbRootOutsideTheGrid) {
   write_grid_file(path("cloud.nvdb"), generate_grids({GeneratedVolume::kCloud, 8, 1}));
   std::string bytes = slurp(path("cloud.nvdb"));
@@ -221,6 +222,18 @@ TEST_F(GridIo, RejectsANanoVdbRootOutsideTheGrid) {
   const uint64_t far = 0x3042a5d66f71606eull;  // the fuzzer's
   std::memcpy(bytes.data() + root_offset_at, &far, sizeof(far));
   expect_unreadable(write_bytes("root.nvdb", bytes), "root outside the buffer");
+}
+
+// Found by fuzz/grid_fuzz.cpp (ASan, heap-buffer-overflow): a grid index other than 0 made
+// GridHandle::grid() step past the end of the one-grid buffer looking for that grid.
+TEST_F(GridIo, RejectsANanoVdbGridIndexOtherThanZero) {
+  write_grid_file(path("cloud.nvdb"), generate_grids({GeneratedVolume::kCloud, 8, 1}));
+  std::string bytes = slurp(path("cloud.nvdb"));
+  // The grid's bytes start after the header (16), metadata (176) and name (8); its mGridIndex
+  // follows mMagic, mChecksum (8 each), mVersion and mFlags (4 each).
+  const uint32_t index = 1;
+  std::memcpy(bytes.data() + 16 + 176 + 8 + 24, &index, sizeof(index));
+  expect_unreadable(write_bytes("index.nvdb", bytes), "disagrees with its header");
 }
 
 TEST_F(GridIo, RejectsTruncatedAndCorruptFiles) {

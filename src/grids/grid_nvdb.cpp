@@ -138,8 +138,27 @@ class NvdbReader {
   std::ifstream in_;
 };
 
+// A node's child offsets (NanoVDB adds them to the node's address) all land inside
+// [lo, lo + size), checked as numbers: a pointer sum that leaves the buffer, let alone one that
+// wraps the address space, is undefined behaviour before anything is read.
+template <typename NodeT>
+bool child_offsets_inside(const NodeT& node, const uint8_t* lo, uint64_t size) {
+  const int64_t at = reinterpret_cast<const uint8_t*>(&node) - lo;  // node is inside
+  const auto inside = [&](int64_t offset) { return offset >= -at && offset <= int64_t(size) - at; };
+  if constexpr (requires { node.data()->mTableSize; }) {  // the root: a table of tiles
+    for (uint32_t n = 0; n < node.data()->mTableSize; ++n)
+      if (!inside(node.data()->tile(n)->child)) return false;
+  } else {  // an internal node: a child mask over a table of offsets or values
+    for (uint32_t n = 0; n < NodeT::SIZE; ++n)
+      if (node.data()->mChildMask.isOn(n) && !inside(node.data()->mTable[n].child)) return false;
+  }
+  return true;
+}
+
 // Every node a traversal can reach lies inside the buffer (NanoVDB's validator bounds the
-// root table by the root's own claimed size and skips leaves, so this comes first).
+// root table by the root's own claimed size and skips leaves, so this comes first). Nodes are
+// handled through pointers until checked: binding a reference to a misaligned or outside
+// address (as tree().root() and *iterator do) is already undefined behaviour.
 template <typename T>
 std::string check_layout(const nanovdb::NanoGrid<T>& grid, uint64_t buffer_size) {
   const uint8_t* lo = reinterpret_cast<const uint8_t*>(&grid);
@@ -150,15 +169,19 @@ std::string check_layout(const nanovdb::NanoGrid<T>& grid, uint64_t buffer_size)
            (reinterpret_cast<uintptr_t>(b) % NANOVDB_DATA_ALIGNMENT) == 0;
   };
   if (!inside(&grid.tree(), sizeof(grid.tree()))) return "tree outside the buffer";
-  // Nodes are handled through pointers until checked: binding a reference to a misaligned or
-  // outside address (as tree().root() and *iterator do) is already undefined behaviour.
+  const uint64_t tree_at = uint64_t(reinterpret_cast<const uint8_t*>(&grid.tree()) - lo);
+  if (grid.tree().data()->mNodeOffset[3] > buffer_size - tree_at) return "root outside the buffer";
   using RootT = typename nanovdb::NanoGrid<T>::RootType;
   const RootT* root = grid.tree().data()->template getRoot<RootT>();
-  if (!inside(root, sizeof(RootT)) || !inside(root, root->memUsage())) return "root outside the buffer";
+  if (!inside(root, sizeof(RootT)) || !inside(root, root->memUsage()) ||
+      !child_offsets_inside(*root, lo, buffer_size))
+    return "root outside the buffer";
   for (auto upper = root->beginChild(); upper; ++upper) {
-    if (!inside(upper.operator->(), sizeof(*upper))) return "node outside the buffer";
+    if (!inside(upper.operator->(), sizeof(*upper)) || !child_offsets_inside(*upper, lo, buffer_size))
+      return "node outside the buffer";
     for (auto lower = upper->beginChild(); lower; ++lower) {
-      if (!inside(lower.operator->(), sizeof(*lower))) return "node outside the buffer";
+      if (!inside(lower.operator->(), sizeof(*lower)) || !child_offsets_inside(*lower, lo, buffer_size))
+        return "node outside the buffer";
       for (auto leaf = lower->beginChild(); leaf; ++leaf)
         if (!inside(leaf.operator->(), sizeof(*leaf))) return "leaf outside the buffer";
     }

@@ -825,3 +825,30 @@ TEST_F(RealMeshTest, BrokenGltfFilesAreInputErrors) {
 
 }  // namespace
 }  // namespace caligo
+
+namespace caligo {
+namespace {
+
+// Found by fuzz/mesh_fuzz.cpp (ply): an ASCII face line whose list length is 442949672954 made
+// assimp allocate and fill ~9 GB before failing. A list longer than its line is refused first.
+TEST(PlyAsciiLists, AListLongerThanItsLineIsRefusedBeforeAssimpAllocates) {
+  const auto path = std::filesystem::temp_directory_path() / "caligo_ply_list.ply";
+  const std::string header =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
+  std::ofstream(path) << header << "442949672954 0 1 2\n";
+  try {
+    load_mesh(path.string(), {"scene.json", "/shapes/0"});
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("PLY line 13: a list says it holds \"442949672954\" values"),
+              std::string::npos)
+        << e.what();
+  }
+  std::ofstream(path) << header << "3 0 1 2\n";
+  EXPECT_EQ(load_mesh(path.string(), {"scene.json", "/shapes/0"}).triangle_count(), 1u);
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace caligo
