@@ -344,6 +344,9 @@ Film load_checkpoint(const std::string& path, uint64_t key, const RenderSettings
 
 int run_render(const RenderOptions& o) {
   if (o.list_builtins) return list_builtins();
+  // From here on the first SIGINT/SIGTERM asks for a stop (a checkpoint and a partial image,
+  // empty if it comes before the render), a second quits.
+  const InterruptGuard interrupt;
   if (!(o.time >= 0.0f && o.time <= 1e6f)) throw InputError(kCommandLine, "--time: expected seconds in [0, 1e6]");
   SceneDesc desc = load_scene(o.scene).at_time(o.time);
   for (const std::string& p : o.priorities) apply_priority(p, desc);
@@ -401,7 +404,6 @@ int run_render(const RenderOptions& o) {
 
   Film film = o.resume ? load_checkpoint(*o.resume, key, settings) : Film(settings.resolution, settings.aovs);
   const int target = settings.spp;
-  const InterruptGuard interrupt;
   RenderStats total;
   const auto start = std::chrono::steady_clock::now();
   const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
