@@ -39,7 +39,7 @@ uint64_t checkpoint_key(const std::string& scene_source, const RenderSettings& s
                         const std::vector<std::string>& priorities) {
   std::ostringstream canon;
   const PathSettings& p = s.path;
-  canon << "v1 res " << s.resolution.x << 'x' << s.resolution.y << " seed " << s.seed << " bounces "
+  canon << "v1 caligo " << CALIGO_VERSION << " res " << s.resolution.x << 'x' << s.resolution.y << " seed " << s.seed << " bounces "
         << p.limits.max_bounces << ' ' << p.limits.max_volume_bounces << " rr " << p.russian_roulette_depth
         << " null " << p.max_null_crossings << " dist " << int(p.distance_sampling) << " nee "
         << hex(p.volume_nee_scale) << " lights " << int(p.light_sampler) << " abs " << p.absorption_by_weight

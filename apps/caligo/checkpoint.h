@@ -13,9 +13,10 @@
 
 namespace caligo {
 
-// FNV-1a over the scene source (a file's bytes, or a built-in's JSON) and a canonical text of
-// the settings. Meshes, grids and images the scene refers to are not read: changing them
-// between a checkpoint and its resume is not detected.
+// FNV-1a over the scene source (a file's bytes, or a built-in's JSON), caligo's version and a
+// canonical text of the settings. Meshes, grids and images the scene refers to are not read:
+// changing them between a checkpoint and its resume is not detected (nor is a rebuild of the
+// same version with a changed integrator).
 uint64_t checkpoint_key(const std::string& scene_source, const RenderSettings& settings, float time,
                         const std::vector<std::string>& priorities);
 

@@ -722,3 +722,23 @@ TEST_F(Cli, ControlCharactersInFileNamesAndArgumentsAreEscaped) {
   EXPECT_EQ(command.exit_code, 2);
   EXPECT_EQ(command.err.rfind("caligo: error: unknown command \"ren\\nder\"", 0), 0u) << command.err;
 }
+
+TEST_F(Cli, DeeplyNestedMeshFilesAreInputErrorsNotCrashes) {
+  // Both used to overflow the stack in the parsing library (SIGSEGV, exit 139).
+  const int n = 20000;
+  write("deep.gltf", R"({"asset": {"version": "2.0"}, "extras": )" + std::string(n, '[') + std::string(n, ']') + "}");
+  std::string nodes;
+  for (int i = 0; i < n; ++i) nodes += "<node>";
+  for (int i = 0; i < n; ++i) nodes += "</node>";
+  write("deep.dae", "<COLLADA><library_visual_scenes><visual_scene>" + nodes +
+                        "</visual_scene></library_visual_scenes></COLLADA>");
+  for (const std::string file : {"deep.gltf", "deep.dae"}) {
+    const std::string shape = R"({"type": "mesh", "file": ")" + file + R"(", "material": "white"})";
+    const fs::path scene = write(file + ".json", scene_with("", "", shape));
+    const RunResult r = run("render " + scene.string() + " -q -o " + (dir_ / "out.exr").string());
+    EXPECT_EQ(r.exit_code, 2) << file << ": " << r.err.substr(0, 500);
+    EXPECT_NE(r.err.find(file + ": line 1: "), std::string::npos) << r.err.substr(0, 500);
+    EXPECT_NE(r.err.find("levels deep"), std::string::npos) << r.err.substr(0, 500);
+    EXPECT_TRUE(outputs().empty()) << file;
+  }
+}

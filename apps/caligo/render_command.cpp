@@ -368,6 +368,17 @@ int run_render(const RenderOptions& o) {
   outputs.add(png, "preview");
   const std::string checkpoint = o.checkpoint ? *o.checkpoint : exr.substr(0, exr.size() - 4) + ".ckpt";
   if (o.checkpoint) outputs.add(checkpoint, "checkpoint");
+  // The checkpoint an interrupt writes when none was asked for: checked now too, and if it
+  // cannot be written an interrupt saves the partial image alone (and says so).
+  bool interrupt_checkpoint = true;
+  if (!o.checkpoint) {
+    try {
+      OutputTransaction probe = outputs;
+      probe.add(checkpoint, "checkpoint");
+    } catch (const std::exception&) {
+      interrupt_checkpoint = false;
+    }
+  }
   const uint64_t key = checkpoint_key(scene_source(o.scene), settings, o.time, o.priorities);
   check_memory(settings);
   const auto scene = Scene::build(desc);
@@ -380,8 +391,8 @@ int run_render(const RenderOptions& o) {
           write_png(temp, image.width(), image.height(), to_srgb8_preview(image, PreviewSettings{o.exposure, true}));
         }};
     OutputTransaction tx = outputs;
-    if (with_checkpoint) {
-      if (!o.checkpoint) tx.add(checkpoint, "checkpoint");
+    if (with_checkpoint && !o.checkpoint && interrupt_checkpoint) {
+      tx.add(checkpoint, "checkpoint");
       writers.push_back([&](const std::string& temp) { film->save(temp, key); });
     } else if (o.checkpoint) {
       writers.push_back([&](const std::string& temp) { film->save(temp, key); });
@@ -452,21 +463,40 @@ int run_render(const RenderOptions& o) {
         break;
       }
       if (progressive.checkpoint_every && done < target && elapsed() - last_checkpoint >= *progressive.checkpoint_every) {
-        film.save(checkpoint, key);
+        // A checkpoint that fails (a full disk for a moment) must not end a long render: the
+        // film is still in memory, and the next checkpoint or the end tries again.
+        try {
+          film.save(checkpoint, key);
+        } catch (const std::exception& e) {
+          std::fprintf(stderr, "caligo: warning: checkpoint not saved, the render goes on: %s\n",
+                       printable_for_message(e.what()).c_str());
+        }
         last_checkpoint = elapsed();
       }
     }
   }
   total.seconds = elapsed();
   const Image image = film.resolve();
-  if (interrupt.stopped()) {
+  const auto [fewest_samples, most_samples] = sample_range(film, settings);
+  if (most_samples > target && !o.quiet)
+    std::fprintf(stderr, "caligo: the checkpoint already held %d samples per pixel, more than --spp %d: all are kept\n",
+                 most_samples, target);
+  // A signal after the last sample changes nothing: the render is complete.
+  const bool complete = fewest_samples >= target || !stopped_by.empty();
+  if (interrupt.stopped() && !complete) {
     write_outputs(image, &film, true);
-    const auto [fewest, most] = sample_range(film, settings);
-    std::fprintf(stderr,
-                 "caligo: interrupted (signal %d) with %d to %d of %d samples per pixel: wrote the partial image %s "
-                 "and the checkpoint %s; continue with --resume %s\n",
-                 interrupt.signal_number(), fewest, most, target, quote_for_message(exr).c_str(),
-                 quote_for_message(checkpoint).c_str(), quote_for_message(checkpoint).c_str());
+    if (o.checkpoint || interrupt_checkpoint)
+      std::fprintf(stderr,
+                   "caligo: interrupted (signal %d) with %d to %d of %d samples per pixel: wrote the partial image %s "
+                   "and the checkpoint %s; continue with --resume %s\n",
+                   interrupt.signal_number(), fewest_samples, most_samples, target, quote_for_message(exr).c_str(),
+                   quote_for_message(checkpoint).c_str(), quote_for_message(checkpoint).c_str());
+    else
+      std::fprintf(stderr,
+                   "caligo: interrupted (signal %d) with %d to %d of %d samples per pixel: wrote the partial image %s; "
+                   "no checkpoint (%s cannot be written; give --checkpoint FILE)\n",
+                   interrupt.signal_number(), fewest_samples, most_samples, target, quote_for_message(exr).c_str(),
+                   quote_for_message(checkpoint).c_str());
     return kExitInterruptedBase + interrupt.signal_number();
   }
   write_outputs(image, &film, false);

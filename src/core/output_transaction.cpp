@@ -54,6 +54,12 @@ void check_output_path(const std::string& path, const std::string& what) {
 
 void OutputTransaction::add(const std::string& path, const std::string& what) {
   check_output_path(path, what);
+  // Two outputs of one name would overwrite each other (-o x.exr --checkpoint x.exr).
+  std::error_code ec;
+  const fs::path canonical = fs::weakly_canonical(path, ec);
+  for (const std::string& other : paths_)
+    if (other == path || (!ec && fs::weakly_canonical(other, ec) == canonical))
+      throw InputError(SourceLocation{path, ""}, "the " + what + " output is the same file as another output");
   paths_.push_back(path);
 }
 
@@ -68,6 +74,15 @@ void OutputTransaction::commit(const std::vector<Writer>& writers) {
     temps.push_back(temp_beside(paths_[i], ".tmp-"));
     try {
       writers[i](temps.back().string());
+      // On disk before the rename: after a crash or power loss the name holds the whole new
+      // file or the old one, never an empty one.
+      const int fd = ::open(temps.back().c_str(), O_RDONLY);
+      if (fd < 0 || ::fsync(fd) != 0) {
+        const std::string why = std::strerror(errno);
+        if (fd >= 0) ::close(fd);
+        throw std::runtime_error("cannot flush " + temps.back().string() + ": " + why);
+      }
+      ::close(fd);
     } catch (const std::exception& e) {
       discard();
       throw EnvironmentError(paths_[i] + ": cannot write (nothing was replaced): " + e.what());

@@ -6,7 +6,9 @@
 // Outputs are checked when they are added, before any work is done, so a bad -o fails in
 // milliseconds rather than after an hour of rendering:
 //   - an empty name, a path that is a directory, or a folder that does not exist: InputError;
-//   - a folder where no file can be created (read-only, no permission): EnvironmentError.
+//   - a folder where no file can be created (read-only, no permission): EnvironmentError;
+//   - a path that is already an output of the transaction: InputError.
+// Each file is flushed to disk (fsync) before the renames.
 // Failures while writing (disk full, I/O errors) are EnvironmentErrors naming the file.
 #pragma once
 

@@ -331,3 +331,24 @@ TEST(FilmScenes, StoppedAndResumedPassesEqualOneRenderBitForBit) {
 
 }  // namespace
 }  // namespace caligo
+
+namespace caligo {
+namespace {
+
+// Glass is opaque to alpha (as in Arnold, and Cycles without "transparent glass"): a glass sphere
+// over a hidden sky has alpha 1 where it covers the pixel (the sky hidden from the camera stays
+// hidden through specular chains: EnvironmentLight::visible).
+TEST(FilmScenes, GlassIsOpaqueToAlpha) {
+  SceneDesc desc = camera_at({0, 0, 5}, {0, 0, 0}, {4, 4}, 5.0f);  // the sphere fills the view
+  desc.shapes.push_back({SphereShape{{0, 0, 0}, 1.0f}, {}, add_material(desc, DielectricBsdf{1.5f})});
+  EnvironmentLight sky{RGB(1.0f)};
+  sky.visible = false;
+  desc.lights.push_back(sky);
+  const auto scene = Scene::build(desc);
+  const Image image = render(*scene, settings_for(desc, 4, AovSet::defaults())).image;
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) EXPECT_EQ(channel(image, x, y, "A"), 1.0f);
+}
+
+}  // namespace
+}  // namespace caligo

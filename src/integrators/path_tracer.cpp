@@ -394,11 +394,14 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
     if (!is_finite(ray.direction) || !state.throughput.is_finite()) break;
     const auto hit = nested ? nearest_visible_hit(scene, ray, settings, scratch, counters)
                             : nearest_opaque_hit(scene, ray, settings, counters);
-    // The camera's view (only specular events so far) sees the background, or a holdout, at the
-    // end of this segment: its share of the path weight joins the visibility (1 - alpha) whether
-    // or not the path then scatters on the way, so alpha behind a medium is exact, not 0 or 1.
+    // The camera ray itself (no event yet; null boundaries are not events) sees the background,
+    // or a holdout, at the end of this segment: its share joins the visibility (1 - alpha)
+    // whether or not the path then scatters on the way, so alpha behind a medium is exact, not
+    // 0 or 1. Glass and mirrors are opaque to alpha, as in Arnold and Cycles by default: what is
+    // seen in them is part of the render, not a hole onto the plate.
     const bool holdout_hit = hit && scene.is_holdout(hit->geom_id);
-    const float seen = state.camera_view ? state.throughput.average() : 0.0f;
+    const bool camera_ray = state.events == 0;
+    const RGB throughput_in = state.throughput;  // integrate_medium changes it
     // The first surface the camera ray meets is recorded before the medium in front of it is
     // sampled: a camera path that scatters on the way still reports the surface behind.
     std::optional<SurfaceInteraction> hit_si;
@@ -414,9 +417,11 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
       const SegmentOutcome outcome =
           integrate_medium(scene, ray, hit ? hit->t : kInfinity, sampler, settings, state, out, scratch, counters,
                            nested ? scratch.stack.current().medium : -1, &event_t);
-      if (seen > 0.0f) {
-        if (!hit || holdout_hit) state.visibility += seen * scratch.record.transmittance_end().average();
-        state.visibility += seen * scratch.record.holdout_total();
+      if (camera_ray) {
+        // The throughput carries earlier segments' (coloured) transmittance: the channel average
+        // of the product, not the product of averages.
+        if (!hit || holdout_hit) state.visibility += (throughput_in * scratch.record.transmittance_end()).average();
+        state.visibility += throughput_in.average() * scratch.record.holdout_total();
       }
       if (outcome == SegmentOutcome::kAbsorbed) break;
       if (outcome == SegmentOutcome::kScattered) {
@@ -429,8 +434,8 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
         if (!russian_roulette(state, sampler, settings)) break;
         continue;
       }
-    } else if (seen > 0.0f && (!hit || holdout_hit)) {
-      state.visibility += seen;
+    } else if (camera_ray && (!hit || holdout_hit)) {
+      state.visibility += state.throughput.average();
     }
     if (nested) apply_pending(scratch, kInfinity);
     if (!hit) {
@@ -438,8 +443,8 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
       break;
     }
     // A holdout seen by the camera is a hole in the image (counted in the visibility above);
-    // other paths see it as the surface it is (it still shadows and reflects).
-    if (holdout_hit && state.camera_view) break;
+    // other paths see it as the surface it is (it still shadows and shows in reflections).
+    if (holdout_hit && camera_ray) break;
     const SurfaceInteraction si = hit_si ? *hit_si : scene.interaction(ray, *hit);
     const Vec3 wo = -ray.direction;
     const std::optional<MediumEntry> entry = nested ? scene.medium_entry(hit->geom_id) : std::nullopt;

@@ -124,6 +124,8 @@ namespace {
 constexpr char kMagic[12] = {'C', 'A', 'L', 'I', 'G', 'O', '-', 'F', 'I', 'L', 'M', '\n'};
 constexpr uint32_t kVersion = 1;
 constexpr uint32_t kMaxSide = 1u << 16;
+constexpr uint64_t kMaxFilmPixels = uint64_t(1) << 26;  // the render command's pixel cap
+constexpr uint32_t kMaxFilmSamples = 1'000'000;         // the --spp maximum
 
 struct FilmHeader {
   char magic[12];
@@ -132,6 +134,40 @@ struct FilmHeader {
   uint32_t aov_bits;
   uint64_t key;
 };
+
+// Sums per pixel for a set of outputs (the constructor's layout).
+int summed_channels(AovSet aovs) {
+  int n = 3 + (aovs.has(Aov::kAlpha) ? 1 : 0) + (aovs.has(Aov::kNormal) ? 3 : 0) + (aovs.has(Aov::kAlbedo) ? 3 : 0) +
+          (aovs.has(Aov::kVariance) ? 3 : 0);
+  for (int k = 0; k < kLightKindCount; ++k) n += aovs.has(light_aov(LightKind(k))) ? 3 : 0;
+  return n;
+}
+
+// The header of a raw film of `total` bytes whose first bytes are `prefix`: magic, version, a
+// resolution within the render limits, known outputs, and exactly the size they need. Nothing of
+// the claimed size is allocated before this passes.
+FilmHeader check_header(std::string_view prefix, uint64_t total, const SourceLocation& where) {
+  FilmHeader header{};
+  if (prefix.size() < sizeof header) throw InputError(where, "not a Caligo film (too short)");
+  std::memcpy(&header, prefix.data(), sizeof header);
+  if (std::memcmp(header.magic, kMagic, sizeof kMagic) != 0) throw InputError(where, "not a Caligo film");
+  if (header.version != kVersion)
+    throw InputError(where, "film version " + std::to_string(header.version) + ", expected " +
+                                std::to_string(kVersion));
+  const uint64_t pixels = uint64_t(header.width) * uint64_t(header.height);
+  if (header.width == 0 || header.height == 0 || header.width > kMaxSide || header.height > kMaxSide ||
+      pixels > kMaxFilmPixels)
+    throw InputError(where, "film resolution " + std::to_string(header.width) + "x" + std::to_string(header.height) +
+                                " is out of range");
+  if (header.aov_bits >> kAovCount) throw InputError(where, "film names unknown outputs");
+  const AovSet aovs = AovSet::from_bits(header.aov_bits);
+  const uint64_t expected = sizeof header + pixels * (sizeof(uint32_t) + (aovs.has(Aov::kDepth) ? sizeof(float) : 0) +
+                                                      uint64_t(summed_channels(aovs)) * sizeof(FixedSum));
+  if (total != expected)
+    throw InputError(where, "film is " + std::to_string(total) + " bytes, its header needs " +
+                                std::to_string(expected) + " (truncated or corrupt)");
+  return header;
+}
 
 }  // namespace
 
@@ -162,29 +198,14 @@ Film Film::load(const std::string& path, uint64_t* key) {
   if (!in) throw InputError(where, "cannot open the film file");
   const uint64_t size = uint64_t(in.tellg());
   in.seekg(0);
-  FilmHeader header{};
-  if (size < sizeof header || !in.read(reinterpret_cast<char*>(&header), sizeof header))
-    throw InputError(where, "not a Caligo film file (too short)");
-  if (std::memcmp(header.magic, kMagic, sizeof kMagic) != 0) throw InputError(where, "not a Caligo film file");
-  if (header.version != kVersion)
-    throw InputError(where, "film file version " + std::to_string(header.version) + ", expected " +
-                                std::to_string(kVersion));
-  if (header.width == 0 || header.height == 0 || header.width > kMaxSide || header.height > kMaxSide)
-    throw InputError(where, "film resolution " + std::to_string(header.width) + "x" + std::to_string(header.height) +
-                                " is out of range");
-  if (header.aov_bits >> kAovCount) throw InputError(where, "film file names unknown outputs");
-  Film film({int(header.width), int(header.height)}, AovSet::from_bits(header.aov_bits));
-  const uint64_t expected = sizeof header + film.counts_.size() * sizeof(uint32_t) +
-                            film.depth_.size() * sizeof(float) + film.sums_.size() * sizeof(FixedSum);
-  if (size != expected)
-    throw InputError(where, "film file is " + std::to_string(size) + " bytes, its header needs " +
-                                std::to_string(expected) + " (truncated or corrupt)");
-  in.read(reinterpret_cast<char*>(film.counts_.data()), std::streamsize(film.counts_.size() * sizeof(uint32_t)));
-  in.read(reinterpret_cast<char*>(film.depth_.data()), std::streamsize(film.depth_.size() * sizeof(float)));
-  in.read(reinterpret_cast<char*>(film.sums_.data()), std::streamsize(film.sums_.size() * sizeof(FixedSum)));
-  if (!in) throw InputError(where, "cannot read the film file");
-  if (key) *key = header.key;
-  return film;
+  // The header says how big the file must be: checked before anything of that size is allocated.
+  std::string bytes(std::min<uint64_t>(size, sizeof(FilmHeader)), '\0');
+  if (!in.read(bytes.data(), std::streamsize(bytes.size()))) throw InputError(where, "cannot read the film file");
+  check_header(bytes, size, where);
+  bytes.resize(size);
+  if (!in.read(bytes.data() + sizeof(FilmHeader), std::streamsize(size - sizeof(FilmHeader))))
+    throw InputError(where, "cannot read the film file");
+  return from_bytes(bytes, path, key);
 }
 
 std::string Film::to_bytes(uint64_t key) const {
@@ -208,27 +229,22 @@ std::string Film::to_bytes(uint64_t key) const {
 
 Film Film::from_bytes(std::string_view bytes, const std::string& source, uint64_t* key) {
   const SourceLocation where{source, ""};
-  FilmHeader header{};
-  if (bytes.size() < sizeof header) throw InputError(where, "not a Caligo film (too short)");
-  std::memcpy(&header, bytes.data(), sizeof header);
-  if (std::memcmp(header.magic, kMagic, sizeof kMagic) != 0) throw InputError(where, "not a Caligo film");
-  if (header.version != kVersion)
-    throw InputError(where, "film version " + std::to_string(header.version) + ", expected " +
-                                std::to_string(kVersion));
-  if (header.width == 0 || header.height == 0 || header.width > kMaxSide || header.height > kMaxSide)
-    throw InputError(where, "film resolution " + std::to_string(header.width) + "x" + std::to_string(header.height) +
-                                " is out of range");
-  if (header.aov_bits >> kAovCount) throw InputError(where, "film names unknown outputs");
+  const FilmHeader header = check_header(bytes, bytes.size(), where);
   Film film({int(header.width), int(header.height)}, AovSet::from_bits(header.aov_bits));
   const size_t counts = film.counts_.size() * sizeof(uint32_t), depths = film.depth_.size() * sizeof(float),
                sums = film.sums_.size() * sizeof(FixedSum);
-  if (bytes.size() != sizeof header + counts + depths + sums)
-    throw InputError(where, "film is " + std::to_string(bytes.size()) + " bytes, its header needs " +
-                                std::to_string(sizeof header + counts + depths + sums) + " (truncated or corrupt)");
   const char* in = bytes.data() + sizeof header;
   std::memcpy(film.counts_.data(), in, counts);
   if (depths > 0) std::memcpy(film.depth_.data(), in + counts, depths);
   std::memcpy(film.sums_.data(), in + counts + depths, sums);
+  // What no render writes: more samples than --spp allows (a resume would try to "continue" a
+  // pixel from there), or a NaN depth.
+  for (uint32_t c : film.counts_)
+    if (c > kMaxFilmSamples)
+      throw InputError(where, "the film holds a pixel of " + std::to_string(c) + " samples; at most " +
+                                  std::to_string(kMaxFilmSamples) + " are possible (corrupt)");
+  for (float d : film.depth_)
+    if (std::isnan(d)) throw InputError(where, "the film holds a NaN depth (corrupt)");
   if (key) *key = header.key;
   return film;
 }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -235,6 +236,37 @@ TEST(Film, VarianceLayerIsTheVarianceOfThePixelMean) {
   ASSERT_TRUE(film.estimated_rmse());
   EXPECT_NEAR(*film.estimated_rmse(), std::sqrt(mean_var), 1e-6);
   EXPECT_FALSE(Film({1, 1}, AovSet::defaults()).estimated_rmse());
+}
+
+}  // namespace
+}  // namespace caligo
+
+namespace caligo {
+namespace {
+
+// Hostile checkpoints: a header claiming a huge film is refused before anything of that size is
+// allocated; a pixel count no render writes (2^31) is refused rather than "continued".
+TEST(Film, HostileFilmFilesAreRefusedBeforeAllocating) {
+  Film film({2, 2}, AovSet::defaults());
+  film.add(0, 0, PathSample{}, 1.0f);
+  std::string bytes = film.to_bytes();
+  std::string huge = bytes.substr(0, 40);
+  const uint32_t side = 65536;
+  std::memcpy(huge.data() + 16, &side, 4);  // width
+  std::memcpy(huge.data() + 20, &side, 4);  // height
+  EXPECT_THROW(Film::from_bytes(huge, "huge.ckpt"), InputError);
+  const auto path = std::filesystem::temp_directory_path() / "caligo_film_huge.ckpt";
+  std::ofstream(path, std::ios::binary) << huge;
+  EXPECT_THROW(Film::load(path.string()), InputError);
+  std::filesystem::remove(path);
+  const uint32_t absurd = 0x80000000u;
+  std::memcpy(bytes.data() + 40, &absurd, 4);  // the first pixel's count
+  try {
+    Film::from_bytes(bytes, "counts.ckpt");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("2147483648 samples"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

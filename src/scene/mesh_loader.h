@@ -29,6 +29,11 @@ enum class DegenerateTriangles { kReject, kRemove };
 // (OBJ lines, glTF accessor counts, PLY header counts).
 inline constexpr size_t kMaxMeshTriangles = 100'000'000;
 inline constexpr size_t kMaxMeshVertices = 100'000'000;
+// Nesting limits for the text formats whose parsers recurse once per level (a few thousand
+// levels overflow the stack): arrays and objects in a glTF's JSON (.gltf, or a GLB's JSON
+// chunk), elements in a COLLADA file. Counted without recursion before the library parses.
+inline constexpr size_t kMaxGltfJsonDepth = 128;
+inline constexpr size_t kMaxColladaDepth = 256;
 TriangleMesh load_mesh(const std::string& path, const SourceLocation& where,
                        DegenerateTriangles degenerate = DegenerateTriangles::kReject);
 

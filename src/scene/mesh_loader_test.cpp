@@ -551,6 +551,74 @@ TEST_F(MeshLoaderTest, CorruptColladaIsAnInputError) {
                        "cannot parse COLLADA"));
 }
 
+// A COLLADA file with one unit triangle under `depth` nested <node>s; `extra` goes into the
+// <asset> element. Its deepest element, the innermost <node>, is at depth 3 + `depth` (the
+// <instance_geometry> in it closes itself).
+std::string nested_collada(size_t depth, const std::string& extra = "") {
+  std::string nodes;
+  for (size_t i = 0; i < depth; ++i) nodes += "<node id=\"n" + std::to_string(i) + "\">";
+  nodes += "<instance_geometry url=\"#tri\"/>";
+  for (size_t i = 0; i < depth; ++i) nodes += "</node>\n";
+  return R"(<?xml version="1.0" encoding="utf-8"?>
+<COLLADA xmlns="http://www.collada.org/2005/11/COLLADASchema" version="1.4.1">
+  <asset><unit meter="1" name="meter"/><up_axis>Y_UP</up_axis>)" +
+         extra + R"(</asset>
+  <library_geometries>
+    <geometry id="tri" name="tri"><mesh>
+      <source id="tri-pos">
+        <float_array id="tri-pos-array" count="9">0 0 0 1 0 0 0 1 0</float_array>
+        <technique_common><accessor source="#tri-pos-array" count="3" stride="3">
+          <param name="X" type="float"/><param name="Y" type="float"/><param name="Z" type="float"/>
+        </accessor></technique_common>
+      </source>
+      <vertices id="tri-vtx"><input semantic="POSITION" source="#tri-pos"/></vertices>
+      <triangles count="1"><input semantic="VERTEX" source="#tri-vtx" offset="0"/><p>0 1 2</p></triangles>
+    </mesh></geometry>
+  </library_geometries>
+  <library_visual_scenes><visual_scene id="scene">
+)" + nodes + R"(  </visual_scene></library_visual_scenes>
+  <scene><instance_visual_scene url="#scene"/></scene>
+</COLLADA>
+)";
+}
+
+// assimp's COLLADA reader recursed once per <node>: 100,000 levels were a SIGSEGV.
+TEST_F(MeshLoaderTest, ColladaNestedDeeperThanTheLimitIsRefusedBeforeAssimp) {
+  const size_t at_limit = kMaxColladaDepth - 3;
+  EXPECT_EQ(load_mesh(write("at_limit.dae", nested_collada(at_limit)), kWhere).triangle_count(), 1u);
+  const std::string over = load_error(write("over.dae", nested_collada(at_limit + 1)));
+  // The <node> that opens level 257 is on line 17 of the file, with all the others.
+  EXPECT_TRUE(contains(over, "over.dae: line 17: elements are nested more than 256 levels deep"));
+  EXPECT_TRUE(contains(load_error(write("deep.dae", nested_collada(100'000))), "nested more than 256"));
+}
+
+// assimp reads UTF-16 (Debian's assimp-testmodels has cube_UTF16LE.dae); its closing tags are
+// "<\0/\0", which a byte scan would take for openings.
+TEST_F(MeshLoaderTest, ColladaDepthIsCountedInUtf16Too) {
+  const auto utf16le = [](const std::string& ascii) {
+    std::string text = ascii;
+    text.replace(text.find("utf-8"), 5, "utf-16");
+    std::string out = "\xFF\xFE";
+    for (char c : text) out += std::string{c, '\0'};
+    return out;
+  };
+  const size_t at_limit = kMaxColladaDepth - 3;
+  EXPECT_EQ(load_mesh(write("at_limit.dae", utf16le(nested_collada(at_limit))), kWhere).triangle_count(), 1u);
+  EXPECT_TRUE(contains(load_error(write("over.dae", utf16le(nested_collada(at_limit + 1)))),
+                       "over.dae: line 17: elements are nested more than 256 levels deep"));
+}
+
+TEST_F(MeshLoaderTest, ColladaDepthIgnoresCommentsCdataDeclarationsAndAttributes) {
+  // Each of these holds 300 element openings that are not elements; the file stays at the limit.
+  std::string opens;
+  for (int i = 0; i < 300; ++i) opens += "<node>";
+  const std::string extra = "<!-- " + opens + " --><title><![CDATA[" + opens + "]]></title>" +
+                            "<?pi " + opens + "?><keywords a=\"" + opens + "\" b='/>'/>";
+  std::string text = nested_collada(kMaxColladaDepth - 3, extra);
+  text.insert(text.find("<COLLADA"), "<!DOCTYPE COLLADA [ <!ENTITY e \"" + opens + "\"> ]>\n");
+  EXPECT_EQ(load_mesh(write("tricky.dae", text), kWhere).triangle_count(), 1u);
+}
+
 // ---- glTF ----------------------------------------------------------------------------------
 
 TEST_F(MeshLoaderTest, GltfEmbeddedTriangleIsTranslatedByItsNode) {
@@ -605,6 +673,44 @@ TEST_F(MeshLoaderTest, GlbContainerWithTheSameTriangle) {
   EXPECT_EQ(load_mesh(write("named_wrongly.gltf", glb), kWhere).triangle_count(), 1u);
   EXPECT_TRUE(
       contains(load_error(write("truncated.glb", glb.substr(0, glb.size() - 8))), "cannot parse glTF"));
+}
+
+// tinygltf recursed once per level of "extras": 20,000 "[" were a SIGSEGV. The primitive's
+// object is at depth 5 (file, "meshes", mesh, "primitives", primitive), so `levels` arrays
+// under it reach depth 5 + `levels`.
+std::string gltf_with_nested_extras(size_t levels) {
+  const TriangleBuffer buffer = triangle_buffer();
+  GltfOptions options;
+  options.primitive_extra = R"(, "extras": )" + std::string(levels, '[') + std::string(levels, ']');
+  return triangle_gltf(buffer, data_uri_buffer(buffer.bytes), options);
+}
+
+TEST_F(MeshLoaderTest, GltfNestedDeeperThanTheLimitIsRefusedBeforeTinygltf) {
+  const size_t at_limit = kMaxGltfJsonDepth - 5;
+  EXPECT_EQ(load_mesh(write("at_limit.gltf", gltf_with_nested_extras(at_limit)), kWhere).triangle_count(), 1u);
+  // "meshes" is on line 6 of triangle_gltf().
+  EXPECT_TRUE(contains(load_error(write("over.gltf", gltf_with_nested_extras(at_limit + 1))),
+                       "over.gltf: line 6: arrays and objects are nested more than 128 levels deep"));
+  EXPECT_TRUE(contains(load_error(write("deep.gltf", gltf_with_nested_extras(20'000))), "nested more than 128"));
+
+  // The same JSON as the first chunk of a GLB container.
+  const TriangleBuffer buffer = triangle_buffer();
+  const std::string buffer_json = R"({"byteLength": )" + std::to_string(buffer.bytes.size()) + "}";
+  GltfOptions options;
+  options.primitive_extra = R"(, "extras": )" + std::string(20'000, '[') + std::string(20'000, ']');
+  EXPECT_TRUE(contains(load_error(write("deep.glb", make_glb(triangle_gltf(buffer, buffer_json, options), buffer.bytes))),
+                       "deep.glb: GLB JSON chunk, line 6: arrays and objects are nested more than 128"));
+}
+
+TEST_F(MeshLoaderTest, GltfDepthIgnoresBracketsInStrings) {
+  // 1,000 brackets in strings (one after an escaped quote) do not nest anything.
+  const TriangleBuffer buffer = triangle_buffer();
+  GltfOptions options;
+  options.primitive_extra = R"(, "extras": {"a": ")" + std::string(500, '[') + R"(\" [{", "b\\": ")" +
+                            std::string(500, '{') + R"("})";
+  EXPECT_EQ(load_mesh(write("strings.gltf", triangle_gltf(buffer, data_uri_buffer(buffer.bytes), options)), kWhere)
+                .triangle_count(),
+            1u);
 }
 
 TEST_F(MeshLoaderTest, GltfAccessorPastTheEndOfItsBufferIsRejected) {
@@ -803,6 +909,20 @@ TEST_F(RealMeshTest, ColladaDuck) {
   const TriangleMesh mesh = load_mesh(model("Collada/duck.dae"), kWhere);
   EXPECT_EQ(mesh.triangle_count(), 4212u);
   expect_plausible(mesh);
+}
+
+// The depth scan passes every COLLADA sample that assimp reads (UTF-8, UTF-8 with a BOM,
+// UTF-16, instanced nodes): it refuses only what nests too deep.
+TEST_F(RealMeshTest, ColladaSamplesPassTheDepthScan) {
+  for (const char* file : {"cube_UTF16LE.dae", "cube_UTF8BOM.dae", "teapot_instancenodes.DAE", "COLLADA.dae",
+                           "cube_xmlspecialchars.dae", "lights.dae"}) {
+    SCOPED_TRACE(file);
+    try {
+      load_mesh(model(std::string("Collada/") + file), kWhere);
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()).find("levels deep"), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST_F(RealMeshTest, BrokenGltfFilesAreInputErrors) {
