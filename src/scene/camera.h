@@ -8,7 +8,9 @@
 // at the lens point (concentric disk mapping of u) and passes through the point the pinhole
 // ray of f meets the plane of focus, so every point of that plane is imaged sharply where
 // the pinhole images it. An f-number N gives the aperture of a 36 x 24 mm full-frame camera
-// (sensor height 24 mm, as Blender and Cycles): focal length F = 12 mm / tan(fov / 2), radius
+// (the vertical fov spans the sensor's 24 mm height): focal length F = 12 mm / tan(fov / 2). This
+// is Blender's lens only for 3:2 images: Blender fits its 36 mm sensor width to the wider side,
+// so at 16:9 the same fov and f-number give Blender an aperture about 18 % smaller. Radius
 // F / (2 N).
 //
 // Orthographic: a window of `ortho_width` x `ortho_width / aspect` metres centred on
