@@ -10,7 +10,7 @@
 #include "scene/mesh_loader.h"
 
 #ifndef CALIGO_FUZZ_MESH_EXTENSION
-#error "define CALIGO_FUZZ_MESH_EXTENSION (\".obj\", \".gltf\" or \".ply\")"
+#error "define CALIGO_FUZZ_MESH_EXTENSION (\".obj\", \".gltf\", \".ply\" or \".dae\")"
 #endif
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

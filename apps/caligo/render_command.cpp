@@ -406,7 +406,7 @@ int run_render(const RenderOptions& o) {
       throw InputError(kCommandLine, "--checkpoint, --resume, --time-limit and --target-rmse are for single-process "
                                      "renders, not under mpirun");
     const std::optional<RenderResult> frame =
-        distributed::render_frame(*scene, settings, *distributed::split_from_name(o.mpi_split), style);
+        distributed::render_frame(*scene, settings, *distributed::split_from_name(o.mpi_split), style, key);
     if (!frame) return 0;  // an MPI rank other than 0: rank 0 writes the outputs
     write_outputs(frame->image, nullptr, false);
     if (!o.quiet) print_summary(o.scene, settings, frame->stats, exr);

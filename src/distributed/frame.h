@@ -10,8 +10,9 @@
 //   first failing rank's message, and the list of failed ranks when several did), all ranks meet
 //   in a barrier, then all throw RankFailure with the exit code of that rank's error (2 for an
 //   InputError, 3 EnvironmentError, 1 other): main exits with it and prints nothing more.
-// - ranks started with different options or scene files (their settings' fingerprints differ)
-//   stop the same way before rendering, exit code 2.
+// - ranks started with different options or scene files stop the same way before rendering,
+//   exit code 2: they compare a fingerprint of the frame's settings (resolution, samples,
+//   outputs, seed, crop, bounces) and of the caller's `frame_key`, which covers the rest.
 // - an MPI call that fails is an EnvironmentError naming the call; it calls MPI_Abort, as
 //   the job cannot continue collectively.
 // - a rank that dies (killed, crashed) cannot tell anyone: Open MPI's mpirun notices the process
@@ -19,6 +20,7 @@
 //   exit code non-zero, nothing written. Under Slurm, srun --kill-on-bad-exit does the same.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 
 #include "distributed/rank_failure.h"
@@ -41,8 +43,12 @@ bool built_with_mpi();
 // rank 0, nullopt on the other ranks, which must write nothing. Progress only on rank 0.
 // Without MPI: the frame itself when launcher_world_size() is 1, an EnvironmentError when more
 // processes were launched (each would write the whole frame).
+// `frame_key`: a hash of everything else that must be the same on every rank for the merge to
+// mean anything: the scene file's bytes, the filter, light sampler, distance sampling, deferred
+// NEE, the time, --priority (caligo passes checkpoint_key(), apps/caligo/checkpoint.h). Ranks
+// with different keys stop before rendering; 0 (the default) only agrees with 0.
 // Test hook: CALIGO_TEST_MPI_FAIL=RANK:throw|input|kill makes that rank fail while rendering.
 std::optional<RenderResult> render_frame(const Scene& scene, const RenderSettings& frame, Split split,
-                                         Progress::Style progress);
+                                         Progress::Style progress, uint64_t frame_key = 0);
 
 }  // namespace caligo::distributed

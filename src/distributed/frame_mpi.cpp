@@ -136,20 +136,22 @@ Outcome render_share(std::optional<Film>& film, RenderStats& stats, const Scene&
   }
 }
 
-// Step 1: a rank started with another scene file or other options would merge garbage.
-void check_same_frame(const Job& job, const RenderSettings& frame) {
+// Step 1: a rank started with another scene file or other options would merge garbage. The
+// settings that shape the film are hashed here; `frame_key` covers the scene and the rest.
+void check_same_frame(const Job& job, const RenderSettings& frame, uint64_t frame_key) {
   uint32_t crop[4];
   std::memcpy(crop, &frame.crop, sizeof crop);
   const uint64_t mine = hash_values(uint64_t(frame.resolution.x), frame.resolution.y, frame.aovs.bits(), frame.spp,
                                     frame.first_sample, frame.seed, crop[0], crop[1], crop[2], crop[3],
-                                    frame.path.limits.max_bounces, frame.path.limits.max_volume_bounces);
+                                    frame.path.limits.max_bounces, frame.path.limits.max_volume_bounces, frame_key);
   uint64_t low = 0, high = 0;
   check(MPI_Allreduce(&mine, &low, 1, MPI_UINT64_T, MPI_MIN, job.comm()), "MPI_Allreduce");
   check(MPI_Allreduce(&mine, &high, 1, MPI_UINT64_T, MPI_MAX, job.comm()), "MPI_Allreduce");
   if (low == high) return;
   fail_job(job, kExitInputError,
-           "the " + std::to_string(job.size()) + " ranks of the MPI job disagree on the frame (resolution, samples, "
-           "outputs, seed, crop or bounces): are the scene files or options different on some nodes?");
+           "the " + std::to_string(job.size()) + " ranks of the MPI job disagree on the frame (the scene file's "
+           "contents, or options such as the resolution, samples, seed, filter or light sampler): are the scene "
+           "files or options different on some nodes?");
 }
 
 // Step 3: returns when every rank succeeded; otherwise throws on every rank.
@@ -219,9 +221,9 @@ Film receive_film(const Job& job, int from) {
 }
 
 std::optional<RenderResult> render_frame_on(const Job& job, const Scene& scene, const RenderSettings& frame,
-                                            Split split, Progress::Style progress) {
+                                            Split split, Progress::Style progress, uint64_t frame_key) {
   const auto start = std::chrono::steady_clock::now();
-  check_same_frame(job, frame);
+  check_same_frame(job, frame, frame_key);
   const RenderSettings share = settings_for_rank(frame, split, job.rank(), job.size());
   std::optional<Film> film;
   RenderStats stats;
@@ -247,11 +249,11 @@ std::optional<RenderResult> render_frame_on(const Job& job, const Scene& scene, 
 }  // namespace
 
 std::optional<RenderResult> render_frame(const Scene& scene, const RenderSettings& frame, Split split,
-                                         Progress::Style progress) {
+                                         Progress::Style progress, uint64_t frame_key) {
   std::optional<Job> job;
   try {
     job.emplace();
-    return render_frame_on(*job, scene, frame, split, progress);
+    return render_frame_on(*job, scene, frame, split, progress, frame_key);
   } catch (const JobAbort& e) {
     if (!job) throw EnvironmentError(e.what());  // MPI_Init failed: there is no job to abort
     // The other ranks may wait in a call that needs this one: end the whole job.

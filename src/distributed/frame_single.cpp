@@ -10,7 +10,7 @@ namespace caligo::distributed {
 bool built_with_mpi() { return false; }
 
 std::optional<RenderResult> render_frame(const Scene& scene, const RenderSettings& frame, Split,
-                                         Progress::Style progress) {
+                                         Progress::Style progress, uint64_t /*frame_key: one process agrees*/) {
   const int processes = launcher_world_size().value_or(1);
   if (processes > 1)
     throw EnvironmentError("this caligo was built without MPI (libopenmpi-dev was not found when it was "

@@ -56,9 +56,11 @@ class MpiRender : public ::testing::Test {
 
   // `prefix`: environment assignments and the launcher, before the binary.
   RunResult run(const std::string& prefix, const std::string& args) const {
+    return run_command(prefix + " " + std::string(CALIGO_BINARY) + " " + args);
+  }
+  RunResult run_command(const std::string& command) const {
     const fs::path err = dir_ / "stderr.txt";
-    const std::string command = prefix + " " + std::string(CALIGO_BINARY) + " " + args + " >/dev/null 2>" + err.string();
-    const int status = std::system(command.c_str());
+    const int status = std::system((command + " >/dev/null 2>" + err.string()).c_str());
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(err)};
   }
 
@@ -129,6 +131,20 @@ TEST_F(MpiRender, RanksThatDisagreeOnTheFrameStop) {
   EXPECT_NE(r.err.find("caligo: error: the 2 ranks of the MPI job disagree on the frame"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("caligo: error"), r.err.rfind("caligo: error")) << r.err;
   EXPECT_EQ(outputs(), 0);
+}
+
+// Ranks whose frame keys differ (caligo's hash of the scene file and of the options the
+// settings' fingerprint does not cover) stop the same way; equal keys render. Driven through
+// render_frame directly (mpi_frame_key_probe.cpp), one key per rank.
+TEST_F(MpiRender, RanksWithDifferentFrameKeysStop) {
+  const std::string launcher = "timeout 60 " + std::string(MPIEXEC) + " --allow-run-as-root --oversubscribe -np 1";
+  const std::string probe = std::string(FRAME_KEY_PROBE);
+  const RunResult same = run_command(launcher + " " + probe + " 12345678901234567 : -np 1 " + probe + " 12345678901234567");
+  EXPECT_EQ(same.exit_code, 0) << same.err;
+  const RunResult r = run_command(launcher + " " + probe + " 12345678901234567 : -np 1 " + probe + " 12345678901234568");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("caligo: error: the 2 ranks of the MPI job disagree on the frame"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("caligo: error"), r.err.rfind("caligo: error")) << r.err;
 }
 
 // A rank killed by a signal cannot report: mpirun notices and ends the job (not a hang, which

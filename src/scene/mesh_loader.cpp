@@ -24,6 +24,7 @@
 
 #include "core/module_loader.h"
 #include "scene/assimp_plugin.h"
+#include "scene/mesh_text_scan.h"
 
 namespace caligo {
 namespace {
@@ -616,49 +617,9 @@ bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, in
   return true;
 }
 
-// The line of `text` that holds byte `at`, counting from 1.
-size_t line_of(std::string_view text, size_t at) {
-  return 1 + size_t(std::count(text.begin(), text.begin() + std::min(at, text.size()), '\n'));
-}
-
-// tinygltf (nlohmann::json, then its own Value conversion) recurses once per level of nesting:
-// 20,000 "[" in "extras" overflowed the stack (SIGSEGV). The arrays and objects outside strings
-// are counted first, without recursion; `part` (empty, or the part of the file) starts the message.
-void check_json_depth(std::string_view json, const std::string& part) {
-  size_t depth = 0;
-  bool in_string = false;
-  for (size_t i = 0; i < json.size(); ++i) {
-    const char c = json[i];
-    if (in_string) {
-      if (c == '\\') ++i;  // the escaped character cannot end the string
-      else if (c == '"') in_string = false;
-    } else if (c == '"') {
-      in_string = true;
-    } else if (c == '[' || c == '{') {
-      if (++depth > kMaxGltfJsonDepth)
-        fail(part + "line " + std::to_string(line_of(json, i)) +
-             ": arrays and objects are nested more than " + std::to_string(kMaxGltfJsonDepth) +
-             " levels deep (the glTF limit)");
-    } else if ((c == ']' || c == '}') && depth > 0) {
-      --depth;
-    }
-  }
-}
-
-// The JSON of a glTF file: the whole text, or a GLB container's first chunk when it is JSON
-// (a malformed container is left to tinygltf, which refuses it).
-void check_gltf_json_depth(std::string_view data) {
-  if (data.compare(0, 4, "glTF") != 0) return check_json_depth(data, "");
-  if (data.size() < 20) return;
-  uint32_t length = 0, type = 0;
-  std::memcpy(&length, data.data() + 12, 4);  // little-endian, as GLB and the hosts we build on
-  std::memcpy(&type, data.data() + 16, 4);
-  if (type == 0x4E4F534A) check_json_depth(data.substr(20, length), "GLB JSON chunk, ");
-}
-
 tinygltf::Model parse_gltf(const std::string& data, const std::string& path) {
   if (data.size() >= std::numeric_limits<unsigned int>::max()) fail("the file is too large (4 GiB or more)");
-  check_gltf_json_depth(data);
+  if (const std::string problem = gltf_nesting_problem(data); !problem.empty()) fail(problem);
   tinygltf::TinyGLTF parser;
   parser.SetImageLoader(&skip_image, nullptr);
   // External buffers are found relative to the file.
@@ -794,86 +755,6 @@ void check_ply_header(const std::string& data) {
   check_ply_ascii_lists(data, header_end);
 }
 
-// XML in UTF-16 or UTF-32 (which assimp and pugixml recognise by a byte-order mark or by how
-// "<" is encoded) as one byte a character: ASCII kept, anything else 'x'. The markup the depth
-// scan looks for is all ASCII, so this keeps it and nothing else. Empty for any other text,
-// which is scanned as it is.
-std::string xml_markup_bytes(std::string_view data) {
-  const auto starts = [&](std::string_view prefix) { return data.substr(0, prefix.size()) == prefix; };
-  using namespace std::string_view_literals;
-  size_t unit = 1, skip = 0;
-  bool big_endian = false;
-  if (starts("\x00\x00\xFE\xFF"sv) || starts("\x00\x00\x00<"sv)) unit = 4, big_endian = true;
-  else if (starts("\xFF\xFE\x00\x00"sv) || starts("<\x00\x00\x00"sv)) unit = 4;
-  else if (starts("\xFE\xFF"sv) || starts("\x00<"sv)) unit = 2, big_endian = true;
-  else if (starts("\xFF\xFE"sv) || starts("<\x00"sv)) unit = 2;
-  if (unit == 1) return {};
-  if (starts("\xFE\xFF"sv) || starts("\xFF\xFE"sv)) skip = unit;
-  std::string out;
-  out.reserve(data.size() / unit);
-  for (size_t i = skip; i + unit <= data.size(); i += unit) {
-    uint32_t code = 0;
-    for (size_t b = 0; b < unit; ++b) {
-      const uint32_t byte = uint8_t(data[i + (big_endian ? b : unit - 1 - b)]);
-      code = code << 8 | byte;
-    }
-    out += code < 0x80 ? char(code) : 'x';
-  }
-  return out;
-}
-
-// assimp's COLLADA reader recurses once per nested element (<node> in <node> ...): 100,000
-// levels overflowed the stack (SIGSEGV). Elements are counted first, without recursion: "<name"
-// opens one (unless it ends with "/>"), "</" closes one; declarations, processing instructions,
-// comments and CDATA sections are skipped, as are quoted attribute values.
-void check_xml_depth(std::string_view xml) {
-  constexpr size_t npos = std::string_view::npos;
-  size_t depth = 0;
-  size_t i = 0;
-  const auto skip_past = [&](std::string_view end) {
-    const size_t at = xml.find(end, i);
-    i = at == npos ? xml.size() : at + end.size();
-  };
-  while ((i = xml.find('<', i)) != npos) {
-    const std::string_view rest = xml.substr(i);
-    if (rest.rfind("<?", 0) == 0) {
-      skip_past("?>");
-    } else if (rest.rfind("<!--", 0) == 0) {
-      skip_past("-->");
-    } else if (rest.rfind("<![CDATA[", 0) == 0) {
-      skip_past("]]>");
-    } else if (rest.rfind("<!", 0) == 0) {  // <!DOCTYPE ...>, perhaps with an internal [subset]
-      size_t brackets = 0;
-      for (++i; i < xml.size() && (xml[i] != '>' || brackets > 0); ++i) {
-        if (xml[i] == '[') ++brackets;
-        if (xml[i] == ']' && brackets > 0) --brackets;
-      }
-      ++i;
-    } else if (rest.rfind("</", 0) == 0) {
-      if (depth > 0) --depth;
-      skip_past(">");
-    } else {
-      const size_t open = i;
-      char quote = 0;
-      for (++i; i < xml.size(); ++i) {
-        const char c = xml[i];
-        if (quote != 0) {
-          if (c == quote) quote = 0;
-        } else if (c == '"' || c == '\'') {
-          quote = c;
-        } else if (c == '>') {
-          break;
-        }
-      }
-      const bool empty_element = i < xml.size() && xml[i - 1] == '/';
-      if (!empty_element && ++depth > kMaxColladaDepth)
-        fail("line " + std::to_string(line_of(xml, open)) + ": elements are nested more than " +
-             std::to_string(kMaxColladaDepth) + " levels deep (the COLLADA limit)");
-      ++i;
-    }
-  }
-}
-
 // aiMatrix4x4 is row-major with points as column vectors, like Mat4.
 Mat4 to_mat4(const std::array<std::array<float, 4>, 4>& rows) {
   Mat4 m;
@@ -982,8 +863,8 @@ TriangleMesh read_mesh(const std::string& path, const SourceLocation& where, Deg
     return read_with_assimp(data, "ply", "PLY");
   }
   if (extension == ".dae") {
-    const std::string wide_markup = xml_markup_bytes(data);
-    check_xml_depth(wide_markup.empty() ? std::string_view(data) : std::string_view(wide_markup));
+    for (const std::string& problem : {collada_nesting_problem(data), collada_accessor_problem(data)})
+      if (!problem.empty()) fail(problem);
     return read_with_assimp(data, "dae", "COLLADA");
   }
   return read_gltf(data, path);
