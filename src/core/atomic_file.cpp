@@ -8,15 +8,12 @@
 #include <system_error>
 
 namespace caligo {
-namespace {
-
-// Unique within the process through the counter and across processes through the pid.
-std::filesystem::path temp_path_for(const std::filesystem::path& target) {
+std::filesystem::path temp_path_beside(const std::filesystem::path& target, const char* tag) {
   static std::atomic<uint64_t> counter{0};
   // Appended piecewise: GCC 12 warns falsely (-Wrestrict) about `"." + std::string`.
   std::string name = ".";
   name += target.filename().string();
-  name += ".tmp-";
+  name += tag;
   name += std::to_string(::getpid());
   name += '-';
   name += std::to_string(counter.fetch_add(1));
@@ -24,11 +21,9 @@ std::filesystem::path temp_path_for(const std::filesystem::path& target) {
   return target.parent_path() / name;
 }
 
-}  // namespace
-
 void write_file_atomically(const std::string& path,
                            const std::function<void(const std::string& temp_path)>& write) {
-  const std::filesystem::path temp = temp_path_for(std::filesystem::path(path));
+  const std::filesystem::path temp = temp_path_beside(std::filesystem::path(path), ".tmp-");
   try {
     write(temp.string());
     std::filesystem::rename(temp, path);

@@ -2,6 +2,7 @@
 // partial file (a crashed or interrupted render must not leave a truncated image behind).
 #pragma once
 
+#include <filesystem>
 #include <functional>
 #include <string>
 
@@ -13,6 +14,10 @@ namespace caligo {
 // choose a codec by extension still work. If write or the rename throws, the temporary file is
 // removed and the exception propagates; `path` is then untouched.
 // Thread safety: concurrent calls get distinct temporary names.
+// A fresh name in `target`'s folder: "." + its name + `tag` + pid-counter + its extension
+// (unique within the process through the counter, across processes through the pid).
+std::filesystem::path temp_path_beside(const std::filesystem::path& target, const char* tag);
+
 void write_file_atomically(const std::string& path,
                            const std::function<void(const std::string& temp_path)>& write);
 

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <system_error>
 
+#include "core/atomic_file.h"
 #include "core/error.h"
 
 namespace caligo {
@@ -16,17 +17,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-fs::path temp_beside(const fs::path& target, const char* tag) {
-  static std::atomic<uint64_t> counter{0};
-  std::string name = ".";
-  name += target.filename().string();
-  name += tag;
-  name += std::to_string(::getpid());
-  name += '-';
-  name += std::to_string(counter.fetch_add(1));
-  name += target.extension().string();
-  return target.parent_path() / name;
-}
 
 }  // namespace
 
@@ -43,7 +33,7 @@ void check_output_path(const std::string& path, const std::string& what) {
     throw InputError(where, "the " + what + " output's folder \"" + dir.string() + "\" does not exist");
   // Can a file be created there? (Permission bits do not say it for root, nor for read-only
   // mounts: try.)
-  const fs::path probe = temp_beside(p, ".probe-");
+  const fs::path probe = temp_path_beside(p, ".probe-");
   const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
   if (fd < 0)
     throw EnvironmentError(path + ": cannot create the " + what + " output in \"" + dir.string() +
@@ -71,7 +61,7 @@ void OutputTransaction::commit(const std::vector<Writer>& writers) {
     for (const fs::path& t : temps) fs::remove(t, ignored);
   };
   for (size_t i = 0; i < paths_.size(); ++i) {
-    temps.push_back(temp_beside(paths_[i], ".tmp-"));
+    temps.push_back(temp_path_beside(paths_[i], ".tmp-"));
     try {
       writers[i](temps.back().string());
       // On disk before the rename: after a crash or power loss the name holds the whole new

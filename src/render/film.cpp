@@ -172,22 +172,13 @@ FilmHeader check_header(std::string_view prefix, uint64_t total, const SourceLoc
 }  // namespace
 
 void Film::save(const std::string& path, uint64_t key) const {
+  static_assert(sizeof(FixedSum) == 16);
+  const std::string bytes = to_bytes(key);
   write_file_atomically(path, [&](const std::string& temp) {
     std::ofstream out(temp, std::ios::binary | std::ios::trunc);
     if (!out) throw EnvironmentError(path + ": cannot create " + temp);
-    FilmHeader header{};
-    std::memcpy(header.magic, kMagic, sizeof kMagic);
-    header.version = kVersion;
-    header.width = uint32_t(resolution_.x);
-    header.height = uint32_t(resolution_.y);
-    header.aov_bits = aovs_.bits();
-    header.key = key;
-    out.write(reinterpret_cast<const char*>(&header), sizeof header);
-    out.write(reinterpret_cast<const char*>(counts_.data()), std::streamsize(counts_.size() * sizeof(uint32_t)));
-    out.write(reinterpret_cast<const char*>(depth_.data()), std::streamsize(depth_.size() * sizeof(float)));
-    static_assert(sizeof(FixedSum) == 16);
-    out.write(reinterpret_cast<const char*>(sums_.data()), std::streamsize(sums_.size() * sizeof(FixedSum)));
-    out.flush();
+    out.write(bytes.data(), std::streamsize(bytes.size()));
+    out.close();  // the close flushes: a full disk shows here
     if (!out) throw EnvironmentError(path + ": cannot write the film (disk full?)");
   });
 }
