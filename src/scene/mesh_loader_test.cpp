@@ -476,7 +476,7 @@ TEST_F(MeshLoaderTest, CorruptPlyFilesAreInputErrors) {
   cube = kPlyCube;
   cube.replace(cube.find("4 7 6 5 4"), 9, "4 7 6 9 4");  // vertex 9 of 8
   EXPECT_FALSE(load_error(write("index.ply", cube)).empty());
-  EXPECT_TRUE(contains(load_error(write("header_only.ply", "ply\nformat ascii 1.0\n")), "no header"));
+  EXPECT_TRUE(contains(load_error(write("header_only.ply", "ply\nformat ascii 1.0\n")), "does not end with an \"end_header\" line"));
 }
 
 // Found by fuzz/mesh_fuzz.cpp (ply): a face with no indices (here a count byte of 0; the
@@ -1029,6 +1029,46 @@ TEST(PlyAsciiLists, AListLongerThanItsLineIsRefusedBeforeAssimpAllocates) {
   }
   std::ofstream(path) << header << "3 0 1 2\n";
   EXPECT_EQ(load_mesh(path.string(), {"scene.json", "/shapes/0"}).triangle_count(), 1u);
+  // Found by the CI fuzz run: assimp reads the body as one token stream, so a vertex line with
+  // garbage or a value too few shifted a coordinate into a list length (out of memory).
+  const auto expect_error = [&](const std::string& body, const std::string& says) {
+    std::ofstream(path) << header.substr(0, header.find("0 0 0\n")) << body;
+    try {
+      load_mesh(path.string(), {"scene.json", "/shapes/0"});
+      ADD_FAILURE() << "no error for " << body;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+    }
+  };
+  expect_error("0 0 0\n1 0 0float\n0 1 0\n3 0 1 2\n", "PLY line 11: expected numbers only");
+  expect_error("0 0 0\n1 0\n0 1 0\n3 0 1 2\n", "PLY line 11: expected 3 values for its element, found 2");
+  expect_error("0 0 0\n1 0 0\n0 1 0\n3 0 1 2 7\n", "PLY line 13: expected 4 values for its element, found 5");
+  std::filesystem::remove(path);
+}
+
+}  // namespace
+}  // namespace caligo
+
+namespace caligo {
+namespace {
+
+// Found by fuzzing: a binary PLY whose "list uint uint" length is 0x03000000 made assimp allocate
+// 24 GB. The lengths are walked before assimp sees the file.
+TEST(PlyBinaryLists, AListLongerThanTheFileIsRefusedBeforeAssimpAllocates) {
+  std::string ply =
+      "ply\nformat binary_big_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uint uint vertex_indices\nend_header\n";
+  ply += std::string(36, '\0');                      // three vertices at the origin
+  ply += std::string("\x03\x00\x00\x00", 4);         // a length of 0x03000000, big-endian
+  ply += std::string(12, '\0');
+  const auto path = std::filesystem::temp_directory_path() / "caligo_ply_binary_list.ply";
+  std::ofstream(path, std::ios::binary) << ply;
+  try {
+    load_mesh(path.string(), {"scene.json", "/shapes/0"});
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("a list says it holds 50331648 values"), std::string::npos) << e.what();
+  }
   std::filesystem::remove(path);
 }
 
