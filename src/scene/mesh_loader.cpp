@@ -860,9 +860,13 @@ void check_ply_header(const std::string& data) {
   if (header_end == std::string::npos) fail("cannot parse PLY: the header does not end with an \"end_header\" line");
   // The header is text: bytes assimp's tokenizer reads in its own way (NUL, other controls,
   // bytes above 0x7e) made it corrupt its heap on fuzzed headers.
+  // Comments may hold UTF-8 (an author's name): bytes above 0x7e are allowed there.
+  bool in_comment = false;
   for (size_t i = 0; i < header_end; ++i) {
     const unsigned char c = static_cast<unsigned char>(data[i]);
-    if ((c < 0x20 && c != '\n' && c != '\r' && c != '\t') || c > 0x7e)
+    if (i == 0 || data[i - 1] == '\n')
+      in_comment = data.compare(i, 8, "comment ") == 0 || data.compare(i, 9, "obj_info ") == 0;
+    if ((c < 0x20 && c != '\n' && c != '\r' && c != '\t') || (c > 0x7e && !in_comment))
       fail("cannot parse PLY: the header holds a byte that is not text (0x" +
            std::string(1, "0123456789abcdef"[c >> 4]) + std::string(1, "0123456789abcdef"[c & 15]) + ") at offset " +
            std::to_string(i));

@@ -1029,6 +1029,11 @@ TEST(PlyAsciiLists, AListLongerThanItsLineIsRefusedBeforeAssimpAllocates) {
   }
   std::ofstream(path) << header << "3 0 1 2\n";
   EXPECT_EQ(load_mesh(path.string(), {"scene.json", "/shapes/0"}).triangle_count(), 1u);
+  // UTF-8 in a comment is text; CR LF line ends are fine.
+  std::string commented = header;
+  commented.insert(commented.find("element"), "comment cr\xc3\xa9\xc3\xa9 par Zo\xc3\xab\r\n");
+  std::ofstream(path) << commented << "3 0 1 2\r\n";
+  EXPECT_EQ(load_mesh(path.string(), {"scene.json", "/shapes/0"}).triangle_count(), 1u);
   // Found by the CI fuzz run: assimp reads the body as one token stream, so a vertex line with
   // garbage or a value too few shifted a coordinate into a list length (out of memory).
   const auto expect_error = [&](const std::string& body, const std::string& says) {
