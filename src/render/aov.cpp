@@ -54,7 +54,7 @@ AovSet AovSet::parse(std::string_view list) {
     if (!known) {
       std::string names = "beauty, default, all, lights";
       for (int a = 0; a < kAovCount; ++a) names += ", " + std::string(aov_name(Aov(a)));
-      throw InputError("--aov: unknown output '" + name.substr(0, 64) + "' (expected a comma-separated list of: " +
+      throw InputError("--aov: unknown output '" + printable_for_message(name) + "' (expected a comma-separated list of: " +
                        names + ")");
     }
     if (comma == list.size()) break;

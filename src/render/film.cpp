@@ -77,19 +77,6 @@ Image Film::resolve() const {
   return image;
 }
 
-uint64_t Film::memory_estimate(Vec2i resolution, AovSet aovs) {
-  uint64_t sums = 3, channels = aov_channels(aovs).size();
-  if (aovs.has(Aov::kAlpha)) sums += 1;
-  if (aovs.has(Aov::kNormal)) sums += 3;
-  if (aovs.has(Aov::kAlbedo)) sums += 3;
-  for (int k = 0; k < kLightKindCount; ++k) sums += aovs.has(light_aov(LightKind(k))) ? 3 : 0;
-  if (aovs.has(Aov::kVariance)) sums += 3;
-  const uint64_t pixels = uint64_t(std::max(0, resolution.x)) * uint64_t(std::max(0, resolution.y));
-  const uint64_t film = pixels * (sums * sizeof(FixedSum) + sizeof(uint32_t) + (aovs.has(Aov::kDepth) ? 4 : 0));
-  // The resolved image, and the EXR writer's copy of it.
-  return film + 2 * pixels * channels * sizeof(float);
-}
-
 std::optional<double> Film::estimated_rmse() const {
   if (squares_ < 0) return std::nullopt;
   double total = 0.0;
@@ -170,6 +157,14 @@ FilmHeader check_header(std::string_view prefix, uint64_t total, const SourceLoc
 }
 
 }  // namespace
+
+uint64_t Film::memory_estimate(Vec2i resolution, AovSet aovs) {
+  const uint64_t pixels = uint64_t(std::max(0, resolution.x)) * uint64_t(std::max(0, resolution.y));
+  const uint64_t film = pixels * (uint64_t(summed_channels(aovs)) * sizeof(FixedSum) + sizeof(uint32_t) +
+                                  (aovs.has(Aov::kDepth) ? sizeof(float) : 0));
+  // The resolved image, and the EXR writer's copy of it.
+  return film + 2 * pixels * aov_channels(aovs).size() * sizeof(float);
+}
 
 void Film::save(const std::string& path, uint64_t key) const {
   static_assert(sizeof(FixedSum) == 16);

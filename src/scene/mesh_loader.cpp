@@ -680,10 +680,6 @@ TriangleMesh read_gltf(const std::string& data, const std::string& path) {
 
 // ---- Stanford PLY and COLLADA (through assimp) ---------------------------------------------
 
-// PLY declares its element counts up front, and a reader may reserve memory for them before
-// reading any data. Every vertex and face takes at least one byte (binary) or two characters
-// (a value and a separator), so a header claiming more elements than the file has bytes is
-// rejected before assimp sees it.
 // In an ASCII PLY, a list property starts with its length, and assimp allocates that many values
 // before reading them: a face line "442949672954 0 1 2" cost 9 GB (found by fuzzing). assimp
 // also reads the body as one stream of tokens, so a line with a token too few or too many shifts
@@ -705,6 +701,7 @@ void check_ply_body(const std::string& data, size_t header_end) {
   std::vector<Element> elements;
   bool ascii = false, big_endian = false;
   int formats = 0;
+  size_t declared = 0;
   const auto type_bytes = [](std::string_view type) {
     if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
     if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
@@ -761,7 +758,21 @@ void check_ply_body(const std::string& data, size_t header_end) {
     }
     if (count >= 3 && words[0] == "element") {
       Element e;
-      std::from_chars(words[2].data(), words[2].data() + words[2].size(), e.count);  // checked by the caller
+      const auto [end, ec] = std::from_chars(words[2].data(), words[2].data() + words[2].size(), e.count);
+      if (ec != std::errc() || end != words[2].data() + words[2].size())
+        fail("cannot parse PLY: element " + in_quotes(words[1]) + " has the count " + in_quotes(words[2]));
+      // Readers reserve memory for the declared counts before reading: each element takes at
+      // least one byte (binary) or two characters (a value and a separator).
+      const bool vertices = words[1] == "vertex", faces = words[1] == "face";
+      if ((vertices && e.count > kMaxMeshVertices) || (faces && e.count > kMaxMeshTriangles))
+        fail("the PLY header declares " + std::string(words[2]) + " " + printable_for_message(words[1]) +
+             " elements; meshes are limited to " +
+             (vertices ? std::to_string(kMaxMeshVertices) + " vertices"
+                       : std::to_string(kMaxMeshTriangles) + " triangles"));
+      if (e.count > data.size() || declared + e.count > data.size())
+        fail("the PLY header declares " + std::string(words[2]) + " " + printable_for_message(words[1]) +
+             " elements, more than the file's " + std::to_string(data.size()) + " bytes can hold");
+      declared += e.count;
       elements.push_back(e);
     } else if (count >= 2 && words[0] == "property" && !elements.empty()) {
       Element& e = elements.back();
@@ -854,6 +865,8 @@ size_t ply_end_header_line(const std::string& data) {
   return std::string::npos;
 }
 
+// Everything about a PLY file that assimp would trust: the header is text ending in an
+// "end_header" line, then check_ply_body (counts, types, list lengths).
 void check_ply_header(const std::string& data) {
   const size_t header_end = ply_end_header_line(data);
   if (data.compare(0, 3, "ply") != 0) fail("cannot parse PLY: no header (\"ply\" first, up to \"end_header\")");
@@ -870,28 +883,6 @@ void check_ply_header(const std::string& data) {
       fail("cannot parse PLY: the header holds a byte that is not text (0x" +
            std::string(1, "0123456789abcdef"[c >> 4]) + std::string(1, "0123456789abcdef"[c & 15]) + ") at offset " +
            std::to_string(i));
-  }
-  size_t declared = 0;
-  for (size_t start = 0; start < header_end;) {
-    const size_t newline = std::min(data.find('\n', start), header_end);
-    std::array<std::string_view, 3> words;
-    const size_t count = first_words(std::string_view(data).substr(start, newline - start), words);
-    start = newline + 1;
-    if (count < 3 || words[0] != "element") continue;
-    size_t n = 0;
-    const auto [end, ec] = std::from_chars(words[2].data(), words[2].data() + words[2].size(), n);
-    if (ec != std::errc() || end != words[2].data() + words[2].size())
-      fail("cannot parse PLY: element " + in_quotes(words[1]) + " has the count " + in_quotes(words[2]));
-    const bool vertices = words[1] == "vertex", faces = words[1] == "face";
-    if ((vertices && n > kMaxMeshVertices) || (faces && n > kMaxMeshTriangles))
-      fail("the PLY header declares " + std::string(words[2]) + " " + printable_for_message(words[1]) +
-           " elements; meshes are limited to " +
-           (vertices ? std::to_string(kMaxMeshVertices) + " vertices"
-                     : std::to_string(kMaxMeshTriangles) + " triangles"));
-    if (n > data.size() || declared + n > data.size())
-      fail("the PLY header declares " + std::string(words[2]) + " " + printable_for_message(words[1]) +
-           " elements, more than the file's " + std::to_string(data.size()) + " bytes can hold");
-    declared += n;
   }
   check_ply_body(data, header_end);
 }
