@@ -27,7 +27,6 @@ class OutputTransaction {
   // Writes every added output with its writer (one per add, same order), then renames them all.
   // The writers get a temporary path with the final path's extension.
   void commit(const std::vector<Writer>& writers);
-  const std::vector<std::string>& paths() const { return paths_; }
 
  private:
   std::vector<std::string> paths_;

@@ -57,11 +57,6 @@ class AovSet {
     return s;
   }
   constexpr bool has(Aov a) const { return (bits_ >> unsigned(a)) & 1u; }
-  constexpr bool has_light_layers() const {
-    for (int k = 0; k < kLightKindCount; ++k)
-      if (has(light_aov(LightKind(k)))) return true;
-    return false;
-  }
   constexpr uint32_t bits() const { return bits_; }
   static constexpr AovSet from_bits(uint32_t bits) {
     AovSet s;
