@@ -1,5 +1,6 @@
 // SIGINT and SIGTERM during a render: the first asks the render to stop (it finishes the pixels
-// in flight, saves a checkpoint and a partial image, and says so); a second quits at once.
+// in flight, saves a checkpoint and a partial image, and says so); a second quits at once
+// (one within half a second of the first is taken as the same request delivered twice).
 #pragma once
 
 #include <atomic>
