@@ -25,6 +25,7 @@ struct RenderOptions {
   std::optional<int> max_bounces;  // --max-bounces, alias --max-depth
   std::optional<int> max_volume_bounces;
   std::optional<std::string> distance_sampling;
+  std::optional<std::string> secondary;
   std::optional<int> deferred_nee;
   std::optional<std::string> light_sampler;
   std::optional<std::string> filter;  // --filter box|gaussian|blackman_harris (its default radius)

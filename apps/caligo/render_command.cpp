@@ -44,6 +44,11 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                   "Maximum scattering events in media, runs included (overrides the scene)");
   cmd->add_option("--distance-sampling", o.distance_sampling,
                   "Distance sampling for light in media: mis (default; equiangular share by optical depth), mis-fixed (share 3/4), density or equiangular");
+  cmd->add_option("--secondary", o.secondary,
+                  "How segments after the camera segment and their shadow rays estimate volumes: auto (default: "
+                  "spectral and ratio tracking through heterogeneous media, closed forms in homogeneous ones), "
+                  "track (tracking everywhere) or march (decoupled ray marching, the former behaviour)")
+      ->default_str("auto");
   cmd->add_option("--deferred-nee", o.deferred_nee,
                   "Connect K scattering vertices per path to lights after building it (0: each segment as it goes)");
   cmd->add_option("--light-sampler", o.light_sampler,
@@ -119,6 +124,17 @@ void apply_path_options(const RenderOptions& o, PathSettings& path) {
     else
       throw InputError(kCommandLine, "--distance-sampling: expected mis, mis-fixed, density or equiangular, got \"" +
                                          d + "\"");
+  }
+  if (o.secondary) {
+    const std::string& v = *o.secondary;
+    if (v == "auto")
+      path.secondary = SecondarySegments::kAuto;
+    else if (v == "track")
+      path.secondary = SecondarySegments::kTrack;
+    else if (v == "march")
+      path.secondary = SecondarySegments::kMarch;
+    else
+      throw InputError(kCommandLine, "--secondary: expected auto, track or march, got \"" + printable_for_message(v) + "\"");
   }
   if (o.deferred_nee) {
     if (*o.deferred_nee < 0 || *o.deferred_nee > 64)

@@ -99,6 +99,10 @@ Sampler::Sampler(uint64_t seed, Vec2i pixel, uint32_t sample_index)
       pixel_(pixel),
       index_(sample_index) {}
 
+uint64_t Sampler::stream_key(uint32_t dimension) const {
+  return mix_bits(hash_combine(hash_combine(pixel_key_, dimension), uint64_t(index_) ^ 0x7472616b6bULL));
+}
+
 float Sampler::get_1d(uint32_t dimension) const {
   const DimensionSeeds seeds = dimension_seeds(pixel_key_, dimension);
   const uint32_t i = nested_uniform_scramble(index_, seeds.shuffle);

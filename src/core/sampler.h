@@ -52,6 +52,9 @@ class Sampler {
 
   float get_1d(uint32_t dimension) const;  // in [0, 1)
   Vec2 get_2d(uint32_t dimension) const;   // in [0, 1)^2
+  // A 64-bit key unique to (seed, pixel, sample index, dimension), to seed a Pcg32 for estimators
+  // that draw an unbounded number of values (tracking): still a pure function of the sample.
+  uint64_t stream_key(uint32_t dimension) const;
 
   uint32_t sample_index() const { return index_; }
   Vec2i pixel() const { return pixel_; }

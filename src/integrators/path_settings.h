@@ -33,6 +33,17 @@ enum class DistanceSampling {
   kMisFixed,     // the same with equiangular's share fixed at 3/4 (the former default)
 };
 
+// How segments after the camera segment (bounce rays from a scattering or surface event) and the
+// shadow rays of those events estimate their volumes (docs/techniques.md, "Tracking after the
+// first bounce"). The camera segment, and the shadow rays of its light connections and of the
+// first surface it meets, are always marched.
+enum class SecondarySegments {
+  kMarch,  // decoupled marching, as the camera segment (the former behaviour)
+  kTrack,  // spectral tracking for free flight, ratio tracking for shadow rays, every medium
+  kAuto,   // tracking where a segment crosses a heterogeneous span (grids, noise, falloff);
+           // homogeneous segments keep their closed forms and equiangular sampling
+};
+
 struct PathSettings {
   PathLimits limits;
   int russian_roulette_depth = 3;  // roulette starts after this many events (surface and volume)
@@ -55,6 +66,7 @@ struct PathSettings {
   // Light hits from medium vertices then count zero (the connections alone are unbiased).
   // See docs/techniques.md for when it pays.
   int deferred_nee = 0;
+  SecondarySegments secondary = SecondarySegments::kAuto;
 };
 
 }  // namespace caligo

@@ -19,51 +19,12 @@
 
 #include "core/rgb.h"
 #include "core/sampler.h"
+#include "integrators/path_context.h"
 #include "integrators/path_sample.h"
 #include "integrators/path_settings.h"
-#include "raymarch/march.h"
-#include "raymarch/transmittance_record.h"
 #include "scene/scene.h"
 
 namespace caligo {
-
-
-struct PathCounters {
-  uint64_t rays = 0;                // every Embree query: camera, bounce and shadow rays
-  uint64_t camera_march_steps = 0;  // steps stored in camera rays' records
-};
-
-// A crossing of a priority surface that the stack rules made a false hit (nothing seen), at
-// ray parameter t of the current segment; applied to the path's stack once the path is known
-// to have got past it.
-struct PendingCrossing {
-  float t;
-  MediumEntry entry;
-};
-
-// Per-thread buffers, reused from path to path (no allocation per ray once grown).
-struct PathScratch {
-  MarchSettings march_settings;
-  MarchScratch march;
-  TransmittanceRecord record;
-  // Nested dielectrics (scenes with priority surfaces only): the path's medium stack, the
-  // false hits of the current segment, and a working copy for probes and shadow rays.
-  MediumStack stack;
-  std::vector<PendingCrossing> pending;
-  MediumStack work;
-  std::vector<SurfaceHit> shadow_hits;
-  // Deferred next-event estimation (PathSettings::deferred_nee): the path's scattering vertices
-  // in media, their phase lobes and (with nested media) their medium stacks.
-  struct DeferredVertex {
-    Vec3 x, wo;  // the vertex and the direction the path arrived along
-    RGB beta;    // throughput at the vertex, before the phase sample
-    LightKind kind;  // the light layer a connection from it feeds
-    uint32_t first_lobe, lobe_count;
-  };
-  std::vector<DeferredVertex> deferred;
-  std::vector<PhaseLobe> deferred_lobes;
-  std::vector<MediumStack> deferred_stacks;
-};
 
 // The position of heterogeneous march steps for this path vertex (constant when no
 // primitive is heterogeneous, which saves a sample).

@@ -22,7 +22,6 @@ constexpr float kShadowEpsilon = 1e-4f;
 constexpr int kTransmittanceSteps = 64;
 // Light samples per distance sample for lights with area or solid angle.
 constexpr int kAreaLightSamples = 4;
-constexpr int kMaxNullCrossings = 256;
 
 Vec2 next_2d(Pcg32& rng) {
   const float a = rng.next_float();

@@ -4,7 +4,9 @@
 #include <cmath>
 #include <variant>
 
+#include "integrators/path_tracer.h"
 #include "raymarch/march.h"
+#include "tracking/tracking.h"
 
 namespace caligo {
 
@@ -13,8 +15,22 @@ constexpr float kShadowEpsilon = 1e-4f;
 
 namespace {
 
-RGB nested_transmittance(const Scene& scene, const Ray& shadow, bool casts_shadows, float jitter,
+// One stretch of a shadow ray through the volumes (and the stack's medium), by the shadow medium's
+// estimator; `rng` is the ray's generator, used only when tracking.
+RGB stretch_transmittance(const Scene& scene, const Ray& stretch, const ShadowMedium& medium, int stack_medium,
+                          PathScratch& scratch, Pcg32& rng) {
+  const MarchSettings& settings = scratch.march_settings;
+  if (medium.policy == SecondarySegments::kMarch)
+    return march_transmittance(scene.volumes(), stretch, medium.jitter, settings, scratch.march, stack_medium);
+  if (!collect_spans(scene.volumes(), stretch, settings, scratch.march, stack_medium)) return RGB(1.0f);
+  if (medium.policy == SecondarySegments::kAuto && collected_spans_homogeneous(scratch.march))
+    return march_transmittance_collected(scene.volumes(), stretch, medium.jitter, settings, scratch.march);
+  return track_transmittance_collected(scene.volumes(), stretch, scratch.march, rng);
+}
+
+RGB nested_transmittance(const Scene& scene, const Ray& shadow, bool casts_shadows, const ShadowMedium& medium,
                          float segment_t, PathScratch& scratch, PathCounters& counters, bool* through_interface) {
+  Pcg32 rng(medium.tracking_key, 0);
   MediumStack& stack = scratch.work;
   stack.assign(scratch.stack);
   for (const PendingCrossing& p : scratch.pending)
@@ -43,8 +59,7 @@ RGB nested_transmittance(const Scene& scene, const Ray& shadow, bool casts_shado
   for (size_t i = 0; i <= hits.size(); ++i) {
     stretch.tmax = i < hits.size() ? hits[i].t : shadow.tmax;
     if (stretch.tmax > stretch.tmin)
-      tr *= march_transmittance(scene.volumes(), stretch, jitter, scratch.march_settings, scratch.march,
-                                stack.current().medium);
+      tr *= stretch_transmittance(scene, stretch, medium, stack.current().medium, scratch, rng);
     if (tr.is_black()) return RGB(0.0f);
     if (i < hits.size()) {
       // Only a REAL dielectric crossing bends the paths MIS would pair this sample with; a
@@ -61,8 +76,17 @@ RGB nested_transmittance(const Scene& scene, const Ray& shadow, bool casts_shado
 
 }  // namespace
 
+ShadowMedium shadow_medium(const PathContext& ctx, int vertex, bool secondary, sample_dim::Bounce key_dimension) {
+  ShadowMedium m(march_jitter(ctx.scene, ctx.sampler, vertex));
+  if (secondary && ctx.settings.secondary != SecondarySegments::kMarch) {
+    m.policy = ctx.settings.secondary;
+    m.tracking_key = ctx.sampler.stream_key(sample_dim::bounce(vertex, key_dimension));
+  }
+  return m;
+}
+
 RGB light_transmittance(const Scene& scene, Vec3 origin, Vec3 sampled_from, const LightSample& ls,
-                        bool casts_shadows, float jitter, PathScratch& scratch, PathCounters& counters,
+                        bool casts_shadows, ShadowMedium medium, PathScratch& scratch, PathCounters& counters,
                         float segment_t, bool* through_interface) {
   if (through_interface) *through_interface = false;
   Ray shadow{origin, ls.wi, 0.0f, kInfinity};
@@ -71,13 +95,14 @@ RGB light_transmittance(const Scene& scene, Vec3 origin, Vec3 sampled_from, cons
     shadow.tmax = 1.0f - kShadowEpsilon;
   }
   if (scene.has_priority_objects())
-    return nested_transmittance(scene, shadow, casts_shadows, jitter, segment_t, scratch, counters, through_interface);
+    return nested_transmittance(scene, shadow, casts_shadows, medium, segment_t, scratch, counters, through_interface);
   if (casts_shadows) {
     ++counters.rays;
     if (scene.surfaces().occluded(shadow)) return RGB(0.0f);
   }
   if (scene.volumes().empty()) return RGB(1.0f);
-  return march_transmittance(scene.volumes(), shadow, jitter, scratch.march_settings, scratch.march);
+  Pcg32 rng(medium.tracking_key, 0);
+  return stretch_transmittance(scene, shadow, medium, -1, scratch, rng);
 }
 
 }  // namespace caligo

@@ -4,11 +4,28 @@
 // next-event estimation.
 #pragma once
 
+#include <cstdint>
+
 #include "core/rgb.h"
-#include "integrators/path_tracer.h"
+#include "integrators/path_context.h"
 #include "lights/light_sample.h"
 
 namespace caligo {
+
+// How a shadow ray estimates the transmittance of its volumes: marched with `jitter` (the
+// march's step rules), or ratio-tracked (tracking/tracking.h) with a generator seeded by
+// `tracking_key`, always (kTrack) or where the ray crosses a heterogeneous span (kAuto).
+struct ShadowMedium {
+  ShadowMedium(float march_jitter = 0.5f) : jitter(march_jitter) {}  // NOLINT: a plain jitter marches
+  float jitter;
+  SecondarySegments policy = SecondarySegments::kMarch;
+  uint64_t tracking_key = 0;
+};
+
+// The shadow medium of a light connection made at path vertex `vertex` (its sample dimensions),
+// whose event is the camera segment's or its first surface's (`secondary` false: marched) or
+// a later one's (PathSettings::secondary).
+ShadowMedium shadow_medium(const PathContext& ctx, int vertex, bool secondary, sample_dim::Bounce key_dimension);
 
 // Transmittance from `origin` (offset off its surface by the caller) to the light sample
 // `ls` taken there: 0 when a surface blocks it (unless the light casts no shadows), the
@@ -27,7 +44,7 @@ namespace caligo {
 // (render.priority_shadows): no BSDF or phase sample can reach the light along that straight
 // line (it would refract), so the caller weights such a sample 1, not by MIS.
 RGB light_transmittance(const Scene& scene, Vec3 origin, Vec3 sampled_from, const LightSample& ls,
-                        bool casts_shadows, float jitter, PathScratch& scratch, PathCounters& counters,
+                        bool casts_shadows, ShadowMedium medium, PathScratch& scratch, PathCounters& counters,
                         float segment_t = kInfinity, bool* through_interface = nullptr);
 
 }  // namespace caligo

@@ -47,9 +47,9 @@ std::optional<EquiangularSetup> reach_equiangular_setup(const Light& light, cons
 
 // f(t) / p_light: the light arriving at x(t) and scattered back along the ray, for one light
 // sample at x(t), before dividing by the distance pdf.
-RGB scattered_light(const Scene& scene, const Ray& ray, const TransmittanceRecord& record, int light_index,
-                    float pick_pmf, float t, Vec2 u_light, float jitter, PathScratch& scratch,
-                    PathCounters& counters) {
+RGB scattered_light(const PathContext& ctx, const Ray& ray, const TransmittanceRecord& record, int light_index,
+                    float pick_pmf, float t, Vec2 u_light, const ShadowMedium& shadow) {
+  const Scene& scene = ctx.scene;
   const int index = record.find_step(t);
   if (index < 0) return RGB(0.0f);
   const MarchStep& step = record.steps()[size_t(index)];
@@ -57,30 +57,29 @@ RGB scattered_light(const Scene& scene, const Ray& ray, const TransmittanceRecor
   const Vec3 x = ray.at(t);
   const auto ls = sample_light(scene.lights()[size_t(light_index)], x, u_light);
   if (!ls || ls->radiance.is_black() || !(ls->pdf > 0.0f)) return RGB(0.0f);
-  const RGB phase = mixed_phase_eval(record, step, ray.direction, ls->wi);
+  const RGB phase = mixed_phase_eval(record.lobes(step), ray.direction, ls->wi);
   if (phase.is_black()) return RGB(0.0f);
   bool through_interface = false;
-  const RGB tr = light_transmittance(scene, x, x, *ls, scene.casts_shadows(light_index), jitter, scratch,
-                                     counters, t, &through_interface);
+  const RGB tr = light_transmittance(scene, x, x, *ls, scene.casts_shadows(light_index), shadow, ctx.scratch,
+                                     ctx.counters, t, &through_interface);
   if (tr.is_black()) return RGB(0.0f);
   const float light_pdf_sa = pick_pmf * ls->pdf;
   const float w =
       ls->delta || through_interface
           ? 1.0f
-          : power_heuristic(1, light_pdf_sa, 1, mixed_phase_pdf(record, step, ray.direction, ls->wi));
+          : power_heuristic(1, light_pdf_sa, 1, mixed_phase_pdf(record.lobes(step), ray.direction, ls->wi));
   return step.sigma_s * record.transmittance(t) * tr * ls->radiance * phase * (w / light_pdf_sa);
 }
 
 }  // namespace
 
-RGB mixed_phase_eval(const TransmittanceRecord& record, const MarchStep& step, Vec3 wo, Vec3 wi) {
+RGB mixed_phase_eval(std::span<const PhaseLobe> lobes, Vec3 wo, Vec3 wi) {
   RGB sum;
-  for (const PhaseLobe& lobe : record.lobes(step)) sum += lobe.weight * phase_eval(lobe.phase, wo, wi);
+  for (const PhaseLobe& lobe : lobes) sum += lobe.weight * phase_eval(lobe.phase, wo, wi);
   return sum;
 }
 
-float mixed_phase_pdf(const TransmittanceRecord& record, const MarchStep& step, Vec3 wo, Vec3 wi) {
-  const auto lobes = record.lobes(step);
+float mixed_phase_pdf(std::span<const PhaseLobe> lobes, Vec3 wo, Vec3 wi) {
   if (lobes.size() == 1) return phase_pdf(lobes[0].phase, wo, wi);
   float sum = 0.0f, total = 0.0f;
   for (const PhaseLobe& lobe : lobes) {
@@ -90,9 +89,7 @@ float mixed_phase_pdf(const TransmittanceRecord& record, const MarchStep& step, 
   return total > 0.0f ? sum / total : 0.0f;
 }
 
-MixedPhaseSample sample_mixed_phase(const TransmittanceRecord& record, const MarchStep& step, Vec3 wo,
-                                    float u_lobe, Vec2 u) {
-  const auto lobes = record.lobes(step);
+MixedPhaseSample sample_mixed_phase(std::span<const PhaseLobe> lobes, Vec3 wo, float u_lobe, Vec2 u) {
   if (lobes.size() == 1) {
     const PhaseSample s = phase_sample(lobes[0].phase, wo, u);
     return {s.wi, lobes[0].weight, s.pdf};  // weight 1 in every channel that scatters
@@ -105,14 +102,17 @@ MixedPhaseSample sample_mixed_phase(const TransmittanceRecord& record, const Mar
     if (u_lobe < acc) break;
   }
   const Vec3 wi = phase_sample(lobes[chosen].phase, wo, u).wi;
-  const float pdf = mixed_phase_pdf(record, step, wo, wi);
-  return {wi, pdf > 0.0f ? mixed_phase_eval(record, step, wo, wi) / pdf : RGB(0.0f), pdf};
+  const float pdf = mixed_phase_pdf(lobes, wo, wi);
+  return {wi, pdf > 0.0f ? mixed_phase_eval(lobes, wo, wi) / pdf : RGB(0.0f), pdf};
 }
 
-RGB volume_direct_light(const Scene& scene, const LightSampler& lights, const Ray& ray,
-                        const TransmittanceRecord& record, const Sampler& sampler, int depth,
-                        DistanceSampling strategy, PathScratch& scratch, PathCounters& counters) {
+RGB volume_direct_light(const PathContext& ctx, const Ray& ray, const TransmittanceRecord& record, int depth,
+                        bool secondary) {
   if (record.scatter_weight_total() <= 0.0f) return RGB(0.0f);
+  const Scene& scene = ctx.scene;
+  const LightSampler& lights = ctx.lights;
+  const Sampler& sampler = ctx.sampler;
+  const DistanceSampling strategy = ctx.settings.distance_sampling;
   const LightChoice choice = lights.sample_segment(
       light_choice_segment(ray, record),
       lights.needs_random() ? sampler.get_1d(bounce(depth, sample_dim::kVolumeLightSelect)) : 0.0f);
@@ -158,10 +158,34 @@ RGB volume_direct_light(const Scene& scene, const LightSampler& lights, const Ra
   const float pdf = (eq ? equiangular_share * eq->pdf(t) : 0.0f) +
                     (1.0f - equiangular_share) * record.scatter_density_pdf(t);
   if (!(pdf > 0.0f)) return RGB(0.0f);
-  return scattered_light(scene, ray, record, light_index, pick_pmf, t,
+  return scattered_light(ctx, ray, record, light_index, pick_pmf, t,
                          is_delta(light) ? Vec2(0.5f) : sampler.get_2d(bounce(depth, sample_dim::kVolumeLightPosition)),
-                         march_jitter(scene, sampler, depth), scratch, counters) /
+                         shadow_medium(ctx, depth, secondary, sample_dim::kDistanceSample)) /
          pdf;
+}
+
+RGB point_volume_direct_light(const PathContext& ctx, Vec3 x, Vec3 direction, std::span<const PhaseLobe> lobes,
+                              int vertex, float segment_t) {
+  const Sampler& sampler = ctx.sampler;
+  const LightChoice choice = ctx.lights.sample(
+      x, Vec3(0.0f), ctx.lights.needs_random() ? sampler.get_1d(bounce(vertex, sample_dim::kVolumeLightSelect)) : 0.0f);
+  if (choice.light < 0) return RGB(0.0f);
+  const Light& light = ctx.scene.lights()[size_t(choice.light)];
+  const auto ls = sample_light(
+      light, x, is_delta(light) ? Vec2(0.5f) : sampler.get_2d(bounce(vertex, sample_dim::kVolumeLightPosition)));
+  if (!ls || ls->radiance.is_black() || !(ls->pdf > 0.0f)) return RGB(0.0f);
+  const RGB phase = mixed_phase_eval(lobes, direction, ls->wi);
+  if (phase.is_black()) return RGB(0.0f);
+  bool through_interface = false;
+  const RGB tr = light_transmittance(ctx.scene, x, x, *ls, ctx.scene.casts_shadows(choice.light),
+                                     shadow_medium(ctx, vertex, true, sample_dim::kDistanceSample), ctx.scratch,
+                                     ctx.counters, segment_t, &through_interface);
+  if (tr.is_black()) return RGB(0.0f);
+  const float light_pdf_sa = choice.pmf * ls->pdf;
+  const float w = ls->delta || through_interface
+                      ? 1.0f
+                      : power_heuristic(1, light_pdf_sa, 1, mixed_phase_pdf(lobes, direction, ls->wi));
+  return phase * tr * ls->radiance * (w / light_pdf_sa);
 }
 
 }  // namespace caligo

@@ -10,16 +10,28 @@
 // medium is thick or far from it; the cost is one light connection, as for either alone.
 #pragma once
 
-#include "integrators/path_tracer.h"
+#include <span>
+
+#include "integrators/path_context.h"
 
 namespace caligo {
 
 // Radiance scattered towards the ray's origin by the segment's medium, before the path
-// throughput. `ray` must have a unit direction. `lights` chooses one light for the whole
-// segment (LightSampler::sample_segment of light_choice_segment()).
-RGB volume_direct_light(const Scene& scene, const LightSampler& lights, const Ray& ray,
-                        const TransmittanceRecord& record, const Sampler& sampler, int depth,
-                        DistanceSampling strategy, PathScratch& scratch, PathCounters& counters);
+// throughput. `ray` must have a unit direction. ctx.lights chooses one light for the whole
+// segment (LightSampler::sample_segment of light_choice_segment()). `vertex` is the path vertex
+// whose sample dimensions it draws; `secondary` says whether its shadow rays follow
+// PathSettings::secondary (false for the camera segment: marched).
+RGB volume_direct_light(const PathContext& ctx, const Ray& ray, const TransmittanceRecord& record, int vertex,
+                        bool secondary);
+
+// Next-event estimation at one scattering point x of a tracked segment (no record): one light by
+// the light sampler's point form, one point on it, the phase mixture `lobes` towards it, the
+// shadow ray's transmittance, weighted by the power heuristic against phase sampling. Per unit
+// throughput at x (after the collision's weight, before the phase sample); `direction` is the
+// ray's, so the radiance goes back along it; `segment_t` is x's ray parameter (nested media:
+// the false crossings before it apply to the shadow ray's stack).
+RGB point_volume_direct_light(const PathContext& ctx, Vec3 x, Vec3 direction, std::span<const PhaseLobe> lobes,
+                              int vertex, float segment_t);
 
 // The segment volume next-event estimation chooses its light for: the ray over the record's
 // extent. A phase-sampled hit from a vertex on that segment weights its MIS with the same
@@ -28,17 +40,16 @@ inline Ray light_choice_segment(const Ray& ray, const TransmittanceRecord& recor
   return {ray.origin, ray.direction, record.t_begin(), record.t_end()};
 }
 
-// The phase-function mixture stored at a record step, per colour channel.
-RGB mixed_phase_eval(const TransmittanceRecord& record, const MarchStep& step, Vec3 wo, Vec3 wi);
+// The phase-function mixture of a record step or a tracked event, per colour channel.
+RGB mixed_phase_eval(std::span<const PhaseLobe> lobes, Vec3 wo, Vec3 wi);
 // The density with which sample_mixed_phase() picks wi: lobes chosen by their average weight.
-float mixed_phase_pdf(const TransmittanceRecord& record, const MarchStep& step, Vec3 wo, Vec3 wi);
+float mixed_phase_pdf(std::span<const PhaseLobe> lobes, Vec3 wo, Vec3 wi);
 
 struct MixedPhaseSample {
   Vec3 wi;
   RGB weight;  // mixed_phase_eval / mixed_phase_pdf
   float pdf;
 };
-MixedPhaseSample sample_mixed_phase(const TransmittanceRecord& record, const MarchStep& step, Vec3 wo,
-                                    float u_lobe, Vec2 u);
+MixedPhaseSample sample_mixed_phase(std::span<const PhaseLobe> lobes, Vec3 wo, float u_lobe, Vec2 u);
 
 }  // namespace caligo

@@ -6,33 +6,6 @@
 namespace caligo {
 namespace {
 
-// Coefficients summed over the primitives covering a span, at one point.
-struct StepCoefficients {
-  RGB sigma_t, sigma_s, emission;
-  float holdout = 0.0f;
-};
-
-StepCoefficients shade_span(const VolumeScene& volumes, std::span<const uint32_t> primitives, Vec3 p,
-                            float scale, VolumeContext& context, std::vector<PhaseLobe>* lobes) {
-  StepCoefficients c;
-  if (lobes) lobes->clear();
-  for (uint32_t id : primitives) {
-    const MediumSample m = shade_volume(volumes.primitive(id), p, context);
-    c.sigma_t += m.sigma_t() * scale;
-    c.sigma_s += m.sigma_s * scale;
-    c.emission += m.emission * scale;
-    c.holdout += m.holdout * scale;
-    if (lobes && !m.sigma_s.is_black()) lobes->push_back({m.sigma_s * scale, m.phase});
-  }
-  // Overlapping primitives mix their phase functions in proportion to sigma_s, per channel.
-  if (lobes)
-    for (PhaseLobe& l : *lobes)
-      l.weight = RGB(c.sigma_s.r > 0.0f ? l.weight.r / c.sigma_s.r : 0.0f,
-                     c.sigma_s.g > 0.0f ? l.weight.g / c.sigma_s.g : 0.0f,
-                     c.sigma_s.b > 0.0f ? l.weight.b / c.sigma_s.b : 0.0f);
-  return c;
-}
-
 // Radiance emitted over a step of length dt, seen through transmittance T0 at its start:
 // integral of T0 e^{-sigma_t s} emission ds over [0, dt].
 RGB integrate_emission(RGB t0, RGB sigma_t, RGB emission, float dt) {
@@ -55,27 +28,11 @@ int steps_for_span(const VolumeScene& volumes, const Span& span, std::span<const
   return std::max(1, int(n));
 }
 
-// Calls step(t0, t1, t_shade, primitives) for every step of every span, front to back, until it returns
-// false.
+// Calls step(t0, t1, t_shade, primitives) for every step of the collected spans, front to back,
+// until it returns false.
 template <typename StepFn>
-void for_each_step(const VolumeScene& volumes, const Ray& ray, float jitter, const MarchSettings& settings,
-                   MarchScratch& scratch, int medium, StepFn&& step) {
-  scratch.volume.skip_empty_blocks = settings.skip_empty_blocks;
-  scratch.volume.constant_blocks_one_step = settings.constant_blocks_one_step;
-  volumes.intervals(ray, scratch.volume, medium);
-  const auto& intervals = scratch.volume.intervals;
-  const bool one_primitive =
-      std::all_of(intervals.begin(), intervals.end(),
-                  [&](const VolumeInterval& iv) { return iv.primitive == intervals.front().primitive; });
-  if (!intervals.empty() && one_primitive) {
-    // The common case needs no sweep: one primitive's intervals are ordered and disjoint.
-    scratch.spans.clear();
-    for (const VolumeInterval& iv : intervals)
-      if (iv.t1 > iv.t0) scratch.spans.push_back({iv.t0, iv.t1, 0, 1, iv.sigma_maj, iv.homogeneous});
-    scratch.span_primitives.assign(1, intervals.front().primitive);
-  } else {
-    build_spans(intervals, scratch.span_scratch, scratch.spans, scratch.span_primitives);
-  }
+void for_each_collected_step(const VolumeScene& volumes, const Ray& ray, float jitter, const MarchSettings& settings,
+                             MarchScratch& scratch, StepFn&& step) {
   const float dir_length = length(ray.direction);
   for (const Span& span : scratch.spans) {
     const std::span<const uint32_t> prims(scratch.span_primitives.data() + span.first, span.count);
@@ -97,6 +54,53 @@ void for_each_step(const VolumeScene& volumes, const Ray& ray, float jitter, con
 
 }  // namespace
 
+StepCoefficients shade_span(const VolumeScene& volumes, std::span<const uint32_t> primitives, Vec3 p, float scale,
+                            VolumeContext& context, std::vector<PhaseLobe>* lobes) {
+  StepCoefficients c;
+  if (lobes) lobes->clear();
+  for (uint32_t id : primitives) {
+    const MediumSample m = shade_volume(volumes.primitive(id), p, context);
+    c.sigma_t += m.sigma_t() * scale;
+    c.sigma_s += m.sigma_s * scale;
+    c.emission += m.emission * scale;
+    c.holdout += m.holdout * scale;
+    if (lobes && !m.sigma_s.is_black()) lobes->push_back({m.sigma_s * scale, m.phase});
+  }
+  // Overlapping primitives mix their phase functions in proportion to sigma_s, per channel.
+  if (lobes)
+    for (PhaseLobe& l : *lobes)
+      l.weight = RGB(c.sigma_s.r > 0.0f ? l.weight.r / c.sigma_s.r : 0.0f,
+                     c.sigma_s.g > 0.0f ? l.weight.g / c.sigma_s.g : 0.0f,
+                     c.sigma_s.b > 0.0f ? l.weight.b / c.sigma_s.b : 0.0f);
+  return c;
+}
+
+bool collect_spans(const VolumeScene& volumes, const Ray& ray, const MarchSettings& settings, MarchScratch& scratch,
+                   int medium) {
+  scratch.spans.clear();
+  if (volumes.empty() && medium < 0) return false;
+  scratch.volume.skip_empty_blocks = settings.skip_empty_blocks;
+  scratch.volume.constant_blocks_one_step = settings.constant_blocks_one_step;
+  volumes.intervals(ray, scratch.volume, medium);
+  const auto& intervals = scratch.volume.intervals;
+  const bool one_primitive =
+      std::all_of(intervals.begin(), intervals.end(),
+                  [&](const VolumeInterval& iv) { return iv.primitive == intervals.front().primitive; });
+  if (!intervals.empty() && one_primitive) {
+    // The common case needs no sweep: one primitive's intervals are ordered and disjoint.
+    for (const VolumeInterval& iv : intervals)
+      if (iv.t1 > iv.t0) scratch.spans.push_back({iv.t0, iv.t1, 0, 1, iv.sigma_maj, iv.homogeneous});
+    scratch.span_primitives.assign(1, intervals.front().primitive);
+  } else {
+    build_spans(intervals, scratch.span_scratch, scratch.spans, scratch.span_primitives);
+  }
+  return !scratch.spans.empty();
+}
+
+bool collected_spans_homogeneous(const MarchScratch& scratch) {
+  return std::all_of(scratch.spans.begin(), scratch.spans.end(), [](const Span& s) { return s.homogeneous; });
+}
+
 float primitive_step_size(const VolumePrimitive& primitive, const MarchSettings& settings) {
   const VolumeShader& s = primitive.shader;
   if (is_homogeneous(s)) return kInfinity;
@@ -113,8 +117,14 @@ float primitive_step_size(const VolumePrimitive& primitive, const MarchSettings&
 void march(const VolumeScene& volumes, const Ray& ray, float jitter, const MarchSettings& settings,
            MarchScratch& scratch, TransmittanceRecord& out, int medium) {
   out.clear();
-  if (volumes.empty() && medium < 0) return;
-  for_each_step(volumes, ray, jitter, settings, scratch, medium,
+  if (!collect_spans(volumes, ray, settings, scratch, medium)) return;
+  march_collected(volumes, ray, jitter, settings, scratch, out);
+}
+
+void march_collected(const VolumeScene& volumes, const Ray& ray, float jitter, const MarchSettings& settings,
+                     MarchScratch& scratch, TransmittanceRecord& out) {
+  out.clear();
+  for_each_collected_step(volumes, ray, jitter, settings, scratch,
                 [&](float a, float b, float t_shade, std::span<const uint32_t> prims, float scale) {
                   const StepCoefficients c =
                       shade_span(volumes, prims, ray.at(t_shade), scale, scratch.volume, &scratch.lobes);
@@ -130,10 +140,15 @@ void march(const VolumeScene& volumes, const Ray& ray, float jitter, const March
 
 RGB march_transmittance(const VolumeScene& volumes, const Ray& ray, float jitter,
                         const MarchSettings& settings, MarchScratch& scratch, int medium) {
-  if (volumes.empty() && medium < 0) return RGB(1.0f);
+  if (!collect_spans(volumes, ray, settings, scratch, medium)) return RGB(1.0f);
+  return march_transmittance_collected(volumes, ray, jitter, settings, scratch);
+}
+
+RGB march_transmittance_collected(const VolumeScene& volumes, const Ray& ray, float jitter,
+                                  const MarchSettings& settings, MarchScratch& scratch) {
   RGB optical_depth;
   bool opaque = false;
-  for_each_step(volumes, ray, jitter, settings, scratch, medium,
+  for_each_collected_step(volumes, ray, jitter, settings, scratch,
                 [&](float a, float b, float t_shade, std::span<const uint32_t> prims, float scale) {
                   optical_depth +=
                       shade_span(volumes, prims, ray.at(t_shade), scale, scratch.volume, nullptr).sigma_t *

@@ -14,6 +14,7 @@
 // t is in units of the ray direction's length; coefficients in the record are per unit t.
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "core/ray.h"
@@ -43,6 +44,33 @@ struct MarchScratch {
   uint64_t steps = 0;               // statistics: steps marched (records and shadow rays)
   uint64_t shader_evaluations = 0;  // statistics: volume shader calls
 };
+
+// Coefficients summed over the primitives covering a span at one point, per unit t (`scale`
+// is the ray direction's length).
+struct StepCoefficients {
+  RGB sigma_t, sigma_s, emission;
+  float holdout = 0.0f;
+};
+// `lobes` (when given) receives the phase mixture there, each lobe weighted by its share of
+// sigma_s per channel.
+StepCoefficients shade_span(const VolumeScene& volumes, std::span<const uint32_t> primitives, Vec3 p, float scale,
+                            VolumeContext& context, std::vector<PhaseLobe>* lobes);
+
+// Medium tracking for one segment: the majorant spans of [ray.tmin, ray.tmax] into scratch.spans
+// and scratch.span_primitives (what march, march_transmittance and the tracking estimators of
+// tracking/ walk). True when there is at least one span.
+bool collect_spans(const VolumeScene& volumes, const Ray& ray, const MarchSettings& settings, MarchScratch& scratch,
+                   int medium = -1);
+// True when every collected span is homogeneous (each is one closed-form step).
+bool collected_spans_homogeneous(const MarchScratch& scratch);
+
+// Marches the spans collect_spans() left in scratch into `out` (the second half of march()).
+void march_collected(const VolumeScene& volumes, const Ray& ray, float jitter, const MarchSettings& settings,
+                     MarchScratch& scratch, TransmittanceRecord& out);
+
+// march_transmittance over the spans collect_spans() left in scratch.
+RGB march_transmittance_collected(const VolumeScene& volumes, const Ray& ray, float jitter,
+                                  const MarchSettings& settings, MarchScratch& scratch);
 
 // Marches [ray.tmin, ray.tmax] (tmax: the nearest opaque surface, or infinity) into `out`.
 // `medium`: the scene medium the ray travels in (media/medium_stack.h; -1: none), which adds to

@@ -170,6 +170,15 @@ std::optional<DistanceSample> TransmittanceRecord::sample_scatter_density(float 
   const float total = w.r + w.g + w.b;
   if (!(total > 0.0f)) return std::nullopt;
   const int c = pick_channel(w, u_channel * total);
+  const auto sample = sample_scatter_channel(c, u_distance);
+  if (!sample) return std::nullopt;
+  return DistanceSample{sample->t, scatter_density_in_step(steps_[size_t(sample->step)], sample->t, total),
+                        sample->step};
+}
+
+std::optional<DistanceSample> TransmittanceRecord::sample_scatter_channel(int c, float u_distance) const {
+  const RGB w = scatter_totals_;
+  if (!(w[c] > 0.0f)) return std::nullopt;
   // Strictly below W_c, so the step found below has a positive share of channel c's integral.
   const float target = std::min(u_distance * w[c], std::nextafter(w[c], 0.0f));
   const auto it = std::partition_point(steps_.begin(), steps_.end(),
@@ -178,7 +187,7 @@ std::optional<DistanceSample> TransmittanceRecord::sample_scatter_density(float 
   const MarchStep& s = steps_[i];
   const double fraction = (double(target) - s.scatter_before[c]) / scatter_in_step(s)[c];
   const float t = invert_scatter_in_step(s, c, std::clamp(fraction, 0.0, double(kOneMinusEpsilon)));
-  return DistanceSample{t, scatter_density_in_step(s, t, total), i};
+  return DistanceSample{t, float(double(s.sigma_s[c]) * transmittance_in_step(s, t)[c] / w[c]), i};
 }
 
 float TransmittanceRecord::scatter_density_pdf(float t) const {

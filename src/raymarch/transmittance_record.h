@@ -83,6 +83,11 @@ class TransmittanceRecord {
   float scatter_density_pdf(float t) const;
   // avg_c of the integral of sigma_s,c T_c over the whole record.
   float scatter_weight_total() const;
+  // The integral of sigma_s,c T_c over the whole record, per channel.
+  RGB scatter_totals() const { return scatter_totals_; }
+  // t with pdf sigma_s,c(t) T_c(t) / scatter_totals()[c] in channel c alone (std::nullopt when
+  // that channel does not scatter); the returned pdf is that channel's.
+  std::optional<DistanceSample> sample_scatter_channel(int c, float u_distance) const;
 
   // Free-flight sampling for indirect paths: with probability 1 - avg_c T_c(end) returns a
   // collision distance with pdf(t) = avg_c sigma_t,c(t) T_c(t) (NOT renormalised), otherwise

@@ -6,21 +6,6 @@
 #include "scene/scene.h"
 
 namespace caligo {
-namespace {
-
-constexpr int kMaxNullCrossings = 64;
-
-std::optional<SurfaceHit> nearest_opaque(const Scene& scene, Ray ray) {
-  for (int i = 0; i <= kMaxNullCrossings; ++i) {
-    const auto hit = scene.surfaces().intersect(ray);
-    if (!hit) return std::nullopt;
-    if (!std::holds_alternative<NullBsdf>(scene.material(*hit).bsdf)) return hit;
-    ray.tmin = hit->t + std::max(1e-4f, hit->t * 1e-5f);
-  }
-  return std::nullopt;
-}
-
-}  // namespace
 
 GBuffer trace_gbuffer(const Scene& scene, const View& view) {
   const int w = view.resolution.x, h = view.resolution.y;
@@ -35,7 +20,7 @@ GBuffer trace_gbuffer(const Scene& scene, const View& view) {
     for (int y = tile.y0; y < tile.y1; ++y)
       for (int x = tile.x0; x < tile.x1; ++x) {
         const Ray ray = view.ray({float(x) + 0.5f, float(y) + 0.5f});
-        const auto hit = nearest_opaque(scene, ray);
+        const auto hit = nearest_non_null_hit(scene, ray);
         if (!hit) continue;
         const SurfaceInteraction si = scene.interaction(ray, *hit);
         const size_t pixel = size_t(y) * size_t(w) + size_t(x);

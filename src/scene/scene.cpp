@@ -259,4 +259,15 @@ SurfaceInteraction Scene::interaction(const Ray& ray, const SurfaceHit& hit) con
   return si;
 }
 
+std::optional<SurfaceHit> nearest_non_null_hit(const Scene& scene, Ray ray, int max_crossings, uint64_t* queries) {
+  for (int crossings = 0; crossings <= max_crossings; ++crossings) {
+    if (queries) ++*queries;
+    const auto hit = scene.surfaces().intersect(ray);
+    if (!hit) return std::nullopt;
+    if (!std::holds_alternative<NullBsdf>(scene.material(*hit).bsdf)) return hit;
+    ray.tmin = hit->t + std::max(1e-4f, hit->t * 1e-5f);
+  }
+  return std::nullopt;
+}
+
 }  // namespace caligo

@@ -106,4 +106,14 @@ class Scene {
   MediumStack camera_stack_;
 };
 
+// How many null surfaces in a row a ray steps over before giving up (endless chains of them).
+inline constexpr int kMaxNullCrossings = 256;
+
+// The nearest surface along the ray that is not a null surface (Off null surfaces, the bounds of
+// media seen from outside, are stepped over by a relative epsilon of their distance, so what lies
+// in front of the hit stays one segment). `queries` counts the Embree queries when given. Every
+// pipeline's camera and bounce rays in scenes without priority surfaces find their hit here.
+std::optional<SurfaceHit> nearest_non_null_hit(const Scene& scene, Ray ray, int max_crossings = kMaxNullCrossings,
+                                               uint64_t* queries = nullptr);
+
 }  // namespace caligo

@@ -1,0 +1,71 @@
+// What every stage of one camera path reads and writes besides the path's own state: the scene,
+// the sample, the settings, the per-thread buffers and the statistics. The path tracer's named
+// events (path_tracer.cpp), its light connections (volume_direct.h) and visibility take one of
+// these instead of the same five arguments each.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/sampler.h"
+#include "integrators/path_sample.h"
+#include "integrators/path_settings.h"
+#include "media/medium_stack.h"
+#include "raymarch/march.h"
+#include "raymarch/transmittance_record.h"
+#include "scene/scene.h"
+
+namespace caligo {
+
+struct PathCounters {
+  uint64_t rays = 0;                // every Embree query: camera, bounce and shadow rays
+  uint64_t camera_march_steps = 0;  // steps stored in camera rays' records
+};
+
+// A crossing of a priority surface that the stack rules made a false hit (nothing seen), at
+// ray parameter t of the current segment; applied to the path's stack once the path is known
+// to have got past it.
+struct PendingCrossing {
+  float t;
+  MediumEntry entry;
+};
+
+// Per-thread buffers, reused from path to path (no allocation per ray once grown).
+struct PathScratch {
+  MarchSettings march_settings;
+  MarchScratch march;
+  TransmittanceRecord record;
+  // Nested dielectrics (scenes with priority surfaces only): the path's medium stack, the
+  // false hits of the current segment, and a working copy for probes and shadow rays.
+  MediumStack stack;
+  std::vector<PendingCrossing> pending;
+  MediumStack work;
+  std::vector<SurfaceHit> shadow_hits;
+  // Deferred next-event estimation (PathSettings::deferred_nee): the path's scattering vertices
+  // in media, their phase lobes and (with nested media) their medium stacks.
+  struct DeferredVertex {
+    Vec3 x, wo;  // the vertex and the direction the path arrived along
+    RGB beta;    // throughput at the vertex, before the phase sample
+    LightKind kind;  // the light layer a connection from it feeds
+    uint32_t first_lobe, lobe_count;
+  };
+  std::vector<DeferredVertex> deferred;
+  std::vector<PhaseLobe> deferred_lobes;
+  std::vector<MediumStack> deferred_stacks;
+  // Lobes of the phase mixture at a tracked scattering event (tracking/tracking.h fills
+  // march.lobes; they are copied here before the vertex's light connection reuses the march).
+  std::vector<PhaseLobe> event_lobes;
+};
+
+struct PathContext {
+  const Scene& scene;
+  const Sampler& sampler;
+  const PathSettings& settings;
+  PathScratch& scratch;
+  PathCounters& counters;
+  const LightSampler& lights;  // Scene::light_sampler(settings.light_sampler)
+  bool nested;                 // the scene has priority surfaces (medium stacks)
+  bool has_volumes;            // volume primitives or surface-bounded media
+};
+
+}  // namespace caligo

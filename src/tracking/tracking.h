@@ -1,0 +1,65 @@
+// Tracking estimators on the majorant spans of a ray: the alternative to decoupled ray marching
+// for the segments where marching pays per voxel but tracking pays per collision, in proportion
+// to the majorant's optical depth (bounce and shadow segments deep inside a dense cloud).
+//
+//   - track_free_flight: the next scattering event by spectral tracking (Kutz et al. 2017,
+//     "Spectral and Decomposition Tracking for Rendering Heterogeneous Volumes", sec. 5, with
+//     their history-aware probabilities): tentative collisions from one scalar majorant (the
+//     largest channel of each span's bound), each one a scattering or a null collision with
+//     probabilities proportional to max_c |sigma_{s,c} w_c| and max_c |sigma_{n,c} w_c| (w: the
+//     path throughput), weighted so that every channel's estimate stays unbiased. Absorption is
+//     never sampled; it is carried by weight (the null and scattering weights both hold the
+//     factor (mu - sigma_a) / mu in a grey medium), as the marched path does. Emission is
+//     gathered at every tentative collision (w * emission / mu, unbiased for the integral of
+//     T * emission), and so are holdouts as extinction (they only matter to camera rays, which
+//     are marched). For albedo 1 and grey media the weights are exactly 1: delta tracking.
+//   - track_transmittance: shadow rays by ratio tracking (Novak et al. 2014): T *= sigma_n / mu
+//     at each tentative collision.
+// Both apply Russian roulette once the running weight falls below kTrackingRouletteThreshold of
+// its start (survival with probability weight / threshold, so the survivors carry the threshold):
+// unbiased, and it ends the long chains of null collisions that carry almost nothing.
+//
+// Random numbers come from a Pcg32 the caller seeds from its Sampler (Sampler::stream_key), so
+// results are a pure function of the sample, as everywhere in the path tracer.
+//
+// Both walk the spans collect_spans() builds (raymarch/march.h); t is the ray's parameter, and
+// coefficients are scaled by the direction's length as the march does.
+#pragma once
+
+#include <cstdint>
+
+#include "core/ray.h"
+#include "core/rgb.h"
+#include "core/rng.h"
+#include "raymarch/march.h"
+
+namespace caligo {
+
+inline constexpr float kTrackingRouletteThreshold = 0.1f;
+// A guard against majorants that make a ray endless (optical depth ~10^6): the ray is then opaque.
+inline constexpr uint32_t kMaxTrackingCollisions = 1u << 20;
+
+struct TrackedSegment {
+  enum class Outcome { kScattered, kPassed, kAbsorbed };
+  Outcome outcome = Outcome::kPassed;
+  float t = 0.0f;    // the scattering event's ray parameter (kScattered)
+  RGB weight{1.0f};  // multiplies the path throughput; its mean is T (passed) or sigma_s T dt (scattered)
+  RGB emission;      // radiance emitted towards the ray's origin, relative to the throughput at its start
+  RGB sigma_s;       // at the event, per unit t; its phase mixture is in scratch.lobes
+  uint32_t collisions = 0;  // tentative collisions (shader evaluations of the span's primitives)
+};
+
+// Spectral tracking over the spans collect_spans() left in `scratch` (one call per segment).
+// `throughput`: the path's throughput arriving at the segment (the history the probabilities
+// follow); `may_scatter` false makes every collision null (the path only takes the segment's
+// transmittance, by ratio tracking). Gathers emission only when `gather_emission`.
+TrackedSegment track_free_flight(const VolumeScene& volumes, const Ray& ray, RGB throughput, bool may_scatter,
+                                 bool gather_emission, MarchScratch& scratch, Pcg32& rng);
+
+// Ratio-tracking transmittance along [ray.tmin, ray.tmax] (collects its own spans).
+RGB track_transmittance(const VolumeScene& volumes, const Ray& ray, const MarchSettings& settings,
+                        MarchScratch& scratch, Pcg32& rng, int medium = -1);
+// The same over the spans collect_spans() left in scratch.
+RGB track_transmittance_collected(const VolumeScene& volumes, const Ray& ray, MarchScratch& scratch, Pcg32& rng);
+
+}  // namespace caligo
