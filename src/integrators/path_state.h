@@ -12,6 +12,11 @@ namespace caligo {
 // The state carried from one scattering event to the next.
 struct PathState {
   RGB throughput{1.0f};
+  // Hero-channel spectral MIS of chromatic marched segments (path_tracer.cpp, chromatic_fate):
+  // the channel whose fates the path samples (-1 until its first chromatic segment) and the
+  // path's pdf of those fates in each channel, normalised to average 1.
+  int hero_channel = -1;
+  RGB channel_pdf{1.0f};
   bool specular_bounce = true;  // the camera ray counts as specular: no MIS on what it sees
   // Only specular events so far (the camera ray, mirrors, glass): what a ray sees now is what
   // the camera sees, so an environment with visible = false shows black to it.

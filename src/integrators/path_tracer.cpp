@@ -193,52 +193,48 @@ void connect_marched_segment(const PathContext& ctx, const PathState& state, con
                 nee_probability);
 }
 
-// The fate of a path in a chromatic record, by spectral MIS (one-sample, balance heuristic) over
-// the channels: channel c is chosen with probability q_c proportional to throughput_c (S_c + P_c),
-// the history-aware choice of Kutz et al. 2017 and of hero-channel sampling (the channel that
-// carries the path's light is sampled most), and the fate in that channel's own proportion
-// S_c : P_c (scatter at density sigma_s,c T_c, or pass); the estimate divides by the mixture over
-// channels. Choosing by the channel average instead made the densest channel of an albedo-1
-// furnace 6-8x noisier than the others. Returns the collision (its pdf the mixture's), or
-// std::nullopt with *pass_weight the factor on the throughput of passing (0: absorbed).
-std::optional<DistanceSample> chromatic_fate(const TransmittanceRecord& record, RGB throughput, bool may_scatter,
+// The fate of a path in a chromatic record by hero-channel spectral MIS over the whole path
+// (Wilkie et al. 2014, "Hero Wavelength Spectral Sampling"): the path draws one hero channel at
+// its first chromatic segment, and every chromatic segment samples its fate in that channel's
+// own proportion S_h : P_h (scatter at density sigma_s,h T_h, or pass). The path's pdf in channel
+// k is the product of the same fates' pdfs in channel k (state.channel_pdf, kept normalised);
+// each channel is weighted by the balance heuristic over the three, f_k / avg_k' pdf_k'(path),
+// so in an albedo-1 medium no channel's weight exceeds 3. Choosing fates by the channel average
+// instead made the densest channel of an albedo-1 furnace 6-8x noisier than the others, with
+// fireflies that kept its mean from converging. Returns the collision with its pdf set so that
+// the caller's sigma_s T / pdf is the balance-heuristic weight, or std::nullopt with
+// *pass_weight the factor on the throughput of passing (0: absorbed).
+std::optional<DistanceSample> chromatic_fate(const TransmittanceRecord& record, PathState& state, bool may_scatter,
                                              float u_channel, float u, RGB* pass_weight) {
   const RGB scatter = may_scatter ? record.scatter_totals() : RGB(0.0f), pass = record.transmittance_end();
-  RGB q, survive;
-  float q_total = 0.0f;
-  for (int c = 0; c < 3; ++c) {
-    survive[c] = scatter[c] + pass[c];
-    q[c] = std::abs(throughput[c]) * survive[c];
-    q_total += q[c];
-  }
+  const RGB survive = scatter + pass;
   *pass_weight = RGB(0.0f);
-  if (!(q_total > 0.0f)) return std::nullopt;
-  q *= 1.0f / q_total;
-  int chosen = 2;
-  for (float acc = 0.0f; int c : {0, 1, 2})
-    if (q[c] > 0.0f && u_channel < (acc += q[c])) {
-      chosen = c;
-      break;
-    }
-  while (!(q[chosen] > 0.0f)) --chosen;  // rounding at the top edge: the last channel chosen
-  // The mixture's density of a fate: sum_c q_c f_c / (S_c + P_c), f_c its value in channel c.
-  const auto mixture = [&](RGB f) {
-    float p = 0.0f;
-    for (int c = 0; c < 3; ++c)
-      if (q[c] > 0.0f) p += q[c] * f[c] / survive[c];
-    return p;
+  if (state.hero_channel < 0) state.hero_channel = std::min(int(u_channel * 3.0f), 2);
+  const int h = state.hero_channel;
+  if (!(survive[h] > 0.0f)) return std::nullopt;  // the hero channel is absorbed: so is the path
+  // fate_pdf[k]: the fate's pdf in channel k; the weight divides by the path's mixture pdf.
+  const auto advance = [&](RGB fate_pdf) {
+    const float before = state.channel_pdf.average();
+    state.channel_pdf *= fate_pdf;
+    const float after = state.channel_pdf.average();
+    if (!(after > 0.0f)) return 0.0f;
+    state.channel_pdf *= 1.0f / after;  // ratios matter only; this keeps them finite
+    return after / before;              // the mixture pdf of this fate, relative to the path so far
   };
-  const float p_scatter = scatter[chosen] / survive[chosen];
+  const auto per_channel = [&](RGB f) {
+    return RGB(survive.r > 0.0f ? f.r / survive.r : 0.0f, survive.g > 0.0f ? f.g / survive.g : 0.0f,
+               survive.b > 0.0f ? f.b / survive.b : 0.0f);
+  };
+  const float p_scatter = scatter[h] / survive[h];
   if (u < p_scatter) {
-    auto collision = record.sample_scatter_channel(chosen, u / p_scatter);
-    if (collision) {
-      const MarchStep& step = record.steps()[size_t(collision->step)];
-      collision->pdf = mixture(step.sigma_s * record.transmittance(collision->t));
-      if (collision->pdf > 0.0f) return collision;
-    }
-    return std::nullopt;  // rounding left no mass: treated as absorbed
+    auto collision = record.sample_scatter_channel(h, u / p_scatter);
+    if (!collision) return std::nullopt;  // rounding left no mass: treated as absorbed
+    const MarchStep& step = record.steps()[size_t(collision->step)];
+    collision->pdf = advance(per_channel(step.sigma_s * record.transmittance(collision->t)));
+    if (collision->pdf > 0.0f) return collision;
+    return std::nullopt;
   }
-  const float p_pass = mixture(pass);
+  const float p_pass = advance(per_channel(pass));
   if (p_pass > 0.0f) *pass_weight = pass / p_pass;
   return std::nullopt;
 }
@@ -275,7 +271,7 @@ SegmentOutcome marched_segment(const PathContext& ctx, PathState& state, Ray& ra
   std::optional<DistanceSample> collision;
   if (ctx.settings.absorption_by_weight && !record.grey()) {
     RGB pass_weight;
-    collision = chromatic_fate(record, state.throughput, may_scatter, u_channel, u, &pass_weight);
+    collision = chromatic_fate(record, state, may_scatter, u_channel, u, &pass_weight);
     if (!collision) {
       state.throughput *= pass_weight;
       return state.throughput.is_black() ? SegmentOutcome::kAbsorbed : SegmentOutcome::kPassed;

@@ -252,17 +252,39 @@ constexpr const char* kOverlap = R"json({
 })json";
 
 
-// A cumulus from the grid generator under a low sun and a blue sky: a dense, bright medium
-// (albedo 0.99, optical depth ~30 through the middle) whose look is multiple scattering, so
-// paths may scatter hundreds of times. The grid is generated when the scene is loaded.
-constexpr const char* kCloud = R"json({
+// A cumulus from the grid generator lit as production cloud renders are: a low sun from the upper
+// left and a little behind it, so the lit side, the self-shadowed base and right flank and the
+// bright forward-scattering rim along the silhouette all show, under a blue sky that fills the
+// shadows. A dense, bright medium (albedo 0.99, optical depth ~30 through the middle) whose look
+// is multiple scattering, so paths may scatter hundreds of times. The grid is generated when the
+// scene is loaded. `cloud-dense` is the same cumulus at 40 per metre (optical depth ~100).
+std::string cloud_scene(const char* extinction) {
+  return std::string(R"json({
   "camera": {"position": [0, 1.0, 5.2], "look_at": [0, 1.35, 0], "fov": 40, "resolution": [480, 270]},
   "render": {"spp": 64, "max_bounces": 64, "max_volume_bounces": 512},
-  "media": {"cloud": {"albedo": 0.99, "extinction": 12, "phase": {"type": "hg", "g": 0.7}}},
+  "media": {"cloud": {"albedo": 0.99, "extinction": )json") +
+         extinction + R"json(, "phase": {"type": "hg", "g": 0.7}}},
   "volumes": [{"type": "vdb", "generate": {"kind": "cloud", "resolution": 128, "seed": 7}, "medium": "cloud"}],
-  "lights": [{"type": "directional", "direction": [-0.55, -0.45, -0.7], "angular_radius": 0.27,
+  "lights": [{"type": "directional", "direction": [0.6, -0.45, 0.65], "angular_radius": 0.27,
               "color": [1, 0.93, 0.82], "irradiance": 6},
-             {"type": "environment", "color": [0.35, 0.55, 1.0], "radiance": 0.6}]
+             {"type": "environment", "color": [0.35, 0.55, 1.0], "radiance": 0.35}]
+})json";
+}
+
+// A smoke plume from the grid generator over a ground, lit by a warm sun from the side and a
+// grey sky: grey, moderately absorbing smoke (albedo 0.8) in which shadows and multiple
+// scattering both show.
+constexpr const char* kSmoke = R"json({
+  "camera": {"position": [0, 1.5, 6.5], "look_at": [0, 1.5, 0], "fov": 42, "resolution": [360, 400]},
+  "render": {"spp": 64, "max_bounces": 16, "max_volume_bounces": 64},
+  "materials": {"ground": {"type": "diffuse", "reflectance": 0.4}},
+  "media": {"smoke": {"albedo": 0.8, "extinction": 24, "phase": {"type": "hg", "g": 0.3}}},
+  "shapes": [{"type": "rectangle", "corner": [-6, 0, -6], "edge1": [0, 0, 12], "edge2": [12, 0, 0],
+              "material": "ground"}],
+  "volumes": [{"type": "vdb", "generate": {"kind": "smoke", "resolution": 112, "seed": 3}, "medium": "smoke"}],
+  "lights": [{"type": "directional", "direction": [-0.7, -0.55, -0.45], "angular_radius": 0.5,
+              "color": [1, 0.9, 0.75], "irradiance": 4},
+             {"type": "environment", "radiance": 0.25}]
 })json";
 
 // A fireball from the grid generator: blackbody emission from its temperature channel
@@ -541,8 +563,14 @@ const std::vector<BuiltinScene>& all_builtins() {
        many_lamps_scene()},
       {"overlap", "two overlapping boxes of coloured media, whose coefficients add where they overlap",
        kOverlap},
-      {"cloud", "a dense, bright cumulus (generated VDB grid) under a low sun and a blue sky: 64+ bounces",
-       kCloud},
+      {"cloud",
+       "a dense, bright cumulus (generated VDB grid) lit from the upper left and behind by a low sun, under a blue "
+       "sky: self-shadowing, a darker base and a bright rim; 64+ bounces",
+       cloud_scene("12")},
+      {"cloud-dense", "the cumulus of `cloud` at 40 per metre (optical depth ~100 through the middle)",
+       cloud_scene("40")},
+      {"smoke", "a smoke plume (generated VDB grid, albedo 0.8) over a ground under a side sun and a grey sky",
+       kSmoke},
       {"fire", "a fireball (generated VDB grid) glowing by blackbody emission from its temperature, in smoke",
        kFire},
       {"mesh-volume", "the COLLADA duck from assimp-testmodels filled with smoke (a closed-mesh volume, even/odd counting)",

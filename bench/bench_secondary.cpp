@@ -1,0 +1,101 @@
+// Tracking after the first bounce (issue 18) against the former behaviour in the same binary:
+// PathSettings::secondary = march (every segment marched, the former default) against auto (the
+// default: spectral and ratio tracking through heterogeneous segments) and track (tracking
+// everywhere), each scene at EQUAL TIME against a converged reference rendered with march
+// (kReferenceSpp, cached in the build folder as bench/secondary_reference_NAME_80x60_SPP.exr;
+// delete it after changing the scene or the integrator).
+// Counters per mode: MSE, seconds, paths/s and shader evaluations per path; efficiency =
+// (MSE x seconds)(march) / (MSE x seconds)(mode), the factor by which the mode reaches a given
+// error sooner (the MSE of an unbiased estimator falls as 1 / time); mean_offset = the mode's
+// image mean minus the reference's, relative (a bias would show here).
+// Run: build/release/bench/caligo_bench --benchmark_filter=SecondaryEqualTime
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <string>
+
+#include "bench_scene.h"
+#include "image/compare.h"
+#include "image/exr_io.h"
+#include "render/render.h"
+
+namespace caligo {
+namespace {
+
+constexpr Vec2i kResolution{80, 60};
+constexpr int kReferenceSpp = 1024;
+constexpr int kMarchSpp = 32;
+constexpr int kRuns = 2;
+
+const char* const kScenes[] = {"cloud",       "cloud-dense", "smoke", "fire",          "lamp-in-fog",
+                               "default",     "stage",       "spot-shafts", "glass-of-water"};
+constexpr SecondarySegments kModes[] = {SecondarySegments::kMarch, SecondarySegments::kAuto,
+                                        SecondarySegments::kTrack};
+const char* const kModeNames[] = {"march", "auto", "track"};
+
+RenderResult render_with(const char* scene, SecondarySegments mode, int spp, uint64_t seed) {
+  RenderSettings s = default_settings(bench::builtin_scene(scene).desc());
+  s.resolution = kResolution;
+  s.spp = spp;
+  s.seed = seed;
+  s.path.secondary = mode;
+  return render(bench::builtin_scene(scene), s);
+}
+
+Image reference(const char* scene) {
+  std::string name = "secondary_reference_";
+  for (const std::string& part : {std::string(scene), std::string("_"), std::to_string(kResolution.x),
+                                  std::string("x"), std::to_string(kResolution.y), std::string("_"),
+                                  std::to_string(kReferenceSpp), std::string(".exr")})
+    name += part;
+  const std::filesystem::path cache = std::filesystem::path(CALIGO_BENCH_CACHE_DIR) / name;
+  if (std::filesystem::exists(cache)) return read_exr(cache.string());
+  const Image rendered = render_with(scene, SecondarySegments::kMarch, kReferenceSpp, 4242).image;
+  write_exr(cache.string(), rendered);
+  return rendered;
+}
+
+double image_mean(const Image& image) {
+  double sum = 0;
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x) sum += image.rgb(x, y, 0).average();
+  return sum / (double(image.width()) * image.height());
+}
+
+void BM_SecondaryEqualTime(benchmark::State& state) {
+  const char* scene = kScenes[state.range(0)];
+  const Image ref = reference(scene);
+  const double ref_mean = image_mean(ref);
+  // Samples per pixel for equal time, from a short run of each mode.
+  double rate[3];
+  for (int m = 0; m < 3; ++m) rate[m] = render_with(scene, kModes[m], 4, 99).stats.seconds / 4.0;
+  double mse[3] = {}, seconds[3] = {}, paths_per_s[3] = {}, evals[3] = {}, offset[3] = {};
+  int spp[3];
+  for (int m = 0; m < 3; ++m) spp[m] = std::max(1, int(std::lround(kMarchSpp * rate[0] / rate[m])));
+  for (auto _ : state)
+    for (int run = 0; run < kRuns; ++run)
+      for (int m = 0; m < 3; ++m) {
+        const RenderResult r = render_with(scene, kModes[m], spp[m], uint64_t(run) + 1);
+        const ImageMetrics metrics = compare_images(r.image, ref);
+        mse[m] += metrics.rmse * metrics.rmse / kRuns;
+        seconds[m] += r.stats.seconds / kRuns;
+        paths_per_s[m] += double(r.stats.paths) / r.stats.seconds / kRuns;
+        evals[m] += double(r.stats.shader_evaluations) / double(r.stats.paths) / kRuns;
+        offset[m] += (image_mean(r.image) - ref_mean) / ref_mean / kRuns;
+      }
+  state.SetLabel(scene);
+  for (int m = 0; m < 3; ++m) {
+    const std::string n = kModeNames[m];
+    state.counters[n + "_spp"] = spp[m];
+    state.counters[n + "_MSE"] = mse[m];
+    state.counters[n + "_s"] = seconds[m];
+    state.counters[n + "_paths_per_s"] = paths_per_s[m];
+    state.counters[n + "_evals_per_path"] = evals[m];
+    state.counters[n + "_mean_offset"] = offset[m];
+    if (m > 0) state.counters[n + "_efficiency"] = (mse[0] * seconds[0]) / (mse[m] * seconds[m]);
+  }
+}
+BENCHMARK(BM_SecondaryEqualTime)->DenseRange(0, 8)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
+
+}  // namespace
+}  // namespace caligo
