@@ -40,8 +40,9 @@ enum class DistanceSampling {
 enum class SecondarySegments {
   kMarch,  // decoupled marching, as the camera segment (the former behaviour)
   kTrack,  // spectral tracking for free flight, ratio tracking for shadow rays, every medium
-  kAuto,   // tracking where a segment crosses a heterogeneous span (grids, noise, falloff);
-           // homogeneous segments keep their closed forms and equiangular sampling
+  kAuto,   // tracking where a segment crosses a heterogeneous span (grids, noise, falloff) of
+           // media that do not emit; homogeneous segments keep their closed forms and
+           // equiangular sampling, emissive ones their exact per-step emission
 };
 
 struct PathSettings {

@@ -4,12 +4,12 @@
 
 #include "core/sampling.h"
 #include "integrators/interface_eta.h"
+#include "integrators/medium_segment.h"
 #include "integrators/path_state.h"
 #include "integrators/visibility.h"
 #include "integrators/volume_direct.h"
 #include "lights/light_sample.h"
 #include "materials/bsdf.h"
-#include "tracking/tracking.h"
 
 namespace caligo {
 namespace {
@@ -132,223 +132,6 @@ void apply_pending(PathScratch& scratch, float t_limit) {
   for (const PendingCrossing& p : scratch.pending)
     if (p.t < t_limit) scratch.stack.cross(p.entry);
   scratch.pending.clear();
-}
-
-enum class SegmentOutcome { kScattered, kPassed, kAbsorbed };
-
-// Whether the path may scatter in a medium now: max_volume_bounces bounds the events, and a path
-// that has used up its bounces may not start another run (a scattering event after the last
-// surface bounce would lengthen it).
-bool may_scatter_in_medium(const PathContext& ctx, const PathState& state) {
-  return state.volume_bounces < ctx.settings.limits.max_volume_bounces &&
-         (state.in_volume_run || state.may_bounce(ctx.settings.limits.max_bounces));
-}
-
-// Event: the path scatters in a medium at x (on `ray`, whose segment the light choice of a
-// marched event covers), with the phase mixture `lobes`; the phase sample gives the next ray.
-SegmentOutcome scatter_in_medium(const PathContext& ctx, PathState& state, Ray& ray, Vec3 x,
-                                 std::span<const PhaseLobe> lobes, const Ray* marched_segment) {
-  const Sampler& sampler = ctx.sampler;
-  const RGB beta = state.throughput;  // at the vertex, before the phase sample (deferred NEE)
-  const MixedPhaseSample ps = sample_mixed_phase(
-      lobes, ray.direction, lobes.size() > 1 ? sampler.get_1d(bounce(state.vertex(), sample_dim::kPhaseLobe)) : 0.0f,
-      sampler.get_2d(bounce(state.vertex(), sample_dim::kPhaseDirection)));
-  state.throughput *= ps.weight;
-  if (state.throughput.is_black()) return SegmentOutcome::kAbsorbed;
-  // Kept only on the scattered outcome, which is where trace_path stores its medium stack.
-  PathScratch& scratch = ctx.scratch;
-  if (ctx.settings.deferred_nee > 0) {
-    scratch.deferred.push_back({x, ray.direction, beta, state.connected(true), uint32_t(scratch.deferred_lobes.size()),
-                                uint32_t(lobes.size())});
-    scratch.deferred_lobes.insert(scratch.deferred_lobes.end(), lobes.begin(), lobes.end());
-  }
-  state.specular_bounce = false;
-  state.camera_view = false;
-  state.scatter_pdf = ps.pdf;
-  state.scatter_origin = x;
-  state.scattered_in_medium = true;
-  state.light_choice_at_point = marched_segment == nullptr;
-  if (marched_segment) state.scatter_segment = *marched_segment;
-  state.count_nonspecular_event(true);
-  ray = {x, ps.wi, 0.0f, kInfinity};
-  ++state.volume_bounces;
-  if (!state.in_volume_run) ++state.volume_runs;
-  state.in_volume_run = true;
-  return SegmentOutcome::kScattered;
-}
-
-// Event: light connection from a marched segment (the seed's next-event estimation along the
-// record). Segments that barely scatter (thin fog between two walls) contribute little
-// in-scattered light but cost two shadow rays: the connection runs with a probability that
-// follows the segment's scattering probability, and is reweighted (unbiased roulette).
-void connect_marched_segment(const PathContext& ctx, const PathState& state, const Ray& ray,
-                             const TransmittanceRecord& record, PathSample& out) {
-  const float nee_probability = std::min(1.0f, ctx.settings.volume_nee_scale * record.scatter_weight_total());
-  const float u = nee_probability < 1.0f
-                      ? ctx.sampler.get_1d(bounce(state.vertex(), sample_dim::kVolumeNeeRoulette))
-                      : 0.0f;
-  if (nee_probability > 0.0f && u < nee_probability)
-    out.add(state.connected(true),
-            state.throughput * volume_direct_light(ctx, ray, record, state.vertex(), state.events > 0) /
-                nee_probability);
-}
-
-// The fate of a path in a chromatic record by hero-channel spectral MIS over the whole path
-// (Wilkie et al. 2014, "Hero Wavelength Spectral Sampling"): the path draws one hero channel at
-// its first chromatic segment, and every chromatic segment samples its fate in that channel's
-// own proportion S_h : P_h (scatter at density sigma_s,h T_h, or pass). The path's pdf in channel
-// k is the product of the same fates' pdfs in channel k (state.channel_pdf, kept normalised);
-// each channel is weighted by the balance heuristic over the three, f_k / avg_k' pdf_k'(path),
-// so in an albedo-1 medium no channel's weight exceeds 3. Choosing fates by the channel average
-// instead made the densest channel of an albedo-1 furnace 6-8x noisier than the others, with
-// fireflies that kept its mean from converging. Returns the collision with its pdf set so that
-// the caller's sigma_s T / pdf is the balance-heuristic weight, or std::nullopt with
-// *pass_weight the factor on the throughput of passing (0: absorbed).
-std::optional<DistanceSample> chromatic_fate(const TransmittanceRecord& record, PathState& state, bool may_scatter,
-                                             float u_channel, float u, RGB* pass_weight) {
-  const RGB scatter = may_scatter ? record.scatter_totals() : RGB(0.0f), pass = record.transmittance_end();
-  const RGB survive = scatter + pass;
-  *pass_weight = RGB(0.0f);
-  if (state.hero_channel < 0) state.hero_channel = std::min(int(u_channel * 3.0f), 2);
-  const int h = state.hero_channel;
-  if (!(survive[h] > 0.0f)) return std::nullopt;  // the hero channel is absorbed: so is the path
-  // fate_pdf[k]: the fate's pdf in channel k; the weight divides by the path's mixture pdf.
-  const auto advance = [&](RGB fate_pdf) {
-    const float before = state.channel_pdf.average();
-    state.channel_pdf *= fate_pdf;
-    const float after = state.channel_pdf.average();
-    if (!(after > 0.0f)) return 0.0f;
-    state.channel_pdf *= 1.0f / after;  // ratios matter only; this keeps them finite
-    return after / before;              // the mixture pdf of this fate, relative to the path so far
-  };
-  const auto per_channel = [&](RGB f) {
-    return RGB(survive.r > 0.0f ? f.r / survive.r : 0.0f, survive.g > 0.0f ? f.g / survive.g : 0.0f,
-               survive.b > 0.0f ? f.b / survive.b : 0.0f);
-  };
-  const float p_scatter = scatter[h] / survive[h];
-  if (u < p_scatter) {
-    auto collision = record.sample_scatter_channel(h, u / p_scatter);
-    if (!collision) return std::nullopt;  // rounding left no mass: treated as absorbed
-    const MarchStep& step = record.steps()[size_t(collision->step)];
-    collision->pdf = advance(per_channel(step.sigma_s * record.transmittance(collision->t)));
-    if (collision->pdf > 0.0f) return collision;
-    return std::nullopt;
-  }
-  const float p_pass = advance(per_channel(pass));
-  if (p_pass > 0.0f) *pass_weight = pass / p_pass;
-  return std::nullopt;
-}
-
-// Event: a marched medium segment (phases 2 and 3 of the seed) over the spans already collected.
-// Absorption by weight, not by chance (PathSettings::absorption_by_weight; implicit capture): of
-// the three fates of a path in the segment -- scatter (probability S = avg_c of the integral of
-// sigma_s,c T_c), pass (P = avg_c T_c at the end) or be absorbed (the rest) -- only the first two
-// are sampled, in proportion S : P, and both carry the surviving fraction S + P as weight. A
-// collision is drawn with density proportional to avg_c sigma_s,c T_c (the sampler light
-// connections use); passing carries the record's exact T. A purely absorbing medium (S = 0) has
-// zero variance; albedo 1 (S + P = 1) is exactly free-flight sampling. Sampling pass against S
-// alone (pass weight T / (1 - S)) was worse in dense, bright media: its passes carry tiny weights
-// that Russian roulette then turns into noise (3x the standard error on `sss`). A path that may
-// not scatter again just takes T.
-SegmentOutcome marched_segment(const PathContext& ctx, PathState& state, Ray& ray, float t_surface,
-                               PathSample& out, float* event_t) {
-  const Sampler& sampler = ctx.sampler;
-  TransmittanceRecord& record = ctx.scratch.record;
-  Ray segment = ray;
-  segment.tmax = t_surface;
-  march_collected(ctx.scene.volumes(), segment, march_jitter(ctx.scene, sampler, state.vertex()),
-                  ctx.scratch.march_settings, ctx.scratch.march, record);
-  if (record.empty()) return SegmentOutcome::kPassed;
-  if (state.events == 0) ctx.counters.camera_march_steps += record.steps().size();
-  out.add(state.arriving(LightKind::kVolumeEmission), state.throughput * record.emission());
-  const bool may_scatter = may_scatter_in_medium(ctx, state);
-  if (may_scatter && ctx.settings.deferred_nee <= 0) connect_marched_segment(ctx, state, ray, record, out);
-
-  const float u = sampler.get_1d(bounce(state.vertex(), sample_dim::kFreeFlightDistance));
-  // A grey record samples the same distance whichever channel is picked.
-  const float u_channel =
-      record.grey() ? 0.0f : sampler.get_1d(bounce(state.vertex(), sample_dim::kFreeFlightChannel));
-  std::optional<DistanceSample> collision;
-  if (ctx.settings.absorption_by_weight && !record.grey()) {
-    RGB pass_weight;
-    collision = chromatic_fate(record, state, may_scatter, u_channel, u, &pass_weight);
-    if (!collision) {
-      state.throughput *= pass_weight;
-      return state.throughput.is_black() ? SegmentOutcome::kAbsorbed : SegmentOutcome::kPassed;
-    }
-  } else if (ctx.settings.absorption_by_weight) {
-    const RGB t_end = record.transmittance_end();
-    const float scatter = may_scatter ? record.scatter_weight_total() : 0.0f, pass = t_end.average();
-    const float survive = scatter + pass;
-    const float p_scatter = survive > 0.0f ? scatter / survive : 0.0f;
-    if (!(u < p_scatter)) {
-      state.throughput *= p_scatter > 0.0f ? t_end * (survive / pass) : t_end;
-      return state.throughput.is_black() ? SegmentOutcome::kAbsorbed : SegmentOutcome::kPassed;
-    }
-    collision = record.sample_scatter_density(u_channel, u / p_scatter);
-    if (!collision) return SegmentOutcome::kAbsorbed;  // p_scatter > 0 implies a collision
-    // The collision's density is p_scatter x pdf = avg_c sigma_s,c(t) T_c(t) / survive.
-    collision->pdf *= p_scatter;
-  } else {
-    collision = record.sample_free_flight(u_channel, u);
-    if (!collision) {
-      const RGB t_end = record.transmittance_end();
-      state.throughput *= t_end / t_end.average();
-      return SegmentOutcome::kPassed;
-    }
-    if (!may_scatter) return SegmentOutcome::kAbsorbed;
-  }
-  const MarchStep& step = record.steps()[size_t(collision->step)];
-  state.throughput *= step.sigma_s * record.transmittance(collision->t) / collision->pdf;
-  if (state.throughput.is_black()) return SegmentOutcome::kAbsorbed;
-  *event_t = collision->t;
-  const Ray choice_segment = light_choice_segment(ray, record);
-  return scatter_in_medium(ctx, state, ray, ray.at(collision->t), record.lobes(step), &choice_segment);
-}
-
-// Event: a tracked medium segment (tracking/tracking.h) over the spans already collected:
-// spectral tracking to the next scattering event, emission gathered on the way, then a light
-// connection at the event itself (the light sampler's point form), as the reference ladder and
-// most production renderers connect.
-SegmentOutcome tracked_segment(const PathContext& ctx, PathState& state, Ray& ray, PathSample& out, float* event_t) {
-  ctx.scratch.record.clear();  // no record: nothing may read a stale one
-  const bool may_scatter = may_scatter_in_medium(ctx, state);
-  Pcg32 rng(ctx.sampler.stream_key(bounce(state.vertex(), sample_dim::kFreeFlightDistance)), 0);
-  const TrackedSegment seg =
-      track_free_flight(ctx.scene.volumes(), ray, state.throughput, may_scatter, true, ctx.scratch.march, rng);
-  if (!seg.emission.is_black())
-    out.add(state.arriving(LightKind::kVolumeEmission), state.throughput * seg.emission);
-  state.throughput *= seg.weight;
-  if (seg.outcome == TrackedSegment::Outcome::kAbsorbed || state.throughput.is_black())
-    return SegmentOutcome::kAbsorbed;
-  if (seg.outcome == TrackedSegment::Outcome::kPassed) return SegmentOutcome::kPassed;
-  const Vec3 x = ray.at(seg.t);
-  *event_t = seg.t;
-  // The lobes stay in scratch.march.lobes: shadow rays shade without lobes.
-  const std::span<const PhaseLobe> lobes(ctx.scratch.march.lobes);
-  if (ctx.settings.deferred_nee <= 0)
-    out.add(state.connected(true), state.throughput * point_volume_direct_light(ctx, x, ray.direction, lobes,
-                                                                                state.vertex(), seg.t));
-  return scatter_in_medium(ctx, state, ray, x, lobes, nullptr);
-}
-
-// Phases 2 and 3 for the medium in front of the next surface (or to infinity), marched or
-// tracked by PathSettings::secondary. `medium`: the scene medium the stack puts the segment in
-// (-1: none). On kScattered, *event_t is the event's distance along the old ray.
-SegmentOutcome medium_segment(const PathContext& ctx, PathState& state, Ray& ray, float t_surface, int medium,
-                              PathSample& out, float* event_t) {
-  Ray segment = ray;
-  segment.tmax = t_surface;
-  if (!collect_spans(ctx.scene.volumes(), segment, ctx.scratch.march_settings, ctx.scratch.march, medium)) {
-    ctx.scratch.record.clear();
-    return SegmentOutcome::kPassed;
-  }
-  const SecondarySegments policy = ctx.settings.secondary;
-  const bool track = state.events > 0 && (policy == SecondarySegments::kTrack ||
-                                          (policy == SecondarySegments::kAuto &&
-                                           !collected_spans_homogeneous(ctx.scratch.march)));
-  return track ? tracked_segment(ctx, state, ray, out, event_t)
-               : marched_segment(ctx, state, ray, t_surface, out, event_t);
 }
 
 // Deferred next-event estimation (PathSettings::deferred_nee): `count` connections, each to a
@@ -498,10 +281,6 @@ Next medium_in_front(const PathContext& ctx, PathState& state, Ray& ray, const s
 }
 
 }  // namespace
-
-float march_jitter(const Scene& scene, const Sampler& sampler, int depth) {
-  return scene.volumes().all_homogeneous() ? 0.5f : sampler.get_1d(bounce(depth, sample_dim::kMarchJitter));
-}
 
 PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const PathSettings& settings,
                       PathCounters& counters, PathScratch& scratch) {

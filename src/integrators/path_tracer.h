@@ -9,6 +9,10 @@
 //   3. importance sampling: next-event estimation in the medium (equiangular and density
 //      sampling combined by MIS, see volume_direct.h), free-flight sampling of the next
 //      scattering distance from the same record, phase sampling, Russian roulette.
+// After the first bounce, segments through heterogeneous media may be tracked instead of marched
+// (PathSettings::secondary: spectral tracking, ratio-tracked shadow rays; medium_segment.h).
+// The loop is a sequence of named events over one PathContext: segment end, the medium segment,
+// escape, surface hit (path_tracer.cpp), and scattering in a medium (medium_segment.cpp).
 // Surfaces use next-event estimation and BSDF sampling combined by the power heuristic.
 //
 // One call traces one camera path; the result is a pure function of the scene, the camera
@@ -19,16 +23,13 @@
 
 #include "core/rgb.h"
 #include "core/sampler.h"
+#include "integrators/medium_segment.h"
 #include "integrators/path_context.h"
 #include "integrators/path_sample.h"
 #include "integrators/path_settings.h"
 #include "scene/scene.h"
 
 namespace caligo {
-
-// The position of heterogeneous march steps for this path vertex (constant when no
-// primitive is heterogeneous, which saves a sample).
-float march_jitter(const Scene& scene, const Sampler& sampler, int depth);
 
 PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const PathSettings& settings,
                       PathCounters& counters, PathScratch& scratch);

@@ -97,6 +97,13 @@ bool collect_spans(const VolumeScene& volumes, const Ray& ray, const MarchSettin
   return !scratch.spans.empty();
 }
 
+bool collected_spans_emissive(const VolumeScene& volumes, const MarchScratch& scratch) {
+  return std::any_of(scratch.span_primitives.begin(), scratch.span_primitives.end(), [&](uint32_t id) {
+    const VolumeShader& s = volumes.primitive(id).shader;
+    return !s.emission.is_black() || s.blackbody || s.flame;
+  });
+}
+
 bool collected_spans_homogeneous(const MarchScratch& scratch) {
   return std::all_of(scratch.spans.begin(), scratch.spans.end(), [](const Span& s) { return s.homogeneous; });
 }

@@ -63,6 +63,10 @@ bool collect_spans(const VolumeScene& volumes, const Ray& ray, const MarchSettin
                    int medium = -1);
 // True when every collected span is homogeneous (each is one closed-form step).
 bool collected_spans_homogeneous(const MarchScratch& scratch);
+// True when a primitive of the collected spans emits (a constant emission, blackbody or flame):
+// marching integrates its emission exactly per step, where tracking would gather it at
+// tentative collisions of the extinction's majorant (noisy where a flame is hot but thin).
+bool collected_spans_emissive(const VolumeScene& volumes, const MarchScratch& scratch);
 
 // Marches the spans collect_spans() left in scratch into `out` (the second half of march()).
 void march_collected(const VolumeScene& volumes, const Ray& ray, float jitter, const MarchSettings& settings,
