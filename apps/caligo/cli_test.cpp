@@ -36,6 +36,21 @@ TEST_F(Cli, ListsBuiltins) {
   EXPECT_NE(r.out.find("default"), std::string::npos);
 }
 
+// --secondary chooses the estimator of segments after the first bounce: march and the default
+// (auto) render a homogeneous scene to the same bits; an unknown value exits 2 before rendering,
+// naming the option, and writes nothing.
+TEST_F(Cli, SecondaryOptionKeepsHomogeneousScenesAndRefusesUnknownValues) {
+  const fs::path a = dir_ / "march.exr", b = dir_ / "auto.exr", bad = dir_ / "bad.exr";
+  ASSERT_EQ(run("render lamp-in-fog --res 16x12 --spp 4 -q --secondary march -o " + a.string()).exit_code, 0);
+  ASSERT_EQ(run("render lamp-in-fog --res 16x12 --spp 4 -q -o " + b.string()).exit_code, 0);
+  const RunResult same = run("compare " + a.string() + " " + b.string() + " --max-rmse 0");
+  EXPECT_EQ(same.exit_code, 0) << same.out;
+  const RunResult r = run("render lamp-in-fog --res 16x12 --spp 4 -q --secondary sideways -o " + bad.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--secondary"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(bad));
+}
+
 // The RMSE `caligo compare` prints on its first line.
 double printed_rmse(const RunResult& r) {
   double rmse = -1.0;
