@@ -52,9 +52,6 @@ struct PathScratch {
   std::vector<DeferredVertex> deferred;
   std::vector<PhaseLobe> deferred_lobes;
   std::vector<MediumStack> deferred_stacks;
-  // Lobes of the phase mixture at a tracked scattering event (tracking/tracking.h fills
-  // march.lobes; they are copied here before the vertex's light connection reuses the march).
-  std::vector<PhaseLobe> event_lobes;
 };
 
 struct PathContext {
