@@ -1,13 +1,15 @@
-// Tracking after the first bounce (issue 18) against the former behaviour in the same binary:
-// PathSettings::secondary = march (every segment marched, the former default) against auto (the
-// default: spectral and ratio tracking through heterogeneous segments) and track (tracking
-// everywhere), each scene at EQUAL TIME against a converged reference rendered with march
-// (kReferenceSpp, cached in the build folder as bench/secondary_reference_NAME_80x60_SPP.exr;
-// delete it after changing the scene or the integrator).
-// Counters per mode: MSE, seconds, paths/s and shader evaluations per path; efficiency =
-// (MSE x seconds)(march) / (MSE x seconds)(mode), the factor by which the mode reaches a given
-// error sooner (the MSE of an unbiased estimator falls as 1 / time); mean_offset = the mode's
-// image mean minus the reference's, relative (a bias would show here).
+// The secondary-segment estimators (issue 18) against the former behaviour in the same binary,
+// each scene at EQUAL TIME against a converged reference rendered with march (kReferenceSpp,
+// cached in the build folder as bench/secondary_reference_NAME_80x60_SPP.exr; delete it after
+// changing the scene or the integrator). The variants:
+//   former: every segment marched, emission found by bounce rays alone (before issue 18);
+//   ratio:  PathSettings::secondary = auto with plain ratio tracking, emission unsampled;
+//   auto:   the default (auto, residual ratio tracking, emissive grids sampled as lights);
+//   track:  tracking everywhere, with the default's other settings.
+// Counters per variant: MSE, seconds, paths/s and shader evaluations per path; efficiency =
+// (MSE x seconds)(former) / (MSE x seconds)(variant), the factor by which it reaches a given
+// error sooner (the MSE of an unbiased estimator falls as 1 / time); mean_offset = its image
+// mean minus the reference's, relative (a bias would show here).
 // Run: build/release/bench/caligo_bench --benchmark_filter=SecondaryEqualTime
 #include <benchmark/benchmark.h>
 
@@ -29,16 +31,25 @@ constexpr int kRuns = 2;
 
 const char* const kScenes[] = {"cloud",       "cloud-dense", "smoke", "fire",          "lamp-in-fog",
                                "default",     "stage",       "spot-shafts", "glass-of-water"};
-constexpr SecondarySegments kModes[] = {SecondarySegments::kMarch, SecondarySegments::kAuto,
-                                        SecondarySegments::kTrack};
-const char* const kModeNames[] = {"march", "auto", "track"};
+struct Variant {
+  const char* name;
+  SecondarySegments secondary;
+  bool residual_ratio_tracking, sample_emission;
+};
+constexpr Variant kVariants[] = {{"former", SecondarySegments::kMarch, true, false},
+                                 {"ratio", SecondarySegments::kAuto, false, false},
+                                 {"auto", SecondarySegments::kAuto, true, true},
+                                 {"track", SecondarySegments::kTrack, true, true}};
+constexpr int kVariantCount = int(std::size(kVariants));
 
-RenderResult render_with(const char* scene, SecondarySegments mode, int spp, uint64_t seed) {
+RenderResult render_with(const char* scene, const Variant& v, int spp, uint64_t seed) {
   RenderSettings s = default_settings(bench::builtin_scene(scene).desc());
   s.resolution = kResolution;
   s.spp = spp;
   s.seed = seed;
-  s.path.secondary = mode;
+  s.path.secondary = v.secondary;
+  s.path.residual_ratio_tracking = v.residual_ratio_tracking;
+  s.path.sample_emission = v.sample_emission;
   return render(bench::builtin_scene(scene), s);
 }
 
@@ -50,7 +61,7 @@ Image reference(const char* scene) {
     name += part;
   const std::filesystem::path cache = std::filesystem::path(CALIGO_BENCH_CACHE_DIR) / name;
   if (std::filesystem::exists(cache)) return read_exr(cache.string());
-  const Image rendered = render_with(scene, SecondarySegments::kMarch, kReferenceSpp, 4242).image;
+  const Image rendered = render_with(scene, kVariants[0], kReferenceSpp, 4242).image;
   write_exr(cache.string(), rendered);
   return rendered;
 }
@@ -66,16 +77,17 @@ void BM_SecondaryEqualTime(benchmark::State& state) {
   const char* scene = kScenes[state.range(0)];
   const Image ref = reference(scene);
   const double ref_mean = image_mean(ref);
-  // Samples per pixel for equal time, from a short run of each mode.
-  double rate[3];
-  for (int m = 0; m < 3; ++m) rate[m] = render_with(scene, kModes[m], 4, 99).stats.seconds / 4.0;
-  double mse[3] = {}, seconds[3] = {}, paths_per_s[3] = {}, evals[3] = {}, offset[3] = {};
-  int spp[3];
-  for (int m = 0; m < 3; ++m) spp[m] = std::max(1, int(std::lround(kMarchSpp * rate[0] / rate[m])));
+  // Samples per pixel for equal time, from a short run of each variant.
+  double rate[kVariantCount];
+  for (int m = 0; m < kVariantCount; ++m) rate[m] = render_with(scene, kVariants[m], 4, 99).stats.seconds / 4.0;
+  double mse[kVariantCount] = {}, seconds[kVariantCount] = {}, paths_per_s[kVariantCount] = {},
+         evals[kVariantCount] = {}, offset[kVariantCount] = {};
+  int spp[kVariantCount];
+  for (int m = 0; m < kVariantCount; ++m) spp[m] = std::max(1, int(std::lround(kMarchSpp * rate[0] / rate[m])));
   for (auto _ : state)
     for (int run = 0; run < kRuns; ++run)
-      for (int m = 0; m < 3; ++m) {
-        const RenderResult r = render_with(scene, kModes[m], spp[m], uint64_t(run) + 1);
+      for (int m = 0; m < kVariantCount; ++m) {
+        const RenderResult r = render_with(scene, kVariants[m], spp[m], uint64_t(run) + 1);
         const ImageMetrics metrics = compare_images(r.image, ref);
         mse[m] += metrics.rmse * metrics.rmse / kRuns;
         seconds[m] += r.stats.seconds / kRuns;
@@ -84,8 +96,8 @@ void BM_SecondaryEqualTime(benchmark::State& state) {
         offset[m] += (image_mean(r.image) - ref_mean) / ref_mean / kRuns;
       }
   state.SetLabel(scene);
-  for (int m = 0; m < 3; ++m) {
-    const std::string n = kModeNames[m];
+  for (int m = 0; m < kVariantCount; ++m) {
+    const std::string n = kVariants[m].name;
     state.counters[n + "_spp"] = spp[m];
     state.counters[n + "_MSE"] = mse[m];
     state.counters[n + "_s"] = seconds[m];

@@ -44,6 +44,19 @@ enum Bounce : uint32_t {
 constexpr uint32_t bounce(int depth, Bounce which) {
   return kBounceBase + uint32_t(depth) * kPerBounce + which;
 }
+// Volume emission as a light (integrators/emission_direct.h) has a space of its own above the
+// per-bounce dimensions, so adding it left every other dimension, and image, as it was.
+inline constexpr uint32_t kEmissionBase = 1u << 30;
+enum Emission : uint32_t {
+  kEmissionBlock = 0,  // 1D: which emissive block
+  kEmissionPointXY,    // 2D: the point inside it
+  kEmissionPointZ,     // 1D
+  kEmissionJitter,     // 1D: the march along the chosen direction
+  kPerEmission
+};
+constexpr uint32_t emission(int vertex, Emission which) {
+  return kEmissionBase + uint32_t(vertex) * kPerEmission + which;
+}
 }  // namespace sample_dim
 
 class Sampler {

@@ -17,7 +17,7 @@ BlockRecord GridBlocks::block(int32_t bx, int32_t by, int32_t bz) const {
   if (!cell) return {};
   const int i = ParentCell::local_index(bx, by, bz);
   if (!cell->occupied(i)) return {};
-  return {true, cell->constant(i), cell->majorant[i], TightBox::unpack(cell->tight_box[i])};
+  return {true, cell->constant(i), cell->majorant[i], cell->minimum[i], TightBox::unpack(cell->tight_box[i])};
 }
 
 }  // namespace caligo

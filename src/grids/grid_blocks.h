@@ -9,7 +9,8 @@
 // +x/+y/+z neighbours): that closed 9^3 set is the block's *footprint*. A block's record is
 // computed over its footprint, so
 //   - majorant >= every filtered density at any point of the region (a convex combination of
-//     footprint voxels), including the background where the footprint leaves the tree;
+//     footprint voxels), including the background where the footprint leaves the tree, and
+//     minimum <= every one (clamped at 0): the control density of residual ratio tracking;
 //   - constant means every channel's footprint voxels are equal, so the filtered value of every
 //     channel is exactly constant over the region;
 //   - occupied means some footprint voxel of density, temperature or flame is non-zero;
@@ -63,12 +64,14 @@ struct BlockRecord {
   bool occupied = false;
   bool constant = false;
   float majorant = 0.0f;  // of the filtered density over the block's region; 0 when empty
+  float minimum = 0.0f;   // of the same, clamped at 0; 0 when empty
   TightBox box;           // the full region when empty or constant
 };
 
 // The 512 block records of one occupied parent. A negative majorant marks an empty block.
 struct ParentCell {
   std::array<float, 512> majorant;
+  std::array<float, 512> minimum;  // footprint minimum of the density, clamped at 0
   std::array<uint64_t, 8> constant_bits;
   std::array<uint32_t, 512> tight_box;  // TightBox::pack(); kFullTightBox for empty blocks
 
@@ -100,6 +103,27 @@ struct GridBlocks {
   // The record of block (bx, by, bz) in block coordinates (an empty record outside).
   BlockRecord block(int32_t bx, int32_t by, int32_t bz) const;
 };
+
+// Calls visit(b, cell, i) for every occupied block, with b its block coordinates (int32_t[3]),
+// cell its parent's records and i its index there, parent by parent in array order.
+template <class Visit>
+void for_each_occupied_block(const GridBlocks& blocks, Visit&& visit) {
+  for (int64_t z = 0; z < blocks.parent_dims[2]; ++z)
+    for (int64_t y = 0; y < blocks.parent_dims[1]; ++y)
+      for (int64_t x = 0; x < blocks.parent_dims[0]; ++x) {
+        const int32_t index =
+            blocks.parent_index[size_t(x + blocks.parent_dims[0] * (y + blocks.parent_dims[1] * z))];
+        if (index < 0) continue;
+        const ParentCell& cell = blocks.parents[size_t(index)];
+        for (int i = 0; i < 512; ++i) {
+          if (!cell.occupied(i)) continue;
+          const int32_t b[3] = {int32_t((blocks.parent_lo[0] + x) * kParentBlocks + (i & 7)),
+                                int32_t((blocks.parent_lo[1] + y) * kParentBlocks + ((i >> 3) & 7)),
+                                int32_t((blocks.parent_lo[2] + z) * kParentBlocks + (i >> 6))};
+          visit(b, cell, i);
+        }
+      }
+}
 
 // Floor division by a power of two that is also right for negative coordinates.
 inline int32_t floor_div(int32_t v, int32_t d) { return v >= 0 ? v / d : -((-v + d - 1) / d); }

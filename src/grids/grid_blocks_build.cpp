@@ -182,6 +182,7 @@ struct Accessors {
 // Fills one parent's records; returns whether any block is occupied.
 bool fill_parent(const ParentKey& p, Accessors& acc, ParentCell& cell) {
   cell.majorant.fill(-1.0f);
+  cell.minimum.fill(0.0f);
   cell.constant_bits.fill(0);
   cell.tight_box.fill(kFullTightBox);
   bool any = false;
@@ -206,6 +207,7 @@ bool fill_parent(const ParentKey& p, Accessors& acc, ParentCell& cell) {
         }
         const int i = ParentCell::local_index(bx, by, bz);
         cell.majorant[i] = density.hi;
+        cell.minimum[i] = std::max(0.0f, density.lo);
         // A constant occupied block has a non-zero channel everywhere: its span is full.
         if (constant) cell.constant_bits[i >> 6] |= uint64_t(1) << (i & 63);
         cell.tight_box[i] = span.box().pack();
@@ -239,27 +241,15 @@ void check_sparsity(const std::vector<ParentKey>& keys, GridBlocks& blocks, cons
 }
 
 void finish_bounds_and_counts(GridBlocks& blocks) {
-  for (int64_t z = 0; z < blocks.parent_dims[2]; ++z)
-    for (int64_t y = 0; y < blocks.parent_dims[1]; ++y)
-      for (int64_t x = 0; x < blocks.parent_dims[0]; ++x) {
-        const int32_t index =
-            blocks.parent_index[size_t(x + blocks.parent_dims[0] * (y + blocks.parent_dims[1] * z))];
-        if (index < 0) continue;
-        const ParentCell& cell = blocks.parents[size_t(index)];
-        for (int i = 0; i < 512; ++i) {
-          if (!cell.occupied(i)) continue;
-          const int32_t b[3] = {int32_t((blocks.parent_lo[0] + x) * kParentBlocks + (i & 7)),
-                                int32_t((blocks.parent_lo[1] + y) * kParentBlocks + ((i >> 3) & 7)),
-                                int32_t((blocks.parent_lo[2] + z) * kParentBlocks + (i >> 6))};
-          for (int a = 0; a < 3; ++a) {
-            blocks.block_lo[a] = blocks.occupied_blocks == 0 ? b[a] : std::min(blocks.block_lo[a], b[a]);
-            blocks.block_hi[a] = blocks.occupied_blocks == 0 ? b[a] : std::max(blocks.block_hi[a], b[a]);
-          }
-          ++blocks.occupied_blocks;
-          blocks.constant_blocks += cell.constant(i);
-          blocks.max_majorant = std::max(blocks.max_majorant, cell.majorant[i]);
-        }
-      }
+  for_each_occupied_block(blocks, [&](const int32_t* b, const ParentCell& cell, int i) {
+    for (int a = 0; a < 3; ++a) {
+      blocks.block_lo[a] = blocks.occupied_blocks == 0 ? b[a] : std::min(blocks.block_lo[a], b[a]);
+      blocks.block_hi[a] = blocks.occupied_blocks == 0 ? b[a] : std::max(blocks.block_hi[a], b[a]);
+    }
+    ++blocks.occupied_blocks;
+    blocks.constant_blocks += cell.constant(i);
+    blocks.max_majorant = std::max(blocks.max_majorant, cell.majorant[i]);
+  });
 }
 
 }  // namespace

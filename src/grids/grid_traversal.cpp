@@ -1,48 +1,19 @@
 #include "grids/grid_traversal.h"
 
+#include "grids/grid_dda.h"
+
 #include <algorithm>
 #include <cmath>
 
 namespace caligo {
 namespace {
 
-// Visits the unit cells [0, n)^3 crossed by x(t) = o + t d over [ta, tb], in order, with the
-// t range inside each; the ranges tile [ta, tb] exactly (the last cell ends at tb even when
-// rounding puts the final crossing a hair early). `visit(cell, t_enter, t_exit)`.
-template <class Visit>
-void dda(Vec3 o, Vec3 d, float ta, float tb, const int n[3], Visit&& visit) {
-  int cell[3], step[3];
-  float next[3], inv[3];
-  for (int a = 0; a < 3; ++a) {
-    const float p = o[a] + d[a] * ta;
-    cell[a] = int(std::floor(std::clamp(p, 0.0f, float(n[a]) - 0.5f)));
-    // A component so small that 1/d overflows never crosses a cell within float range of t;
-    // stepping on it would make next = 0 * inf = NaN on a cell face and derail the axis choice.
-    inv[a] = 1.0f / d[a];
-    step[a] = !std::isfinite(inv[a]) ? 0 : (d[a] > 0.0f ? 1 : -1);
-    if (step[a] == 0) inv[a] = 0.0f;
-    next[a] = step[a] != 0 ? (float(cell[a] + (step[a] > 0)) - o[a]) * inv[a] : kInfinity;
-  }
-  float t = ta;
-  for (;;) {
-    const int axis = next[0] < next[1] ? (next[0] < next[2] ? 0 : 2) : (next[1] < next[2] ? 1 : 2);
-    const int moved = cell[axis] + step[axis];
-    const bool last = !(next[axis] < tb) || moved < 0 || moved >= n[axis];
-    const float t_exit = last ? tb : std::max(next[axis], t);
-    visit(cell, t, t_exit);
-    if (last) return;
-    cell[axis] = moved;
-    next[axis] = (float(moved + (step[axis] > 0)) - o[axis]) * inv[axis];
-    t = t_exit;
-  }
-}
-
 // Builds the merged interval list of one call.
 class IntervalMerger {
  public:
   IntervalMerger(std::vector<GridInterval>& out, float tolerance) : out_(out), scale_(1.0f + tolerance) {}
 
-  void add(float t0, float t1, float majorant, bool constant) {
+  void add(float t0, float t1, float majorant, float minimum, bool constant) {
     if (!(t1 > t0)) return;  // zero-length crossings (grazed edges and corners) add nothing
     if (open_ && out_.back().t1 == t0) {
       GridInterval& last = out_.back();
@@ -54,11 +25,12 @@ class IntervalMerger {
       if (!constant && !last.constant && hi <= lo * scale_) {
         last.t1 = t1;
         last.density_max = hi;
+        last.density_min = std::min(last.density_min, minimum);
         open_min_ = lo;
         return;
       }
     }
-    out_.push_back({t0, t1, majorant, constant});
+    out_.push_back({t0, t1, majorant, constant, minimum});
     open_ = true;
     open_min_ = majorant;
   }
@@ -133,7 +105,7 @@ void block_intervals(const GridBlocks& blocks, Vec3 origin, Vec3 direction, floa
   const Vec3 bd = direction / float(kBlockEdge);
   const int parent_n[3] = {blocks.parent_dims[0], blocks.parent_dims[1], blocks.parent_dims[2]};
   const int block_n[3] = {kParentBlocks, kParentBlocks, kParentBlocks};
-  dda(po, pd, t0, t1, parent_n, [&](const int* p, float ta, float tb) {
+  for_each_lattice_cell(po, pd, t0, t1, parent_n, [&](const int* p, float ta, float tb) {
     if (!(tb > ta)) return;
     const size_t flat = size_t(p[0] + int64_t(parent_n[0]) * (p[1] + int64_t(parent_n[1]) * p[2]));
     const int32_t index = blocks.parent_index[flat];
@@ -142,7 +114,7 @@ void block_intervals(const GridBlocks& blocks, Vec3 origin, Vec3 direction, floa
     // Block-level coordinates local to this parent: one unit per block.
     const Vec3 corner = parent_origin + Vec3(float(p[0]), float(p[1]), float(p[2])) * float(kParentVoxels);
     const Vec3 bo = (origin - corner) / float(kBlockEdge);
-    dda(bo, bd, ta, tb, block_n, [&](const int* b, float tc, float td) {
+    for_each_lattice_cell(bo, bd, ta, tb, block_n, [&](const int* b, float tc, float td) {
       const int i = ParentCell::local_index(b[0], b[1], b[2]);
       if (!cell.occupied(i)) return;
       const uint32_t packed = cell.tight_box[i];
@@ -150,7 +122,7 @@ void block_intervals(const GridBlocks& blocks, Vec3 origin, Vec3 direction, floa
         const Vec3 block_corner = corner + Vec3(float(b[0]), float(b[1]), float(b[2])) * float(kBlockEdge);
         if (!clip_to_tight_box(origin, direction, block_corner, TightBox::unpack(packed), tc, td)) return;
       }
-      merger.add(tc, td, cell.majorant[i], cell.constant(i));
+      merger.add(tc, td, cell.majorant[i], cell.minimum[i], cell.constant(i));
     });
   });
 }

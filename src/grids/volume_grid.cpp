@@ -98,6 +98,22 @@ size_t VolumeGrid::memory_bytes() const {
          sizeof(GridBlocks);
 }
 
+const GridBlocks& VolumeGrid::blocks() const { return data_->blocks; }
+
+namespace {
+Vec3 to_vec3(const Vec3f& v) { return {v[0], v[1], v[2]}; }
+Vec3f to_vec3f(Vec3 v) { return {v.x, v.y, v.z}; }
+}  // namespace
+
+Vec3 VolumeGrid::index_to_world(Vec3 index) const { return to_vec3(data_->density->data()->applyMapF(to_vec3f(index))); }
+Vec3 VolumeGrid::index_to_world_vector(Vec3 v) const {
+  return to_vec3(data_->density->data()->applyJacobianF(to_vec3f(v)));
+}
+Vec3 VolumeGrid::world_to_index(Vec3 p) const { return to_vec3(to_index(*data_->density->data(), p)); }
+Vec3 VolumeGrid::world_to_index_vector(Vec3 v) const {
+  return to_vec3(data_->density->data()->applyInverseJacobianF(to_vec3f(v)));
+}
+
 void VolumeGrid::intervals(const Ray& ray, float t0, float t1, std::vector<GridInterval>& out,
                            float merge_tolerance) const {
   const nanovdb::GridData& grid = *data_->density->data();

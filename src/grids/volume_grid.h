@@ -23,6 +23,7 @@ struct GridInterval {
   float t0, t1;
   float density_max;  // bounds the (filtered) density grid everywhere on [t0, t1]
   bool constant;      // every channel's filtered value is the same everywhere on [t0, t1]
+  float density_min = 0.0f;  // >= 0 and below the filtered density everywhere on [t0, t1]
 };
 
 // The grid set's values at one point (channels the set lacks read as 0, colour as 1).
@@ -42,6 +43,7 @@ struct GridStatistics {
 };
 
 class GridAccessorCache;  // per-thread lookup state (grids/grid_accessor_cache.h)
+struct GridBlocks;        // the block structure (grids/grid_blocks.h)
 struct VolumeGridData;    // the NanoVDB grids and the block structure (grids/volume_grid_data.h)
 
 class VolumeGrid {
@@ -68,6 +70,14 @@ class VolumeGrid {
   // equal constant blocks. Empty space yields nothing.
   void intervals(const Ray& ray, float t0, float t1, std::vector<GridInterval>& out,
                  float merge_tolerance = 0.25f) const;
+
+  // The block structure's index space (voxel centres at integer coordinates) and its affine map
+  // to the grids' world space.
+  const GridBlocks& blocks() const;
+  Vec3 index_to_world(Vec3 index) const;
+  Vec3 index_to_world_vector(Vec3 v) const;
+  Vec3 world_to_index(Vec3 p) const;
+  Vec3 world_to_index_vector(Vec3 v) const;
 
   float density(Vec3 p, GridFilter filter, GridAccessorCache& cache) const;
   GridValues values(Vec3 p, GridFilter filter, GridAccessorCache& cache) const;

@@ -8,6 +8,7 @@
 #include <nanovdb/util/GridBuilder.h>
 
 #include "grids/volume_grid_build.h"
+#include "integrators/test_grids.h"
 #include "core/rng.h"
 #include "integrators/reference.h"
 #include "media/blackbody.h"
@@ -18,23 +19,9 @@
 namespace caligo {
 namespace {
 
-// A float grid named "density" with voxel centres at origin + voxel * (i, j, k).
-template <typename Fn>
-std::shared_ptr<const VolumeGrid> make_grid(Fn&& density, int n, float voxel, Vec3 origin) {
-  nanovdb::GridBuilder<float> builder(0.0f);
-  builder([&](const nanovdb::Coord& ijk) { return density(ijk[0], ijk[1], ijk[2]); },
-          nanovdb::CoordBBox(nanovdb::Coord(0), nanovdb::Coord(n - 1)));
-  NanoGrids grids{builder.getHandle<>(voxel, nanovdb::Vec3d(origin.x, origin.y, origin.z), "density"), {}, {}, {}};
-  return make_volume_grid(std::move(grids), {"test", ""});
-}
+using testing::grid_primitive;
+using testing::make_grid;
 
-VolumePrimitive grid_primitive(std::shared_ptr<const VolumeGrid> grid, RGB sigma_a, RGB sigma_s,
-                               GridFilter filter = GridFilter::kTrilinear) {
-  const Bounds3 b = grid->world_bounds();
-  VolumePrimitive v{BoxVolumeShape{Transform(), b.lo, b.hi}, {sigma_a, sigma_s}};
-  v.shader.field = GridDensity{std::move(grid), Transform(), filter};
-  return v;
-}
 
 // A 32^3 block of density 0.5 (voxel 0.1 m): along a line through its middle the trilinear
 // field ramps up over one voxel, is flat for 31 and ramps down over one, so the optical depth

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "integrators/emission_direct.h"
 #include "integrators/visibility.h"
 #include "integrators/volume_direct.h"
 #include "tracking/tracking.h"
@@ -22,17 +23,22 @@ bool may_scatter_in_medium(const PathContext& ctx, const PathState& state) {
          (state.in_volume_run || state.may_bounce(ctx.settings.limits.max_bounces));
 }
 
-// Event: the path scatters in a medium at x (on `ray`, whose segment the light choice of a
-// marched event covers), with the phase mixture `lobes`; the phase sample gives the next ray.
-SegmentOutcome scatter_in_medium(const PathContext& ctx, PathState& state, Ray& ray, Vec3 x,
-                                 std::span<const PhaseLobe> lobes, const Ray* marched_segment) {
+// Event: the path scatters in a medium at x, `t` along `ray` (whose segment the light choice of
+// a marched event covers), with the phase mixture `lobes`; the phase sample gives the next ray.
+// Emissive grids are connected to here, whatever the segment's estimator.
+SegmentOutcome scatter_in_medium(const PathContext& ctx, PathState& state, Ray& ray, float t,
+                                 std::span<const PhaseLobe> lobes, const Ray* marched_segment, PathSample& out) {
+  const Vec3 x = ray.at(t);
   const Sampler& sampler = ctx.sampler;
   const RGB beta = state.throughput;  // at the vertex, before the phase sample (deferred NEE)
   const MixedPhaseSample ps = sample_mixed_phase(
       lobes, ray.direction, lobes.size() > 1 ? sampler.get_1d(bounce(state.vertex(), sample_dim::kPhaseLobe)) : 0.0f,
       sampler.get_2d(bounce(state.vertex(), sample_dim::kPhaseDirection)));
+  if (ctx.emission)
+    out.add(state.connected(true), beta * emission_direct_light(ctx, {x, ray.direction, lobes}, state.vertex()));
   state.throughput *= ps.weight;
   if (state.throughput.is_black()) return SegmentOutcome::kAbsorbed;
+  state.emission_weight = emission_bounce_weight(ctx, x, ps.wi, ps.pdf);
   // Kept only on the scattered outcome, which is where trace_path stores its medium stack.
   PathScratch& scratch = ctx.scratch;
   if (ctx.settings.deferred_nee > 0) {
@@ -138,7 +144,7 @@ SegmentOutcome marched_segment(const PathContext& ctx, PathState& state, Ray& ra
                   ctx.scratch.march_settings, ctx.scratch.march, record);
   if (record.empty()) return SegmentOutcome::kPassed;
   if (state.events == 0) ctx.counters.camera_march_steps += record.steps().size();
-  out.add(state.arriving(LightKind::kVolumeEmission), state.throughput * record.emission());
+  out.add(state.arriving(LightKind::kVolumeEmission), state.throughput * record.emission() * state.emission_weight);
   const bool may_scatter = may_scatter_in_medium(ctx, state);
   if (may_scatter && ctx.settings.deferred_nee <= 0) connect_marched_segment(ctx, state, ray, record, out);
 
@@ -181,7 +187,7 @@ SegmentOutcome marched_segment(const PathContext& ctx, PathState& state, Ray& ra
   if (state.throughput.is_black()) return SegmentOutcome::kAbsorbed;
   *event_t = collision->t;
   const Ray choice_segment = light_choice_segment(ray, record);
-  return scatter_in_medium(ctx, state, ray, ray.at(collision->t), record.lobes(step), &choice_segment);
+  return scatter_in_medium(ctx, state, ray, collision->t, record.lobes(step), &choice_segment, out);
 }
 
 // Event: a tracked medium segment (tracking/tracking.h) over the spans already collected:
@@ -195,7 +201,7 @@ SegmentOutcome tracked_segment(const PathContext& ctx, PathState& state, Ray& ra
   const TrackedSegment seg =
       track_free_flight(ctx.scene.volumes(), ray, state.throughput, may_scatter, true, ctx.scratch.march, rng);
   if (!seg.emission.is_black())
-    out.add(state.arriving(LightKind::kVolumeEmission), state.throughput * seg.emission);
+    out.add(state.arriving(LightKind::kVolumeEmission), state.throughput * seg.emission * state.emission_weight);
   state.throughput *= seg.weight;
   if (seg.outcome == TrackedSegment::Outcome::kAbsorbed || state.throughput.is_black())
     return SegmentOutcome::kAbsorbed;
@@ -207,7 +213,7 @@ SegmentOutcome tracked_segment(const PathContext& ctx, PathState& state, Ray& ra
   if (ctx.settings.deferred_nee <= 0)
     out.add(state.connected(true), state.throughput * point_volume_direct_light(ctx, x, ray.direction, lobes,
                                                                                 state.vertex(), seg.t));
-  return scatter_in_medium(ctx, state, ray, x, lobes, nullptr);
+  return scatter_in_medium(ctx, state, ray, seg.t, lobes, nullptr, out);
 }
 
 }  // namespace

@@ -63,6 +63,9 @@ struct PathContext {
   const LightSampler& lights;  // Scene::light_sampler(settings.light_sampler)
   bool nested;                 // the scene has priority surfaces (medium stacks)
   bool has_volumes;            // volume primitives or surface-bounded media
+  // Volume emission as a light (integrators/emission_direct.h); null when nothing emits in a
+  // grid or PathSettings::sample_emission is off.
+  const EmissionSampler* emission = nullptr;
 };
 
 }  // namespace caligo

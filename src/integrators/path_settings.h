@@ -68,6 +68,13 @@ struct PathSettings {
   // See docs/techniques.md for when it pays.
   int deferred_nee = 0;
   SecondarySegments secondary = SecondarySegments::kAuto;
+  // Tracked shadow rays by residual ratio tracking with each span's minimum as the control
+  // (tracking/tracking.h); false: plain ratio tracking (the former estimator, for benchmarks).
+  bool residual_ratio_tracking = true;
+  // Emissive grids sampled as lights at every scattering vertex, MIS-weighted with the bounce
+  // rays that gather their emission (integrators/emission_direct.h); false: emission is found by
+  // bounce rays alone (the former behaviour, for benchmarks).
+  bool sample_emission = true;
 };
 
 }  // namespace caligo

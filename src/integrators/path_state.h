@@ -22,6 +22,9 @@ struct PathState {
   // the camera sees, so an environment with visible = false shows black to it.
   bool camera_view = true;
   float scatter_pdf = 0.0f;     // solid-angle pdf of the direction that produced the current ray
+  // The MIS weight of the volume emission the current ray gathers against sampling it as a
+  // light at the ray's origin (integrators/emission_direct.h); 1 when nothing samples it.
+  float emission_weight = 1.0f;
   Vec3 scatter_origin;          // where that direction was sampled
   // The light choice next-event estimation made at that vertex, whose pmf the MIS weight of a
   // light hit needs: at a surface, pmf(scatter_origin, scatter_normal); after a marched

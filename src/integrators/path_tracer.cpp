@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/sampling.h"
+#include "integrators/emission_direct.h"
 #include "integrators/interface_eta.h"
 #include "integrators/medium_segment.h"
 #include "integrators/path_state.h"
@@ -198,8 +199,12 @@ bool surface_hit(const PathContext& ctx, PathState& state, Ray& ray, const Surfa
   const Vec3 wo = -ray.direction;
   out.add(state.arriving(LightKind::kSurfaceEmission), state.throughput * emitted(ctx, state, si, wo));
   if (!state.may_bounce(ctx.settings.limits.max_bounces)) return false;
-  if (!is_specular(si.material->bsdf))
+  if (!is_specular(si.material->bsdf)) {
     out.add(state.connected(false), state.throughput * surface_direct_light(ctx, state, si, wo));
+    if (ctx.emission)
+      out.add(state.connected(false),
+              state.throughput * emission_direct_light(ctx, {si.p, wo, {}, &si}, state.vertex()));
+  }
   // A dielectric refracts with the IORs of the media actually on either side.
   const Bsdf* bsdf = &si.material->bsdf;
   Bsdf interface;
@@ -219,6 +224,7 @@ bool surface_hit(const PathContext& ctx, PathState& state, Ray& ray, const Surfa
   state.camera_view = state.camera_view && bs->specular;
   if (!bs->specular) state.count_nonspecular_event(false);
   state.scatter_pdf = bs->pdf;
+  state.emission_weight = bs->specular ? 1.0f : emission_bounce_weight(ctx, si.p, bs->wi, bs->pdf);
   state.scatter_origin = si.p;
   state.scatter_normal = light_choice_normal(si, wo);
   state.scattered_in_medium = false;
@@ -285,8 +291,11 @@ Next medium_in_front(const PathContext& ctx, PathState& state, Ray& ray, const s
 PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const PathSettings& settings,
                       PathCounters& counters, PathScratch& scratch) {
   // Scenes without priority surfaces take exactly the paths they took before nested media.
+  const EmissionSampler* emission =
+      settings.sample_emission && !scene.emission_sampler().empty() ? &scene.emission_sampler() : nullptr;
   const PathContext ctx{scene,    sampler, settings, scratch, counters, scene.light_sampler(settings.light_sampler),
-                        scene.has_priority_objects(), !scene.volumes().empty() || scene.volumes().has_media()};
+                        scene.has_priority_objects(), !scene.volumes().empty() || scene.volumes().has_media(),
+                        emission};
   PathSample out;
   PathState state;
   state.deferred_nee = settings.deferred_nee > 0;

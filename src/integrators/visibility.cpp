@@ -25,7 +25,7 @@ RGB stretch_transmittance(const Scene& scene, const Ray& stretch, const ShadowMe
   if (!collect_spans(scene.volumes(), stretch, settings, scratch.march, stack_medium)) return RGB(1.0f);
   if (medium.policy == SecondarySegments::kAuto && collected_spans_homogeneous(scratch.march))
     return march_transmittance_collected(scene.volumes(), stretch, medium.jitter, settings, scratch.march);
-  return track_transmittance_collected(scene.volumes(), stretch, scratch.march, rng);
+  return track_transmittance_collected(scene.volumes(), stretch, scratch.march, rng, medium.residual);
 }
 
 RGB nested_transmittance(const Scene& scene, const Ray& shadow, bool casts_shadows, const ShadowMedium& medium,
@@ -81,6 +81,7 @@ ShadowMedium shadow_medium(const PathContext& ctx, int vertex, bool secondary, s
   if (secondary && ctx.settings.secondary != SecondarySegments::kMarch) {
     m.policy = ctx.settings.secondary;
     m.tracking_key = ctx.sampler.stream_key(sample_dim::bounce(vertex, key_dimension));
+    m.residual = ctx.settings.residual_ratio_tracking;
   }
   return m;
 }

@@ -20,6 +20,7 @@ struct ShadowMedium {
   float jitter;
   SecondarySegments policy = SecondarySegments::kMarch;
   uint64_t tracking_key = 0;
+  bool residual = true;  // residual ratio tracking (PathSettings::residual_ratio_tracking)
 };
 
 // The shadow medium of a light connection made at path vertex `vertex` (its sample dimensions),

@@ -89,7 +89,7 @@ bool collect_spans(const VolumeScene& volumes, const Ray& ray, const MarchSettin
   if (!intervals.empty() && one_primitive) {
     // The common case needs no sweep: one primitive's intervals are ordered and disjoint.
     for (const VolumeInterval& iv : intervals)
-      if (iv.t1 > iv.t0) scratch.spans.push_back({iv.t0, iv.t1, 0, 1, iv.sigma_maj, iv.homogeneous});
+      if (iv.t1 > iv.t0) scratch.spans.push_back({iv.t0, iv.t1, 0, 1, iv.sigma_maj, iv.homogeneous, iv.sigma_min});
     scratch.span_primitives.assign(1, intervals.front().primitive);
   } else {
     build_spans(intervals, scratch.span_scratch, scratch.spans, scratch.span_primitives);
@@ -98,10 +98,8 @@ bool collect_spans(const VolumeScene& volumes, const Ray& ray, const MarchSettin
 }
 
 bool collected_spans_emissive(const VolumeScene& volumes, const MarchScratch& scratch) {
-  return std::any_of(scratch.span_primitives.begin(), scratch.span_primitives.end(), [&](uint32_t id) {
-    const VolumeShader& s = volumes.primitive(id).shader;
-    return !s.emission.is_black() || s.blackbody || s.flame;
-  });
+  return std::any_of(scratch.span_primitives.begin(), scratch.span_primitives.end(),
+                     [&](uint32_t id) { return emits(volumes.primitive(id).shader); });
 }
 
 bool collected_spans_homogeneous(const MarchScratch& scratch) {
@@ -166,6 +164,21 @@ RGB march_transmittance_collected(const VolumeScene& volumes, const Ray& ray, fl
                 });
   if (opaque) return RGB(0.0f);
   return {std::exp(-optical_depth.r), std::exp(-optical_depth.g), std::exp(-optical_depth.b)};
+}
+
+RGB march_emission(const VolumeScene& volumes, const Ray& ray, float jitter, const MarchSettings& settings,
+                   MarchScratch& scratch) {
+  if (!collect_spans(volumes, ray, settings, scratch)) return RGB(0.0f);
+  RGB tr(1.0f), emission;
+  for_each_collected_step(volumes, ray, jitter, settings, scratch,
+                [&](float a, float b, float t_shade, std::span<const uint32_t> prims, float scale) {
+                  const StepCoefficients c = shade_span(volumes, prims, ray.at(t_shade), scale, scratch.volume, nullptr);
+                  if (!c.emission.is_black()) emission += integrate_emission(tr, c.sigma_t, c.emission, b - a);
+                  tr *= RGB(std::exp(-c.sigma_t.r * (b - a)), std::exp(-c.sigma_t.g * (b - a)),
+                            std::exp(-c.sigma_t.b * (b - a)));
+                  return tr.max_component() >= settings.opacity_threshold;
+                });
+  return emission;
 }
 
 }  // namespace caligo

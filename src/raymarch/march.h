@@ -86,6 +86,11 @@ void march(const VolumeScene& volumes, const Ray& ray, float jitter, const March
 RGB march_transmittance(const VolumeScene& volumes, const Ray& ray, float jitter,
                         const MarchSettings& settings, MarchScratch& scratch, int medium = -1);
 
+// The emission a ray gathers, the integral of T * emission over [ray.tmin, ray.tmax], with the
+// march's step rules and without a record (or the phase lobes a record's event would need).
+RGB march_emission(const VolumeScene& volumes, const Ray& ray, float jitter, const MarchSettings& settings,
+                   MarchScratch& scratch);
+
 // The step size used for a primitive: its own, or the automatic one (a voxel for grids, a
 // fraction of the bounds otherwise) times its step_scale; infinity if homogeneous.
 float primitive_step_size(const VolumePrimitive& primitive, const MarchSettings& settings);

@@ -43,13 +43,14 @@ void apply_endpoint(const Endpoint& e, std::span<const VolumeInterval> intervals
 void emit_span(float t0, float t1, std::span<const VolumeInterval> intervals, const std::vector<uint32_t>& active,
                std::vector<Span>& spans, std::vector<uint32_t>& span_primitives) {
   const size_t first = span_primitives.size();
-  RGB sigma_maj;
+  RGB sigma_maj, sigma_min;
   bool homogeneous = true;
   for (uint32_t i : active) {
     const VolumeInterval& iv = intervals[i];
     if (span_primitives.size() == first || span_primitives.back() != iv.primitive)
       span_primitives.push_back(iv.primitive);
     sigma_maj += iv.sigma_maj;
+    sigma_min += iv.sigma_min;
     homogeneous = homogeneous && iv.homogeneous;
   }
   const size_t count = span_primitives.size() - first;
@@ -57,14 +58,14 @@ void emit_span(float t0, float t1, std::span<const VolumeInterval> intervals, co
     Span& last = spans.back();
     const auto last_begin = span_primitives.begin() + last.first;
     if (last.t1 == t0 && last.count == count && last.homogeneous == homogeneous &&
-        last.sigma_maj.r == sigma_maj.r && last.sigma_maj.g == sigma_maj.g && last.sigma_maj.b == sigma_maj.b &&
+        last.sigma_maj == sigma_maj && last.sigma_min == sigma_min &&
         std::equal(last_begin, last_begin + count, span_primitives.begin() + first)) {
       last.t1 = t1;
       span_primitives.resize(first);
       return;
     }
   }
-  spans.push_back({t0, t1, uint32_t(first), uint32_t(count), sigma_maj, homogeneous});
+  spans.push_back({t0, t1, uint32_t(first), uint32_t(count), sigma_maj, homogeneous, sigma_min});
 }
 
 }  // namespace

@@ -18,6 +18,7 @@ struct Span {
   uint32_t first, count;  // primitives covering the span: span_primitives[first .. first + count)
   RGB sigma_maj;          // sum of the covering intervals' majorants: bounds sigma_t on the span
   bool homogeneous;       // every covering interval is homogeneous
+  RGB sigma_min{};        // sum of the covering intervals' minima: below sigma_t on the span
 };
 
 // Working memory of build_spans, kept by the caller (one per thread) so that building spans

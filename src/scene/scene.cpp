@@ -114,6 +114,13 @@ std::unique_ptr<Scene> Scene::build(const SceneDesc& desc) {
     media.push_back({UnboundedVolumeShape{}, desc.media[size_t(m.interior)].shader, m.interior});
   }
   scene->volumes_ = VolumeScene(desc.volumes, std::move(media));
+  // The emission connections march their line through the volume primitives alone: with
+  // priority surfaces (media inside surfaces, whose stack a line would have to track) emission
+  // is left to bounce rays.
+  if (!scene->has_priority_objects_) {
+    VolumeContext context;
+    scene->emission_sampler_ = EmissionSampler::build(scene->volumes_, context);
+  }
   scene->finish_lights();
   if (scene->has_priority_objects_) scene->camera_stack_ = scene->stack_at(desc.camera.position);
   return scene;

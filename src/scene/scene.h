@@ -13,6 +13,7 @@
 #include "geometry/embree_scene.h"
 #include "lights/light.h"
 #include "lights/light_sampler.h"
+#include "volumes/emission_sampler.h"
 #include "materials/material.h"
 #include "media/medium_stack.h"
 #include "scene/camera.h"
@@ -38,6 +39,8 @@ class Scene {
   const SceneDesc& desc() const { return desc_; }
   const EmbreeScene& surfaces() const { return surfaces_; }
   const VolumeScene& volumes() const { return volumes_; }
+  // Emissive grids as lights (volumes/emission_sampler.h); empty when none can be sampled.
+  const EmissionSampler& emission_sampler() const { return emission_sampler_; }
   const std::vector<Material>& materials() const { return materials_; }
   const std::vector<Light>& lights() const { return lights_; }
   const std::vector<int>& infinite_lights() const { return infinite_lights_; }
@@ -95,6 +98,7 @@ class Scene {
   SceneDesc desc_;
   EmbreeScene surfaces_;
   VolumeScene volumes_;
+  EmissionSampler emission_sampler_;
   std::vector<Material> materials_;
   std::vector<GeometryInfo> geometry_;  // indexed by Embree geometry id
   std::vector<Light> lights_;

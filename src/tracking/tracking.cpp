@@ -22,23 +22,32 @@ bool survive_roulette(RGB& weight, Pcg32& rng) {
   return true;
 }
 
-// Calls collision(t, primitives, mu) for every tentative collision of the collected spans, front
-// to back, with mu the span's scalar majorant per unit t; stops when it returns false. Returns
-// false when the walk was stopped (by the callback or the collision guard).
-template <typename CollisionFn>
-bool for_each_tentative_collision(const MarchScratch& scratch, float dir_length, Pcg32& rng, CollisionFn&& collision) {
+RGB exp_neg(RGB depth) { return {std::exp(-depth.r), std::exp(-depth.g), std::exp(-depth.b)}; }
+
+// Calls collision(t, span, mu) for every tentative collision of the collected spans, front to
+// back, where mu is the span's scalar majorant per unit t less its `control(span)` (also per unit
+// t: the walk samples the residual); stops when it returns false. Returns false when the walk was
+// stopped (by the callback or the collision guard).
+template <typename ControlFn, typename CollisionFn>
+bool for_each_tentative_collision(const MarchScratch& scratch, float dir_length, Pcg32& rng, ControlFn&& control,
+                                  CollisionFn&& collision) {
   uint32_t count = 0;
   for (const Span& span : scratch.spans) {
-    const float mu = span.sigma_maj.max_component() * dir_length;
+    const float mu = (span.sigma_maj * dir_length - control(span)).max_component();
     if (!(mu > 0.0f)) continue;
-    const std::span<const uint32_t> prims(scratch.span_primitives.data() + span.first, span.count);
     for (float t = span.t0 + exponential_step(mu, rng); t < span.t1; t += exponential_step(mu, rng)) {
       if (++count > kMaxTrackingCollisions) return false;
-      if (!collision(t, prims, mu)) return false;
+      if (!collision(t, span, mu)) return false;
     }
   }
   return true;
 }
+
+std::span<const uint32_t> span_primitives(const MarchScratch& scratch, const Span& span) {
+  return {scratch.span_primitives.data() + span.first, span.count};
+}
+
+RGB no_control(const Span&) { return RGB(0.0f); }
 
 }  // namespace
 
@@ -48,7 +57,8 @@ TrackedSegment track_free_flight(const VolumeScene& volumes, const Ray& ray, RGB
   const float dir_length = length(ray.direction);
   bool done = false;
   const bool walked = for_each_tentative_collision(
-      scratch, dir_length, rng, [&](float t, std::span<const uint32_t> prims, float mu) {
+      scratch, dir_length, rng, no_control, [&](float t, const Span& span, float mu) {
+        const std::span<const uint32_t> prims = span_primitives(scratch, span);
         ++out.collisions;
         ++scratch.steps;
         scratch.shader_evaluations += prims.size();
@@ -89,20 +99,31 @@ TrackedSegment track_free_flight(const VolumeScene& volumes, const Ray& ray, RGB
 }
 
 RGB track_transmittance(const VolumeScene& volumes, const Ray& ray, const MarchSettings& settings,
-                        MarchScratch& scratch, Pcg32& rng, int medium) {
+                        MarchScratch& scratch, Pcg32& rng, int medium, bool residual) {
   if (!collect_spans(volumes, ray, settings, scratch, medium)) return RGB(1.0f);
-  return track_transmittance_collected(volumes, ray, scratch, rng);
+  return track_transmittance_collected(volumes, ray, scratch, rng, residual);
 }
 
-RGB track_transmittance_collected(const VolumeScene& volumes, const Ray& ray, MarchScratch& scratch, Pcg32& rng) {
+RGB track_transmittance_collected(const VolumeScene& volumes, const Ray& ray, MarchScratch& scratch, Pcg32& rng,
+                                  bool residual) {
   const float dir_length = length(ray.direction);
-  RGB tr(1.0f);
+  // The control per unit t, never above the majorant (which rounding could otherwise cross).
+  const auto control = [&](const Span& span) {
+    return residual ? RGB(std::min(span.sigma_min.r, span.sigma_maj.r), std::min(span.sigma_min.g, span.sigma_maj.g),
+                          std::min(span.sigma_min.b, span.sigma_maj.b)) *
+                          dir_length
+                    : RGB(0.0f);
+  };
+  RGB control_depth;
+  for (const Span& span : scratch.spans) control_depth += control(span) * (span.t1 - span.t0);
+  RGB tr = exp_neg(control_depth);
   const bool walked = for_each_tentative_collision(
-      scratch, dir_length, rng, [&](float t, std::span<const uint32_t> prims, float mu) {
+      scratch, dir_length, rng, control, [&](float t, const Span& span, float mu_r) {
+        const std::span<const uint32_t> prims = span_primitives(scratch, span);
         ++scratch.steps;
         scratch.shader_evaluations += prims.size();
         const StepCoefficients c = shade_span(volumes, prims, ray.at(t), dir_length, scratch.volume, nullptr);
-        tr *= (RGB(mu) - c.sigma_t) * (1.0f / mu);
+        tr *= (RGB(mu_r) - (c.sigma_t - control(span))) * (1.0f / mu_r);
         return survive_roulette(tr, rng);
       });
   return walked ? tr : RGB(0.0f);

@@ -13,8 +13,17 @@
 //     gathered at every tentative collision (w * emission / mu, unbiased for the integral of
 //     T * emission), and so are holdouts as extinction (they only matter to camera rays, which
 //     are marched). For albedo 1 and grey media the weights are exactly 1: delta tracking.
-//   - track_transmittance: shadow rays by ratio tracking (Novak et al. 2014): T *= sigma_n / mu
-//     at each tentative collision.
+//   - track_transmittance: shadow rays by residual ratio tracking (Novak et al. 2014, sec. 4)
+//     with each span's minimum extinction as the control sigma_c (a grid block's footprint
+//     minimum, grids/grid_blocks.h): T = exp(-sigma_c L) times, at each tentative collision of
+//     the residual majorant mu_r = mu - sigma_c, (mu_r - (sigma_t - sigma_c)) / mu_r. The
+//     control is a lower bound, so every factor is in [0, 1]; a constant block (sigma_c = mu)
+//     costs no lookup at all, and elsewhere collisions come at rate mu_r rather than mu. Plain
+//     ratio tracking (T *= sigma_n / mu) when `residual` is false, or where the control is 0.
+//     Free flight keeps spectral tracking on the full majorant: a control collision still needs
+//     a lookup for the event's albedo and phase, so decomposition tracking would save only the
+//     lookups of residual null collisions before the first real one (about one per segment in
+//     a dense cloud), where a shadow ray saves in proportion to its optical depth.
 // Both apply Russian roulette once the running weight falls below kTrackingRouletteThreshold of
 // its start (survival with probability weight / threshold, so the survivors carry the threshold):
 // unbiased, and it ends the long chains of null collisions that carry almost nothing.
@@ -56,10 +65,11 @@ struct TrackedSegment {
 TrackedSegment track_free_flight(const VolumeScene& volumes, const Ray& ray, RGB throughput, bool may_scatter,
                                  bool gather_emission, MarchScratch& scratch, Pcg32& rng);
 
-// Ratio-tracking transmittance along [ray.tmin, ray.tmax] (collects its own spans).
+// (Residual) ratio-tracking transmittance along [ray.tmin, ray.tmax] (collects its own spans).
 RGB track_transmittance(const VolumeScene& volumes, const Ray& ray, const MarchSettings& settings,
-                        MarchScratch& scratch, Pcg32& rng, int medium = -1);
+                        MarchScratch& scratch, Pcg32& rng, int medium = -1, bool residual = true);
 // The same over the spans collect_spans() left in scratch.
-RGB track_transmittance_collected(const VolumeScene& volumes, const Ray& ray, MarchScratch& scratch, Pcg32& rng);
+RGB track_transmittance_collected(const VolumeScene& volumes, const Ray& ray, MarchScratch& scratch, Pcg32& rng,
+                                  bool residual = true);
 
 }  // namespace caligo

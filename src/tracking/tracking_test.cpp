@@ -40,11 +40,26 @@ TEST(Tracking, RatioTrackingIsBeerLambertPerChannel) {
   const Ray ray{{0, 0, 0}, {0, 0, 2}};
   Stat s[3];
   for (int i = 0; i < 20000; ++i) {
-    const RGB t = track_transmittance(scene, ray, {}, scratch, rng);
+    const RGB t = track_transmittance(scene, ray, {}, scratch, rng, -1, /*residual=*/false);
     for (int c = 0; c < 3; ++c) s[c].add(t[c]);
   }
   for (int c = 0; c < 3; ++c) EXPECT_WITHIN_4SE(s[c], std::exp(-(sa[c] + ss[c]) * 1.5));
   EXPECT_GT(s[2].se(), 0.0);  // the chromatic slab's thin channels are estimated with noise
+}
+
+// Residual ratio tracking's control is the slab's own extinction: the residual majorant is 0,
+// so the estimate is Beer-Lambert exactly (float rounding), with no collision and no lookup.
+TEST(Tracking, ResidualRatioTrackingIsExactInAHomogeneousSlab) {
+  const RGB sa(0.3f, 0.6f, 1.2f), ss(0.2f, 0.4f, 1.8f);
+  const VolumeScene scene({box({-1, -1, 2}, {1, 1, 3.5f}, sa, ss)});
+  MarchScratch scratch;
+  Pcg32 rng(7, 1);
+  const Ray ray{{0, 0, 0}, {0, 0, 2}};
+  for (int i = 0; i < 8; ++i) {
+    const RGB t = track_transmittance(scene, ray, {}, scratch, rng);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(t[c], std::exp(-(sa[c] + ss[c]) * 1.5), 1e-6f);
+  }
+  EXPECT_EQ(scratch.shader_evaluations, 0u);
 }
 
 TEST(Tracking, RatioTrackingMatchesAFineMarchThroughAHeterogeneousSphere) {

@@ -16,6 +16,7 @@ struct VolumeInterval {
   uint32_t primitive;  // index into the scene's volume primitives
   RGB sigma_maj;       // 1/m: bounds the primitive's sigma_t everywhere on [t0, t1]
   bool homogeneous;    // the primitive's coefficients are constant on [t0, t1]: one march step
+  RGB sigma_min{};     // 1/m: below the primitive's sigma_t everywhere on [t0, t1] (0: unknown)
 };
 
 }  // namespace caligo

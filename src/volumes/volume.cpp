@@ -128,8 +128,18 @@ struct FieldIntervals {
   RGB sigma_unit;    // sigma_t per unit field density (density and noise peak included)
   bool noise_free;
 
+  // sigma_t per unit field density that holds everywhere (the control of residual ratio
+  // tracking): noise may take density to 0, and a colour grid may tint scattering down to 0.
+  RGB control_unit() const {
+    const VolumeShader& s = primitive.shader;
+    if (!noise_free) return RGB(0.0f);
+    const bool tinted = s.tint_with_color_grid && std::holds_alternative<GridDensity>(s.field) &&
+                        std::get<GridDensity>(s.field).grid->has_color();
+    return (s.sigma_a + RGB(s.holdout) + (tinted ? RGB(0.0f) : s.sigma_s)) * s.density;
+  }
+
   void operator()(const ConstantDensity&) const {
-    context.intervals.push_back({stretch.first, stretch.second, id, sigma_unit, noise_free});
+    context.intervals.push_back({stretch.first, stretch.second, id, sigma_unit, noise_free, control_unit()});
   }
   void operator()(const RadialFalloffDensity&) const {
     context.intervals.push_back({stretch.first, stretch.second, id, sigma_unit, false});
@@ -144,9 +154,11 @@ struct FieldIntervals {
                     ray.tmin, ray.tmax};
     context.grid_intervals.clear();
     g.grid->intervals(local, stretch.first, stretch.second, context.grid_intervals);
+    const RGB control = control_unit();
     for (const GridInterval& gi : context.grid_intervals)
       context.intervals.push_back({gi.t0, gi.t1, id, sigma_unit * gi.density_max,
-                                   gi.constant && noise_free && context.constant_blocks_one_step});
+                                   gi.constant && noise_free && context.constant_blocks_one_step,
+                                   control * gi.density_min});
   }
 };
 

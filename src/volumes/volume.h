@@ -100,6 +100,8 @@ void append_intervals(const VolumePrimitive& primitive, uint32_t id, const Ray& 
 Bounds3 volume_bounds(const VolumeShape& shape);
 // True when the coefficients are the same everywhere inside the shape (no field, no noise).
 bool is_homogeneous(const VolumeShader& shader);
+// True when the shader emits anywhere: a constant emission, a blackbody or a flame channel.
+inline bool emits(const VolumeShader& s) { return !s.emission.is_black() || s.blackbody || s.flame; }
 // The density field's multiplier at a world point inside the primitive (1 for constant
 // fields; the shader's density and noise not included).
 float field_density(const VolumePrimitive& primitive, Vec3 p, VolumeContext& context);
