@@ -22,24 +22,30 @@ class IntervalMerger {
         return;
       }
       const float hi = std::max(last.density_max, majorant), lo = std::min(open_min_, majorant);
-      if (!constant && !last.constant && hi <= lo * scale_) {
+      // The minima must agree too: merging a block whose minimum is far below would throw away
+      // the control residual ratio tracking takes from the others (a shell block's is 0).
+      const float min_hi = std::max(open_max_minimum_, minimum), min_lo = std::min(last.density_min, minimum);
+      if (!constant && !last.constant && hi <= lo * scale_ && min_hi <= min_lo * scale_) {
         last.t1 = t1;
         last.density_max = hi;
-        last.density_min = std::min(last.density_min, minimum);
+        last.density_min = min_lo;
         open_min_ = lo;
+        open_max_minimum_ = min_hi;
         return;
       }
     }
     out_.push_back({t0, t1, majorant, constant, minimum});
     open_ = true;
     open_min_ = majorant;
+    open_max_minimum_ = minimum;
   }
 
  private:
   std::vector<GridInterval>& out_;
   float scale_;
   bool open_ = false;  // whether out_.back() was made by this merger
-  float open_min_ = 0.0f;
+  float open_min_ = 0.0f;          // the smallest majorant merged into out_.back()
+  float open_max_minimum_ = 0.0f;  // the largest minimum merged into it
 };
 
 // Clips [t0, t1], the ray's range inside the block with index-space corner `corner`, to the

@@ -14,7 +14,8 @@ namespace caligo {
 
 // Appends to `out`, in order along the ray x(t) = origin + t * direction (index space), the
 // intervals of [t0, t1] that cross occupied blocks. Consecutive occupied blocks merge while
-// max/min of their majorants stays within 1 + merge_tolerance; constant blocks merge only with
+// max/min of their majorants, and of their minima (0 only with 0), stays within
+// 1 + merge_tolerance (an interval's minimum is its blocks' least); constant blocks merge only with
 // touching constant blocks (which hold the same values: see grid_blocks.h). Never merges with
 // intervals already in `out`. Degenerate rays (zero or non-finite direction, NaN) yield nothing.
 void block_intervals(const GridBlocks& blocks, Vec3 origin, Vec3 direction, float t0, float t1,

@@ -92,6 +92,7 @@ TEST(GridBlocks, RecordsMatchBruteForceFootprintScan) {
         ASSERT_EQ(r.occupied, hi > 0.0f) << bx << " " << by << " " << bz;
         if (!r.occupied) continue;
         EXPECT_EQ(r.majorant, hi);
+        EXPECT_EQ(r.minimum, std::max(0.0f, lo));
         EXPECT_EQ(r.constant, lo == hi);
         for (int a = 0; a < 3; ++a) {
           ASSERT_EQ(r.box.lo[a], std::max(0, span_lo[a] - 1)) << bx << " " << by << " " << bz;
@@ -121,7 +122,7 @@ void expect_ordered(const std::vector<GridInterval>& iv, float t0, float t1) {
 
 // Samples the ray every 1/20 voxel and checks each sample against the intervals: the tight boxes
 // of occupied blocks are covered by an interval whose majorant bounds the block's and the
-// sampled density; all else (empty blocks, occupied blocks outside their tight boxes) is not
+// sampled density from above and whose minimum bounds them from below; all else (empty blocks, occupied blocks outside their tight boxes) is not
 // covered and reads zero; constant intervals read one value; merged majorants stay within the
 // tolerance.
 void check_against_samples(const VolumeGrid& grid, const Ray& ray, float t0, float t1, float tolerance,
@@ -169,6 +170,9 @@ void check_against_samples(const VolumeGrid& grid, const Ray& ray, float t0, flo
     const GridInterval& g = iv[cursor];
     ASSERT_GE(g.density_max, r.majorant);
     ASSERT_LE(d, g.density_max * (1.0f + 1e-5f) + 1e-6f);
+    // The minimum (residual ratio tracking's control) is below every sample and the block's own.
+    ASSERT_LE(g.density_min, r.minimum);
+    ASSERT_GE(d, g.density_min * (1.0f - 1e-5f) - 1e-6f);
     if (g.constant) {
       ASSERT_TRUE(r.constant);
       if (first[cursor] < 0.0f) first[cursor] = d;

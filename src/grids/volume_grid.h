@@ -66,7 +66,7 @@ class VolumeGrid {
 
   // Appends, in order along the ray, the intervals of [t0, t1] that cross occupied blocks
   // (a two-level DDA: parents, then 8^3 blocks). Consecutive blocks merge while their
-  // majorants agree within `merge_tolerance` (relative); constant blocks merge only with
+  // majorants and their minima agree within `merge_tolerance` (relative); constant blocks merge only with
   // equal constant blocks. Empty space yields nothing.
   void intervals(const Ray& ray, float t0, float t1, std::vector<GridInterval>& out,
                  float merge_tolerance = 0.25f) const;

@@ -13,6 +13,7 @@
 #include "core/sampling.h"
 #include "integrators/test_grids.h"
 #include "integrators/test_scenes.h"
+#include "render/film.h"
 #include "render/render.h"
 #include "volumes/emission_sampler.h"
 
@@ -172,6 +173,31 @@ TEST(EmissionScenes, SampledEmissionKeepsTheMeanAndLowersTheNoise) {
   EXPECT_NEAR(image_means[1].mean(), image_means[0].mean(),
               4.0 * std::hypot(image_means[0].se(), image_means[1].se()));
   EXPECT_LT(pixel_variance[1], 0.25 * pixel_variance[0]);
+}
+
+// Emission connections and tracked segments draw from the sample alone (their own dimensions,
+// generators seeded by Sampler::stream_key): the image is the same bit for bit for any thread
+// count and tiling, and progressive passes end where one render of all the samples does (what a
+// resumed checkpoint continues from, and what MPI ranks merge).
+TEST(EmissionScenes, TrackedEmissiveImagesArePureFunctionsOfTheSample) {
+  SceneDesc desc = flame_over_floor();
+  desc.camera.look_at = {1.2f, 0.5f, 1.2f};  // the emitter in view as well
+  const auto scene = Scene::build(desc);
+  RenderSettings s = default_settings(desc);
+  s.spp = 6;
+  s.path.secondary = SecondarySegments::kTrack;
+  s.threads = 1;
+  Film whole(s.resolution, s.aovs);
+  render_into(whole, *scene, s);
+  s.threads = 2;
+  s.tile_size = 5;
+  Film tiled(s.resolution, s.aovs);
+  render_into(tiled, *scene, s);
+  EXPECT_TRUE(tiled == whole);
+  Film passes(s.resolution, s.aovs);
+  render_up_to(passes, *scene, s, 2);
+  render_up_to(passes, *scene, s, 6);
+  EXPECT_TRUE(passes == whole);
 }
 
 }  // namespace
