@@ -190,16 +190,19 @@ SegmentOutcome marched_segment(const PathContext& ctx, PathState& state, Ray& ra
   return scatter_in_medium(ctx, state, ray, collision->t, record.lobes(step), &choice_segment, out);
 }
 
-// Event: a tracked medium segment (tracking/tracking.h) over the spans already collected:
+// Event: a tracked medium segment (tracking/tracking.h) over its coarse spans, already collected:
 // spectral tracking to the next scattering event, emission gathered on the way, then a light
 // connection at the event itself (the light sampler's point form), as the reference ladder and
 // most production renderers connect.
-SegmentOutcome tracked_segment(const PathContext& ctx, PathState& state, Ray& ray, PathSample& out, float* event_t) {
+SegmentOutcome tracked_segment(const PathContext& ctx, PathState& state, Ray& ray, float t_surface, int medium,
+                               PathSample& out, float* event_t) {
   ctx.scratch.record.clear();  // no record: nothing may read a stale one
   const bool may_scatter = may_scatter_in_medium(ctx, state);
   Pcg32 rng(ctx.sampler.stream_key(bounce(state.vertex(), sample_dim::kFreeFlightDistance)), 0);
-  const TrackedSegment seg =
-      track_free_flight(ctx.scene.volumes(), ray, state.throughput, may_scatter, true, ctx.scratch.march, rng);
+  Ray segment = ray;
+  segment.tmax = t_surface;
+  const TrackedSegment seg = track_free_flight_chunked(ctx.scene.volumes(), segment, ctx.scratch.march_settings, medium,
+                                                       state.throughput, may_scatter, true, ctx.scratch.march, rng);
   if (!seg.emission.is_black())
     out.add(state.arriving(LightKind::kVolumeEmission), state.throughput * seg.emission * state.emission_weight);
   state.throughput *= seg.weight;
@@ -229,17 +232,28 @@ SegmentOutcome medium_segment(const PathContext& ctx, PathState& state, Ray& ray
                               PathSample& out, float* event_t) {
   Ray segment = ray;
   segment.tmax = t_surface;
-  if (!collect_spans(ctx.scene.volumes(), segment, ctx.scratch.march_settings, ctx.scratch.march, medium)) {
+  const VolumeScene& volumes = ctx.scene.volumes();
+  MarchScratch& scratch = ctx.scratch.march;
+  const SecondarySegments policy = ctx.settings.secondary;
+  // After the first event the coarse spans decide (homogeneous ones are the fine spans too, and a
+  // tracked segment collects its fine spans chunk by chunk); the camera segment is marched.
+  const bool coarse = state.events > 0 && policy != SecondarySegments::kMarch;
+  const bool any = coarse ? collect_coarse_spans(volumes, segment, ctx.scratch.march_settings, scratch, medium)
+                          : collect_spans(volumes, segment, ctx.scratch.march_settings, scratch, medium);
+  if (!any) {
     ctx.scratch.record.clear();
     return SegmentOutcome::kPassed;
   }
-  const SecondarySegments policy = ctx.settings.secondary;
-  const bool track = state.events > 0 && (policy == SecondarySegments::kTrack ||
-                                          (policy == SecondarySegments::kAuto &&
-                                           !collected_spans_homogeneous(ctx.scratch.march) &&
-                                           !collected_spans_emissive(ctx.scene.volumes(), ctx.scratch.march)));
-  return track ? tracked_segment(ctx, state, ray, out, event_t)
-               : marched_segment(ctx, state, ray, t_surface, out, event_t);
+  const bool homogeneous = collected_spans_homogeneous(scratch);
+  const bool track = coarse && (policy == SecondarySegments::kTrack ||
+                                (!homogeneous && !collected_spans_emissive(volumes, scratch)));
+  if (track) return tracked_segment(ctx, state, ray, t_surface, medium, out, event_t);
+  if (coarse && !homogeneous &&
+      !collect_spans(volumes, segment, ctx.scratch.march_settings, scratch, medium)) {
+    ctx.scratch.record.clear();
+    return SegmentOutcome::kPassed;
+  }
+  return marched_segment(ctx, state, ray, t_surface, out, event_t);
 }
 
 

@@ -22,10 +22,12 @@ RGB stretch_transmittance(const Scene& scene, const Ray& stretch, const ShadowMe
   const MarchSettings& settings = scratch.march_settings;
   if (medium.policy == SecondarySegments::kMarch)
     return march_transmittance(scene.volumes(), stretch, medium.jitter, settings, scratch.march, stack_medium);
-  if (!collect_spans(scene.volumes(), stretch, settings, scratch.march, stack_medium)) return RGB(1.0f);
+  // The coarse spans decide (a tracked ray collects its fine spans chunk by chunk); where they
+  // are all homogeneous they are the fine spans too.
+  if (!collect_coarse_spans(scene.volumes(), stretch, settings, scratch.march, stack_medium)) return RGB(1.0f);
   if (medium.policy == SecondarySegments::kAuto && collected_spans_homogeneous(scratch.march))
     return march_transmittance_collected(scene.volumes(), stretch, medium.jitter, settings, scratch.march);
-  return track_transmittance_collected(scene.volumes(), stretch, scratch.march, rng, medium.residual);
+  return track_transmittance(scene.volumes(), stretch, settings, scratch.march, rng, stack_medium, medium.residual);
 }
 
 RGB nested_transmittance(const Scene& scene, const Ray& shadow, bool casts_shadows, const ShadowMedium& medium,

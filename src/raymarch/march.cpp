@@ -97,6 +97,13 @@ bool collect_spans(const VolumeScene& volumes, const Ray& ray, const MarchSettin
   return !scratch.spans.empty();
 }
 
+bool collect_coarse_spans(const VolumeScene& volumes, const Ray& ray, const MarchSettings& settings,
+                          MarchScratch& scratch, int medium) {
+  MarchSettings coarse = settings;
+  coarse.skip_empty_blocks = false;
+  return collect_spans(volumes, ray, coarse, scratch, medium);
+}
+
 bool collected_spans_emissive(const VolumeScene& volumes, const MarchScratch& scratch) {
   return std::any_of(scratch.span_primitives.begin(), scratch.span_primitives.end(),
                      [&](uint32_t id) { return emits(volumes.primitive(id).shader); });

@@ -61,6 +61,12 @@ StepCoefficients shade_span(const VolumeScene& volumes, std::span<const uint32_t
 // tracking/ walk). True when there is at least one span.
 bool collect_spans(const VolumeScene& volumes, const Ray& ray, const MarchSettings& settings, MarchScratch& scratch,
                    int medium = -1);
+// The same without the block DDA: each grid is one interval over its stretch with its global
+// majorant (cheap: the BVH query and a box clip). Homogeneous primitives give the same spans
+// either way, so a caller that finds them all homogeneous has the spans it needs; tracking
+// reads the extent and bound of a ray from them and collects the fine spans chunk by chunk.
+bool collect_coarse_spans(const VolumeScene& volumes, const Ray& ray, const MarchSettings& settings,
+                          MarchScratch& scratch, int medium = -1);
 // True when every collected span is homogeneous (each is one closed-form step).
 bool collected_spans_homogeneous(const MarchScratch& scratch);
 // True when a primitive of the collected spans emits (a constant emission, blackbody or flame):

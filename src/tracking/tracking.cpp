@@ -52,8 +52,9 @@ RGB no_control(const Span&) { return RGB(0.0f); }
 }  // namespace
 
 TrackedSegment track_free_flight(const VolumeScene& volumes, const Ray& ray, RGB throughput, bool may_scatter,
-                                 bool gather_emission, MarchScratch& scratch, Pcg32& rng) {
+                                 bool gather_emission, MarchScratch& scratch, Pcg32& rng, RGB weight) {
   TrackedSegment out;
+  out.weight = weight;
   const float dir_length = length(ray.direction);
   bool done = false;
   const bool walked = for_each_tentative_collision(
@@ -98,14 +99,69 @@ TrackedSegment track_free_flight(const VolumeScene& volumes, const Ray& ray, RGB
   return out;
 }
 
+namespace {
+
+// Calls walk(chunk) for consecutive chunks of `ray` within the extent of its coarse spans (in
+// scratch on entry), with the chunk's fine spans collected into scratch; stops when it returns
+// false. A chunk's length aims at kTrackingChunkDepth of majorant optical depth: the first from
+// the coarse bound, each next from the depth the last one had (at most 8x longer each time).
+template <typename WalkFn>
+void for_each_chunk(const VolumeScene& volumes, const Ray& ray, const MarchSettings& settings, int medium,
+                    MarchScratch& scratch, WalkFn&& walk) {
+  if (scratch.spans.empty()) return;
+  const float dir_length = length(ray.direction);
+  const float start = std::max(ray.tmin, scratch.spans.front().t0), end = std::min(ray.tmax, scratch.spans.back().t1);
+  float sigma = 0.0f;
+  for (const Span& s : scratch.spans) sigma = std::max(sigma, s.sigma_maj.max_component() * dir_length);
+  if (!(sigma > 0.0f) || !(start < end)) return;
+  float length_t = kTrackingChunkDepth / sigma;
+  for (float t = start; t < end;) {
+    Ray chunk = ray;
+    chunk.tmin = t;
+    chunk.tmax = end - t > length_t ? t + length_t : end;
+    if (!(chunk.tmax > t)) chunk.tmax = end;  // a length lost to rounding at large t
+    t = chunk.tmax;
+    if (!collect_spans(volumes, chunk, settings, scratch, medium)) {
+      length_t *= 8.0f;
+      continue;
+    }
+    float depth = 0.0f;
+    for (const Span& s : scratch.spans) depth += s.sigma_maj.max_component() * dir_length * (s.t1 - s.t0);
+    length_t *= depth > kTrackingChunkDepth / 8.0f ? kTrackingChunkDepth / depth : 8.0f;
+    if (!walk(chunk)) return;
+  }
+}
+
+}  // namespace
+
+TrackedSegment track_free_flight_chunked(const VolumeScene& volumes, const Ray& ray, const MarchSettings& settings,
+                                         int medium, RGB throughput, bool may_scatter, bool gather_emission,
+                                         MarchScratch& scratch, Pcg32& rng) {
+  TrackedSegment total;
+  for_each_chunk(volumes, ray, settings, medium, scratch, [&](const Ray& chunk) {
+    TrackedSegment seg =
+        track_free_flight(volumes, chunk, throughput, may_scatter, gather_emission, scratch, rng, total.weight);
+    seg.emission += total.emission;
+    seg.collisions += total.collisions;
+    total = seg;
+    return total.outcome == TrackedSegment::Outcome::kPassed;
+  });
+  return total;
+}
+
 RGB track_transmittance(const VolumeScene& volumes, const Ray& ray, const MarchSettings& settings,
                         MarchScratch& scratch, Pcg32& rng, int medium, bool residual) {
-  if (!collect_spans(volumes, ray, settings, scratch, medium)) return RGB(1.0f);
-  return track_transmittance_collected(volumes, ray, scratch, rng, residual);
+  if (!collect_coarse_spans(volumes, ray, settings, scratch, medium)) return RGB(1.0f);
+  RGB tr(1.0f);
+  for_each_chunk(volumes, ray, settings, medium, scratch, [&](const Ray& chunk) {
+    tr = track_transmittance_collected(volumes, chunk, scratch, rng, residual, tr);
+    return !tr.is_black();
+  });
+  return tr;
 }
 
 RGB track_transmittance_collected(const VolumeScene& volumes, const Ray& ray, MarchScratch& scratch, Pcg32& rng,
-                                  bool residual) {
+                                  bool residual, RGB weight) {
   const float dir_length = length(ray.direction);
   // The control per unit t, never above the majorant (which rounding could otherwise cross).
   const auto control = [&](const Span& span) {
@@ -116,7 +172,7 @@ RGB track_transmittance_collected(const VolumeScene& volumes, const Ray& ray, Ma
   };
   RGB control_depth;
   for (const Span& span : scratch.spans) control_depth += control(span) * (span.t1 - span.t0);
-  RGB tr = exp_neg(control_depth);
+  RGB tr = weight * exp_neg(control_depth);
   const bool walked = for_each_tentative_collision(
       scratch, dir_length, rng, control, [&](float t, const Span& span, float mu_r) {
         const std::span<const uint32_t> prims = span_primitives(scratch, span);

@@ -58,18 +58,33 @@ struct TrackedSegment {
   uint32_t collisions = 0;  // tentative collisions (shader evaluations of the span's primitives)
 };
 
-// Spectral tracking over the spans collect_spans() left in `scratch` (one call per segment).
-// `throughput`: the path's throughput arriving at the segment (the history the probabilities
-// follow); `may_scatter` false makes every collision null (the path only takes the segment's
-// transmittance, by ratio tracking). Gathers emission only when `gather_emission`.
+// Spectral tracking over the spans collect_spans() left in `scratch`. `throughput`: the path's
+// throughput arriving at the segment (the history the probabilities follow); `weight`: the
+// walk's running weight so far (1: a new walk); `may_scatter` false makes every collision null
+// (the path only takes the segment's transmittance, by ratio tracking). Gathers emission only
+// when `gather_emission`.
 TrackedSegment track_free_flight(const VolumeScene& volumes, const Ray& ray, RGB throughput, bool may_scatter,
-                                 bool gather_emission, MarchScratch& scratch, Pcg32& rng);
+                                 bool gather_emission, MarchScratch& scratch, Pcg32& rng, RGB weight = RGB(1.0f));
 
-// (Residual) ratio-tracking transmittance along [ray.tmin, ray.tmax] (collects its own spans).
+// Spectral tracking along the whole segment `ray` whose coarse spans (collect_coarse_spans) are
+// in scratch, collecting the fine spans chunk by chunk (see kTrackingChunkDepth).
+TrackedSegment track_free_flight_chunked(const VolumeScene& volumes, const Ray& ray, const MarchSettings& settings,
+                                         int medium, RGB throughput, bool may_scatter, bool gather_emission,
+                                         MarchScratch& scratch, Pcg32& rng);
+
+// A tracked shadow ray collects its spans in chunks of about this majorant optical depth: the
+// walk usually ends (roulette, or a weight of 0) within the first few, and a grid's block DDA over
+// the rest of the ray would be wasted (it was a quarter of the time on `cloud`).
+inline constexpr float kTrackingChunkDepth = 4.0f;
+
+// (Residual) ratio-tracking transmittance along [ray.tmin, ray.tmax], collecting its spans chunk
+// by chunk. The chunks' extent comes from a coarse collection (grids as one interval each, no
+// block DDA), their lengths from the majorants met so far.
 RGB track_transmittance(const VolumeScene& volumes, const Ray& ray, const MarchSettings& settings,
                         MarchScratch& scratch, Pcg32& rng, int medium = -1, bool residual = true);
-// The same over the spans collect_spans() left in scratch.
+// The same over the spans collect_spans() left in scratch, continuing a walk whose running
+// weight is `weight` (1: a new walk).
 RGB track_transmittance_collected(const VolumeScene& volumes, const Ray& ray, MarchScratch& scratch, Pcg32& rng,
-                                  bool residual = true);
+                                  bool residual = true, RGB weight = RGB(1.0f));
 
 }  // namespace caligo
