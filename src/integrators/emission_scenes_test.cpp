@@ -11,6 +11,7 @@
 #include "core/math.h"
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "core/test_stat.h"
 #include "integrators/test_grids.h"
 #include "integrators/test_scenes.h"
 #include "render/film.h"
@@ -23,17 +24,7 @@ namespace {
 using testing::grid_primitive;
 using testing::make_grid;
 
-struct Stat {
-  double sum = 0, sum2 = 0;
-  int n = 0;
-  void add(double x) {
-    sum += x;
-    sum2 += x * x;
-    ++n;
-  }
-  double mean() const { return sum / n; }
-  double se() const { return std::sqrt(std::max(0.0, sum2 / n - mean() * mean()) / n); }
-};
+using testing::Stat;
 
 // A 24^3 grid of 0.1 m voxels whose density ramps along x, emitting 2 per unit density: blocks
 // differ in weight, so a sampler that ignored its own weights would fail the checks below.

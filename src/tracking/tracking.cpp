@@ -155,6 +155,9 @@ RGB track_transmittance(const VolumeScene& volumes, const Ray& ray, const MarchS
   RGB tr(1.0f);
   for_each_chunk(volumes, ray, settings, medium, scratch, [&](const Ray& chunk) {
     tr = track_transmittance_collected(volumes, chunk, scratch, rng, residual, tr);
+    // Roulette between chunks too: the control alone (constant blocks, no collision) can take
+    // the weight far below the threshold, and the walk would then go on to the ray's end.
+    if (!tr.is_black() && !survive_roulette(tr, rng)) tr = RGB(0.0f);
     return !tr.is_black();
   });
   return tr;

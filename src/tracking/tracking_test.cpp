@@ -8,6 +8,8 @@
 
 #include <cmath>
 
+#include "core/test_stat.h"
+
 namespace caligo {
 namespace {
 
@@ -15,18 +17,7 @@ VolumePrimitive box(Vec3 lo, Vec3 hi, RGB sigma_a, RGB sigma_s, RGB emission = {
   return {BoxVolumeShape{{}, lo, hi}, {sigma_a, sigma_s, emission}};
 }
 
-// Running mean and standard error of one channel.
-struct Stat {
-  double sum = 0, sum2 = 0;
-  int n = 0;
-  void add(double x) {
-    sum += x;
-    sum2 += x * x;
-    ++n;
-  }
-  double mean() const { return sum / n; }
-  double se() const { return std::sqrt(std::max(0.0, sum2 / n - mean() * mean()) / n); }
-};
+using testing::Stat;
 
 #define EXPECT_WITHIN_4SE(stat, expected)                                                         \
   EXPECT_NEAR((stat).mean(), (expected), 4.0 * (stat).se() + 1e-7) << "se " << (stat).se()

@@ -11,21 +11,12 @@
 #include "core/math.h"
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "core/test_stat.h"
 
 namespace caligo {
 namespace {
 
-struct Stat {
-  double sum = 0, sum2 = 0;
-  int n = 0;
-  void add(double x) {
-    sum += x;
-    sum2 += x * x;
-    ++n;
-  }
-  double mean() const { return sum / n; }
-  double se() const { return std::sqrt(std::max(0.0, sum2 / n - mean() * mean()) / n); }
-};
+using testing::Stat;
 
 VolumeScene glowing_sphere() {
   VolumePrimitive v{SphereVolumeShape{Sphere::make({1.0f, 2.0f, -1.0f}, 0.8f, {})}, {RGB(1.0f), RGB(0.5f)}};
