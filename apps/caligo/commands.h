@@ -21,7 +21,7 @@ struct RenderOptions {
   std::optional<std::string> resolution;  // "WxH"
   std::optional<int> threads;
   std::optional<int64_t> seed;  // signed so that -1 is seen (and refused), not wrapped
-  // PathSettings (integrators/path_settings.h), each overriding the scene's or the default.
+  // PathSettings (settings/path_settings.h), each overriding the scene's or the default.
   std::optional<int> max_bounces;  // --max-bounces, alias --max-depth
   std::optional<int> max_volume_bounces;
   std::optional<std::string> distance_sampling;
@@ -30,7 +30,7 @@ struct RenderOptions {
   std::optional<std::string> light_sampler;
   std::optional<std::string> filter;  // --filter box|gaussian|blackman_harris (its default radius)
   std::optional<std::string> crop;    // --crop x0,x1,y0,y1: fractions of the image
-  std::optional<std::string> aovs;    // --aov LIST: the outputs besides the beauty (render/aov.h)
+  std::optional<std::string> aovs;    // --aov LIST: the outputs besides the beauty (settings/aov.h)
   float time = 0.0f;  // seconds: the camera on its path and the lights on their keys at this time
   float exposure = 0.0f;
   std::vector<std::string> priorities;  // --priority MATERIAL=LEVEL, applied in order

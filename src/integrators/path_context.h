@@ -9,7 +9,7 @@
 
 #include "core/sampler.h"
 #include "integrators/path_sample.h"
-#include "integrators/path_settings.h"
+#include "settings/path_settings.h"
 #include "media/medium_stack.h"
 #include "raymarch/march.h"
 #include "raymarch/transmittance_record.h"

@@ -26,7 +26,7 @@
 #include "integrators/medium_segment.h"
 #include "integrators/path_context.h"
 #include "integrators/path_sample.h"
-#include "integrators/path_settings.h"
+#include "settings/path_settings.h"
 #include "scene/scene.h"
 
 namespace caligo {

@@ -38,7 +38,7 @@
 #include "core/ray.h"
 #include "core/rgb.h"
 #include "core/rng.h"
-#include "integrators/path_settings.h"
+#include "settings/path_settings.h"
 #include "media/medium_stack.h"
 #include "scene/scene.h"
 
@@ -73,7 +73,7 @@ RGB reference_transmittance(const Scene& scene, const Ray& ray, float t_max, int
 RGB reference_single_scattering(const Scene& scene, const Ray& ray, int samples, Pcg32& rng);
 
 // Radiance along `ray` with all orders of scattering within `limits`, counted as the production
-// integrator counts them (PathLimits, integrators/path_settings.h): surface bounces plus runs of
+// integrator counts them (PathLimits, settings/path_settings.h): surface bounces plus runs of
 // consecutive volume events up to max_bounces, and volume events up to max_volume_bounces. By
 // delta tracking with the piecewise-constant majorant of the volume intervals (a grid's empty
 // blocks are skipped, each run of blocks tracked with its own bound).

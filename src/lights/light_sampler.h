@@ -28,10 +28,9 @@
 #include "core/sampling.h"
 #include "lights/light.h"
 #include "lights/light_tree.h"
+#include "settings/light_sampler_kind.h"
 
 namespace caligo {
-
-enum class LightSamplerKind { kUniform, kPower, kTree };
 
 // "uniform", "power", "tree"; nullopt for anything else.
 std::optional<LightSamplerKind> light_sampler_from_name(std::string_view name);

@@ -14,7 +14,7 @@
 
 #include "image/image.h"
 #include "integrators/path_sample.h"
-#include "render/aov.h"
+#include "settings/aov.h"
 #include "render/fixed_sum.h"
 
 namespace caligo {

@@ -5,9 +5,9 @@
 
 #include "core/crop_window.h"
 #include "core/vec.h"
-#include "integrators/path_settings.h"
+#include "settings/path_settings.h"
 #include "raymarch/march.h"
-#include "render/aov.h"
+#include "settings/aov.h"
 #include "render/pixel_filter.h"
 
 namespace caligo {
@@ -15,7 +15,7 @@ namespace caligo {
 struct RenderSettings {
   Vec2i resolution{640, 480};
   int spp = 16;
-  PathSettings path;  // passed to trace_path as it is (integrators/path_settings.h)
+  PathSettings path;  // passed to trace_path as it is (settings/path_settings.h)
   uint64_t seed = 0;
   int threads = 0;  // 0: all hardware threads
   int tile_size = 16;
@@ -25,7 +25,7 @@ struct RenderSettings {
   PixelFilter filter;
   // The pixels rendered: crop.pixels(resolution); the image keeps the full resolution.
   CropWindow crop;
-  // The outputs the film holds and the image gets (render/aov.h; --aov).
+  // The outputs the film holds and the image gets (settings/aov.h; --aov).
   AovSet aovs = AovSet::defaults();
   // The samples of each pixel this render adds: [first_sample, first_sample + spp). A frame
   // split into sample ranges (checkpoints, processes) and merged equals one render of them all.

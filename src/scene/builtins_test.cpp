@@ -5,7 +5,7 @@
 #include <set>
 
 #include "lights/gobo.h"
-#include "render/aov.h"
+#include "settings/aov.h"
 
 namespace caligo {
 namespace {

@@ -12,7 +12,7 @@
 #include "core/error.h"
 #include "core/transform.h"
 #include "core/vec.h"
-#include "integrators/path_settings.h"
+#include "settings/path_settings.h"
 #include "lights/light.h"
 #include "materials/material.h"
 #include "volumes/volume.h"
@@ -110,7 +110,7 @@ struct RenderDefaults {
   bool priority_shadows = false;
   PixelFilterDesc filter;  // "filter": how samples spread over pixels (render/pixel_filter.h)
   CropWindow crop;         // "crop": the part of the image rendered (core/crop_window.h)
-  // "aovs": the outputs besides the beauty, as AovSet::bits() (render/aov.h, which this header
+  // "aovs": the outputs besides the beauty, as AovSet::bits() (settings/aov.h, which this header
   // does not include); none: AovSet::defaults().
   std::optional<uint32_t> aovs;
 };

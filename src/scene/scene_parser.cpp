@@ -13,7 +13,7 @@
 
 #include "core/math.h"
 #include "geometry/mesh_closure.h"
-#include "render/aov.h"
+#include "settings/aov.h"
 #include "scene/mesh_loader.h"
 #include "scene/json_reader.h"
 #include "scene/light_parser.h"
@@ -174,7 +174,7 @@ CropWindow read_crop(const JsonCursor& c) {
   return crop;
 }
 
-// "aovs": the names --aov takes (render/aov.h), one per element; the beauty is always written.
+// "aovs": the names --aov takes (settings/aov.h), one per element; the beauty is always written.
 uint32_t read_aovs(const JsonCursor& c) {
   AovSet set;
   for (const JsonCursor& e : c.elements("an array of output names")) {

@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/math.h"
-#include "render/aov.h"
+#include "settings/aov.h"
 
 namespace caligo {
 namespace {

@@ -9,7 +9,7 @@
 #include <string_view>
 #include <vector>
 
-#include "integrators/path_sample.h"
+#include "settings/light_kind.h"
 
 namespace caligo {
 
@@ -18,19 +18,20 @@ enum class Aov : uint8_t {
   kDepth,
   kNormal,
   kAlbedo,
-  // The light layers, in LightKind order: they add up to the beauty.
-  kSurfaceDirect,
-  kSurfaceIndirect,
-  kVolumeDirect,
-  kVolumeIndirect,
-  kSurfaceEmission,
-  kVolumeEmission,
-  kBackground,
+  // The light layers, one per LightKind and in its order (they add up to the beauty): the
+  // values follow from the kinds, so the two lists cannot drift apart.
+  kSurfaceDirect = 4 + uint8_t(LightKind::kSurfaceDirect),
+  kSurfaceIndirect = 4 + uint8_t(LightKind::kSurfaceIndirect),
+  kVolumeDirect = 4 + uint8_t(LightKind::kVolumeDirect),
+  kVolumeIndirect = 4 + uint8_t(LightKind::kVolumeIndirect),
+  kSurfaceEmission = 4 + uint8_t(LightKind::kSurfaceEmission),
+  kVolumeEmission = 4 + uint8_t(LightKind::kVolumeEmission),
+  kBackground = 4 + uint8_t(LightKind::kBackground),
   // The variance of each pixel's mean, per channel of the beauty: (sum x^2 / n - mean^2) / (n - 1),
   // for denoisers and for --target-rmse, which estimates the image's error from it.
-  kVariance,
+  kVariance = 4 + kLightKindCount,
 };
-inline constexpr int kAovCount = 12;
+inline constexpr int kAovCount = int(Aov::kVariance) + 1;
 
 constexpr Aov light_aov(LightKind kind) { return Aov(int(Aov::kSurfaceDirect) + int(kind)); }
 

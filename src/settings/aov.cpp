@@ -1,4 +1,4 @@
-#include "render/aov.h"
+#include "settings/aov.h"
 
 #include "core/error.h"
 
@@ -10,13 +10,13 @@ std::string_view aov_name(Aov a) {
     case Aov::kDepth: return "depth";
     case Aov::kNormal: return "normal";
     case Aov::kAlbedo: return "albedo";
-    case Aov::kSurfaceDirect: return "surface_direct";
-    case Aov::kSurfaceIndirect: return "surface_indirect";
-    case Aov::kVolumeDirect: return "volume_direct";
-    case Aov::kVolumeIndirect: return "volume_indirect";
-    case Aov::kSurfaceEmission: return "surface_emission";
-    case Aov::kVolumeEmission: return "volume_emission";
-    case Aov::kBackground: return "background";
+    case Aov::kSurfaceDirect:
+    case Aov::kSurfaceIndirect:
+    case Aov::kVolumeDirect:
+    case Aov::kVolumeIndirect:
+    case Aov::kSurfaceEmission:
+    case Aov::kVolumeEmission:
+    case Aov::kBackground: return light_kind_name(LightKind(int(a) - int(Aov::kSurfaceDirect)));
     case Aov::kVariance: return "variance";
   }
   return "?";

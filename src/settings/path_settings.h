@@ -1,11 +1,12 @@
-// How the volumetric path tracer traces a path: its limits and the choices of its estimators.
+// How the volumetric path tracer traces a path: its limits and the choices of its estimators,
+// as plain data below every pipeline (settings/: what a scene file and a command line set).
 // One value of these is embedded in RenderSettings (render/render_settings.h) and passed to
 // trace_path unchanged; PathLimits alone is also what a scene file's "render" object gives
 // (RenderDefaults, scene/scene_desc.h) and what the reference ladder obeys (ReferenceOptions,
 // integrators/reference.h), so every pipeline counts a path's events the same way.
 #pragma once
 
-#include "lights/light_sampler.h"
+#include "settings/light_sampler_kind.h"
 
 namespace caligo {
 
