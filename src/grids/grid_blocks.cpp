@@ -7,7 +7,7 @@ const ParentCell* GridBlocks::parent(int32_t px, int32_t py, int32_t pz) const {
                 z = int64_t(pz) - parent_lo[2];
   if (x < 0 || y < 0 || z < 0 || x >= parent_dims[0] || y >= parent_dims[1] || z >= parent_dims[2])
     return nullptr;
-  const int32_t index = parent_index[size_t(x + parent_dims[0] * (y + int64_t(parent_dims[1]) * z))];
+  const int32_t index = parent_index[slot(x, y, z)];
   return index < 0 ? nullptr : &parents[size_t(index)];
 }
 

@@ -98,6 +98,11 @@ struct GridBlocks {
     return sizeof(GridBlocks) + parent_index.capacity() * sizeof(int32_t) +
            parents.capacity() * sizeof(ParentCell);
   }
+  // The slot of parent_index for parent coordinates relative to parent_lo (each in
+  // [0, parent_dims)): the one place the dense parent array's layout is written.
+  size_t slot(int64_t x, int64_t y, int64_t z) const {
+    return size_t(x + int64_t(parent_dims[0]) * (y + int64_t(parent_dims[1]) * z));
+  }
   // The parent cell at parent coordinates (px, py, pz), or nullptr when it is empty or outside.
   const ParentCell* parent(int32_t px, int32_t py, int32_t pz) const;
   // The record of block (bx, by, bz) in block coordinates (an empty record outside).
@@ -111,8 +116,7 @@ void for_each_occupied_block(const GridBlocks& blocks, Visit&& visit) {
   for (int64_t z = 0; z < blocks.parent_dims[2]; ++z)
     for (int64_t y = 0; y < blocks.parent_dims[1]; ++y)
       for (int64_t x = 0; x < blocks.parent_dims[0]; ++x) {
-        const int32_t index =
-            blocks.parent_index[size_t(x + blocks.parent_dims[0] * (y + blocks.parent_dims[1] * z))];
+        const int32_t index = blocks.parent_index[blocks.slot(x, y, z)];
         if (index < 0) continue;
         const ParentCell& cell = blocks.parents[size_t(index)];
         for (int i = 0; i < 512; ++i) {

@@ -273,7 +273,7 @@ GridBlocks build_grid_blocks(const BlockChannels& channels, const SourceLocation
     if (!fill_parent(k, acc, scratch)) continue;
     const int64_t x = k[0] - blocks.parent_lo[0], y = k[1] - blocks.parent_lo[1],
                   z = k[2] - blocks.parent_lo[2];
-    blocks.parent_index[size_t(x + blocks.parent_dims[0] * (y + int64_t(blocks.parent_dims[1]) * z))] =
+    blocks.parent_index[blocks.slot(x, y, z)] =
         int32_t(blocks.parents.size());
     blocks.parents.push_back(scratch);
   }

@@ -113,8 +113,7 @@ void block_intervals(const GridBlocks& blocks, Vec3 origin, Vec3 direction, floa
   const int block_n[3] = {kParentBlocks, kParentBlocks, kParentBlocks};
   for_each_lattice_cell(po, pd, t0, t1, parent_n, [&](const int* p, float ta, float tb) {
     if (!(tb > ta)) return;
-    const size_t flat = size_t(p[0] + int64_t(parent_n[0]) * (p[1] + int64_t(parent_n[1]) * p[2]));
-    const int32_t index = blocks.parent_index[flat];
+    const int32_t index = blocks.parent_index[blocks.slot(p[0], p[1], p[2])];
     if (index < 0) return;  // an empty parent: 64^3 voxels skipped in one step
     const ParentCell& cell = blocks.parents[size_t(index)];
     // Block-level coordinates local to this parent: one unit per block.

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <variant>
 
+#include "core/overloaded.h"
 #include "core/parallel.h"
 #include "integrators/interface_eta.h"
 #include "lights/light_sample.h"
@@ -472,6 +473,17 @@ RGB reference_single_scattering(const Scene& scene, const Ray& ray, int samples,
   return sum * (length / float(samples));  // the uniform pdf is 1 / length
 }
 
+// What the ladder does at a surface, by its material: a visit with one case per BSDF, so a new
+// BSDF does not compile until the ladder handles it (it used to absorb silently).
+enum class SurfaceStep { kCross, kSpecular, kDiffuse, kAbsorb };
+SurfaceStep surface_step(const Bsdf& bsdf) {
+  return std::visit(Overloaded{[](const NullBsdf&) { return SurfaceStep::kCross; },
+                               [](const DielectricBsdf&) { return SurfaceStep::kSpecular; },
+                               [](const DiffuseBsdf&) { return SurfaceStep::kDiffuse; },
+                               [](const BlackBsdf&) { return SurfaceStep::kAbsorb; }},
+                    bsdf);
+}
+
 RGB reference_delta_tracking(const Scene& scene, const Ray& camera_ray, PathLimits limits, Pcg32& rng) {
   const int channel = std::min(int(rng.next_float() * 3.0f), 2);
   float radiance = 0.0f, throughput = 1.0f;
@@ -513,7 +525,8 @@ RGB reference_delta_tracking(const Scene& scene, const Ray& camera_ray, PathLimi
     const Vec3 wo = -ray.direction;
     const std::optional<MediumEntry> entry = scene.medium_entry(hit->geom_id);
     const Bsdf& bsdf = si.material->bsdf;
-    if (std::holds_alternative<NullBsdf>(bsdf)) {
+    const SurfaceStep step = surface_step(bsdf);
+    if (step == SurfaceStep::kCross) {
       // A priority null surface whose crossing is real (Off ones are never seen): the medium
       // changes, nothing else happens.
       stack.cross(*entry);
@@ -524,16 +537,17 @@ RGB reference_delta_tracking(const Scene& scene, const Ray& camera_ray, PathLimi
     if (count_emission) radiance += throughput * surface_emission(si, wo)[channel];
     if (surface_bounces + volume_runs >= limits.max_bounces) break;
     std::optional<BsdfSample> bs;
-    if (const auto* d = std::get_if<DielectricBsdf>(&bsdf)) {
+    if (step == SurfaceStep::kSpecular) {
       // Specular: no next-event estimation, so emission the new ray reaches counts.
-      const Bsdf interface = DielectricBsdf{interface_eta(stack, entry, d->ior, dot(si.ng, wo) > 0.0f)};
+      const float ior = std::get<DielectricBsdf>(bsdf).ior;
+      const Bsdf interface = DielectricBsdf{interface_eta(stack, entry, ior, dot(si.ng, wo) > 0.0f)};
       const float u_lobe = rng.next_float();
       bs = bsdf_sample(interface, si.ns, wo, u_lobe, next_2d(rng));
       if (!bs) break;
       // Only a transmitted path gets past the surface (and a priority surface's medium with it).
       if (entry && dot(si.ng, bs->wi) * dot(si.ng, wo) < 0.0f) stack.cross(*entry);
       count_emission = true;
-    } else if (std::holds_alternative<DiffuseBsdf>(bsdf)) {
+    } else if (step == SurfaceStep::kDiffuse) {
       radiance += throughput * surface_direct_light(scene, si, wo, stack, channel, rng);
       const float u_lobe = rng.next_float();
       bs = bsdf_sample(bsdf, si.ns, wo, u_lobe, next_2d(rng));
@@ -541,7 +555,7 @@ RGB reference_delta_tracking(const Scene& scene, const Ray& camera_ray, PathLimi
       count_emission = false;
       camera_view = false;
     } else {
-      break;  // black surfaces absorb
+      break;  // SurfaceStep::kAbsorb: black surfaces absorb
     }
     throughput *= bs->weight[channel];
     ray = Ray{offset_ray_origin(si.p, si.ng, bs->wi), bs->wi, 0.0f, kInfinity};

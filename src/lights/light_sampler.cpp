@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "core/overloaded.h"
+
 namespace caligo {
 namespace {
 
@@ -123,39 +125,51 @@ LightChoice sample_uniform(int count, float u) {
   return {std::min(int(u * float(count)), count - 1), 1.0f / float(count)};
 }
 
+float pmf_power(const DiscreteDistribution& d, int light) { return d.empty() ? 0.0f : d.pmf(light); }
+float pmf_uniform(int count) { return count > 0 ? 1.0f / float(count) : 0.0f; }
+
 }  // namespace
 
+// Each strategy is one visit with a lambda per member: a fourth strategy does not compile until
+// all four operations handle it.
 LightChoice LightSampler::sample(Vec3 p, Vec3 n, float u) const {
   if (single_ >= 0) return {single_, 1.0f};
-  if (const auto* power = std::get_if<Power>(&strategy_)) return sample_power(power->distribution, u);
-  if (const auto* uniform = std::get_if<Uniform>(&strategy_)) return sample_uniform(uniform->count, u);
-  const Tree& t = std::get<Tree>(strategy_);
-  return sample_tree(t, u, [&](float v) { return t.tree.sample(p, n, v); });
+  return std::visit(Overloaded{[&](const Power& s) { return sample_power(s.distribution, u); },
+                               [&](const Uniform& s) { return sample_uniform(s.count, u); },
+                               [&](const Tree& t) {
+                                 return sample_tree(t, u, [&](float v) { return t.tree.sample(p, n, v); });
+                               }},
+                    strategy_);
 }
 
 float LightSampler::pmf(Vec3 p, Vec3 n, int light) const {
   if (single_ >= 0) return light == single_ ? 1.0f : 0.0f;
-  if (const auto* power = std::get_if<Power>(&strategy_))
-    return power->distribution.empty() ? 0.0f : power->distribution.pmf(light);
-  if (const auto* uniform = std::get_if<Uniform>(&strategy_))
-    return uniform->count > 0 ? 1.0f / float(uniform->count) : 0.0f;
-  const Tree& t = std::get<Tree>(strategy_);
-  return pmf_tree(t, light, [&] { return t.tree.pmf(p, n, light); });
+  return std::visit(Overloaded{[&](const Power& s) { return pmf_power(s.distribution, light); },
+                               [&](const Uniform& s) { return pmf_uniform(s.count); },
+                               [&](const Tree& t) {
+                                 return pmf_tree(t, light, [&] { return t.tree.pmf(p, n, light); });
+                               }},
+                    strategy_);
 }
 
 LightChoice LightSampler::sample_segment(const Ray& segment, float u) const {
   if (single_ >= 0) return {single_, 1.0f};
-  if (const auto* power = std::get_if<Power>(&strategy_)) return sample_power(power->distribution, u);
-  if (const auto* uniform = std::get_if<Uniform>(&strategy_)) return sample_uniform(uniform->count, u);
-  const Tree& t = std::get<Tree>(strategy_);
-  return sample_tree(t, u, [&](float v) { return t.tree.sample_segment(segment, v); });
+  return std::visit(Overloaded{[&](const Power& s) { return sample_power(s.distribution, u); },
+                               [&](const Uniform& s) { return sample_uniform(s.count, u); },
+                               [&](const Tree& t) {
+                                 return sample_tree(t, u, [&](float v) { return t.tree.sample_segment(segment, v); });
+                               }},
+                    strategy_);
 }
 
 float LightSampler::pmf_segment(const Ray& segment, int light) const {
   if (single_ >= 0) return light == single_ ? 1.0f : 0.0f;
-  if (!std::holds_alternative<Tree>(strategy_)) return pmf({}, {}, light);
-  const Tree& t = std::get<Tree>(strategy_);
-  return pmf_tree(t, light, [&] { return t.tree.pmf_segment(segment, light); });
+  return std::visit(Overloaded{[&](const Power& s) { return pmf_power(s.distribution, light); },
+                               [&](const Uniform& s) { return pmf_uniform(s.count); },
+                               [&](const Tree& t) {
+                                 return pmf_tree(t, light, [&] { return t.tree.pmf_segment(segment, light); });
+                               }},
+                    strategy_);
 }
 
 }  // namespace caligo

@@ -5,6 +5,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/overloaded.h"
 #include "core/parallel.h"
 #include "realtime/surface_shading_internal.h"
 #include "lights/light_profile.h"
@@ -122,14 +123,21 @@ RGB light_term(const ShadeContext& c, const FrameLight& fl, Vec3 p, Vec3 n, RGB 
   return f * in->radiance * cos_theta * transmittance(c.scene.volumes(), p, in->light_point);
 }
 
+std::optional<RGB> diffuse_f(const Bsdf& bsdf) {
+  return std::visit(Overloaded{[](const DiffuseBsdf& d) -> std::optional<RGB> { return d.reflectance * kInvPi; },
+                               [](const DielectricBsdf&) -> std::optional<RGB> { return std::nullopt; },
+                               [](const BlackBsdf&) -> std::optional<RGB> { return std::nullopt; },
+                               [](const NullBsdf&) -> std::optional<RGB> { return std::nullopt; }},
+                    bsdf);
+}
+
 RGB shade_pixel(const ShadeContext& c, size_t pixel, Vec3 p, Vec3 eye, std::span<const int> active) {
   const Material& m = c.scene.materials()[size_t(c.g.material[pixel])];
   RGB radiance;
   if (!m.emission.is_black() && (c.g.front[pixel] || m.two_sided_emission)) radiance += m.emission;
-  if (const auto* diffuse = std::get_if<DiffuseBsdf>(&m.bsdf)) {
+  if (const std::optional<RGB> f = diffuse_f(m.bsdf)) {
     const Vec3 n{c.g.nx.data[pixel], c.g.ny.data[pixel], c.g.nz.data[pixel]};
-    const RGB f = diffuse->reflectance * kInvPi;
-    for (int i : active) radiance += light_term(c, c.lights[size_t(i)], p, n, f);
+    for (int i : active) radiance += light_term(c, c.lights[size_t(i)], p, n, *f);
   }
   return radiance * transmittance(c.scene.volumes(), eye, p);
 }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <span>
 
 #include "core/bounds.h"
@@ -24,6 +25,10 @@ struct ShadeContext {
 // (tile culling); cones of 90 degrees or wider always may.
 bool spot_cone_may_reach(const SpotLight& light, const Bounds3& box);
 RGB transmittance(const VolumeScene& volumes, Vec3 a, Vec3 b);
+// What the real-time passes shade a material's surface with: f = albedo / pi of a diffuse BSDF,
+// or nothing (emission only) for the others, which they cannot shade: glass, black and null
+// surfaces. A visit, so a new BSDF does not compile until it is decided here.
+std::optional<RGB> diffuse_f(const Bsdf& bsdf);
 // One light's reflected radiance at a diffuse point p with unit normal n, f = albedo / pi.
 RGB light_term(const ShadeContext& c, const FrameLight& light, Vec3 p, Vec3 n, RGB f);
 // The whole pixel: emission plus the active lights, times the camera ray's transmittance.

@@ -244,9 +244,8 @@ void SimdFrameDeleter::operator()(SimdFrame* f) const { delete f; }
 SimdFramePtr prepare_simd(const ShadeContext& c) {
   SimdFramePtr frame(new SimdFrame(c.scene.volumes()));
   for (const Material& m : c.scene.materials()) {
-    RGB f;
-    const auto* d = std::get_if<DiffuseBsdf>(&m.bsdf);
-    if (d) f = d->reflectance * kInvPi;
+    const std::optional<RGB> d = shading::diffuse_f(m.bsdf);
+    const RGB f = d.value_or(RGB(0.0f));
     for (int k = 0; k < 3; ++k) {
       frame->f[k].push_back(f[k]);
       frame->emission[k].push_back(m.emission[k]);
