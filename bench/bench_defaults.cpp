@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <string>
 
+#include "bench_reference.h"
 #include "bench_scene.h"
 #include "image/compare.h"
 #include "image/exr_io.h"
@@ -49,17 +50,8 @@ RenderResult render_with(const char* scene, bool former, int spp, uint64_t seed)
 }
 
 Image reference(const char* scene) {
-  // Built piecewise: GCC 12 warns falsely (-Wrestrict) about "literal" + std::string.
-  std::string name = "defaults_reference_";
-  for (const std::string& part : {std::string(scene), std::string("_"), std::to_string(kResolution.x),
-                                  std::string("x"), std::to_string(kResolution.y), std::string("_"),
-                                  std::to_string(kReferenceSpp), std::string(".exr")})
-    name += part;
-  const std::filesystem::path cache = std::filesystem::path(CALIGO_BENCH_CACHE_DIR) / name;
-  if (std::filesystem::exists(cache)) return read_exr(cache.string());
-  const Image rendered = render_with(scene, false, kReferenceSpp, 777).image;
-  write_exr(cache.string(), rendered);
-  return rendered;
+  return bench::cached_reference(std::string("defaults_reference_") + scene, kResolution, kReferenceSpp,
+                                 [&] { return render_with(scene, false, kReferenceSpp, 777).image; });
 }
 
 void BM_DefaultsEqualTime(benchmark::State& state) {
@@ -73,8 +65,7 @@ void BM_DefaultsEqualTime(benchmark::State& state) {
     for (int run = 0; run < kRuns; ++run)
       for (int former = 0; former < 2; ++former) {
         const RenderResult r = render_with(scene, former, former ? old_spp : kNewSpp, uint64_t(run));
-        const ImageMetrics m = compare_images(r.image, ref);
-        mse[former] += m.rmse * m.rmse / kRuns;
+        mse[former] += bench::mse(r.image, ref) / kRuns;
         seconds[former] += r.stats.seconds / kRuns;
         paths[former] += double(r.stats.paths) / r.stats.seconds / kRuns;
       }

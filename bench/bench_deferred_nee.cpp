@@ -7,6 +7,8 @@
 // deferred form wins. Run: build/release/bench/caligo_bench --benchmark_filter=DeferredNee
 #include <benchmark/benchmark.h>
 
+#include "bench_reference.h"
+
 #include <filesystem>
 #include <string>
 
@@ -47,14 +49,9 @@ RenderSettings settings(int deferred, int spp, uint64_t seed) {
 }
 
 const Image& reference() {
-  static const Image image = [] {
-    const std::filesystem::path cache = std::filesystem::path(CALIGO_BENCH_CACHE_DIR) /
-                                        ("deferred_nee_reference_64x48_" + std::to_string(kReferenceSpp) + ".exr");
-    if (std::filesystem::exists(cache)) return read_exr(cache.string());
-    const Image rendered = render(dense_scene(), settings(0, kReferenceSpp, 777)).image;
-    write_exr(cache.string(), rendered);
-    return rendered;
-  }();
+  static const Image image = bench::cached_reference("deferred_nee_reference", kResolution, kReferenceSpp, [] {
+    return render(dense_scene(), settings(0, kReferenceSpp, 777)).image;
+  });
   return image;
 }
 
@@ -67,8 +64,7 @@ void BM_DeferredNeeEqualTime(benchmark::State& state) {
     for (int run = 0; run < kRuns; ++run)
       for (int deferred = 0; deferred < 2; ++deferred) {
         const RenderResult r = render(dense_scene(), settings(deferred ? k : 0, kSpp, uint64_t(run)));
-        const ImageMetrics m = compare_images(r.image, reference());
-        mse[deferred] += m.rmse * m.rmse / kRuns;
+        mse[deferred] += bench::mse(r.image, reference()) / kRuns;
         seconds[deferred] += r.stats.seconds / kRuns;
       }
   state.counters["per_segment_MSE"] = mse[0];

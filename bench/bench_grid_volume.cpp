@@ -8,6 +8,8 @@
 //    given MSE, up to a constant: MSE falls as 1/time for both) and their ratio.
 #include <benchmark/benchmark.h>
 
+#include "bench_reference.h"
+
 #include <chrono>
 
 #include "bench_scene.h"
@@ -92,8 +94,7 @@ void BM_CloudEfficiency(benchmark::State& state) {
       image = render(scene, cloud_settings(kEfficiencyResolution, spp, uint64_t(runs) + 1)).image;
     }
     seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const double rmse = compare_images(image, reference).rmse;
-    mse += rmse * rmse;
+    mse += bench::mse(image, reference);
     ++runs;
   }
   state.counters["MSE"] = mse / runs;

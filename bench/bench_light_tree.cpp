@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <string>
 
+#include "bench_reference.h"
 #include "bench_scene.h"
 #include "image/compare.h"
 #include "image/exr_io.h"
@@ -39,16 +40,9 @@ RenderSettings lamp_settings(LightSamplerKind kind, int spp, uint64_t seed) {
 }
 
 const Image& reference() {
-  static const Image image = [] {
-    const std::filesystem::path cache = std::filesystem::path(CALIGO_BENCH_CACHE_DIR) /
-                                        ("many_lamps_reference_" + std::to_string(kResolution.x) + "x" +
-                                         std::to_string(kResolution.y) + "_" + std::to_string(kReferenceSpp) + ".exr");
-    if (std::filesystem::exists(cache)) return read_exr(cache.string());
-    const Image rendered =
-        render(bench::builtin_scene("many-lamps"), lamp_settings(LightSamplerKind::kTree, kReferenceSpp, 777)).image;
-    write_exr(cache.string(), rendered);
-    return rendered;
-  }();
+  static const Image image = bench::cached_reference("many_lamps_reference", kResolution, kReferenceSpp, [] {
+    return render(bench::builtin_scene("many-lamps"), lamp_settings(LightSamplerKind::kTree, kReferenceSpp, 777)).image;
+  });
   return image;
 }
 

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <string>
 
+#include "bench_reference.h"
 #include "bench_scene.h"
 #include "image/compare.h"
 #include "image/exr_io.h"
@@ -54,16 +55,8 @@ RenderResult render_with(const char* scene, const Variant& v, int spp, uint64_t 
 }
 
 Image reference(const char* scene) {
-  std::string name = "secondary_reference_";
-  for (const std::string& part : {std::string(scene), std::string("_"), std::to_string(kResolution.x),
-                                  std::string("x"), std::to_string(kResolution.y), std::string("_"),
-                                  std::to_string(kReferenceSpp), std::string(".exr")})
-    name += part;
-  const std::filesystem::path cache = std::filesystem::path(CALIGO_BENCH_CACHE_DIR) / name;
-  if (std::filesystem::exists(cache)) return read_exr(cache.string());
-  const Image rendered = render_with(scene, kVariants[0], kReferenceSpp, 4242).image;
-  write_exr(cache.string(), rendered);
-  return rendered;
+  return bench::cached_reference(std::string("secondary_reference_") + scene, kResolution, kReferenceSpp,
+                                 [&] { return render_with(scene, kVariants[0], kReferenceSpp, 4242).image; });
 }
 
 double image_mean(const Image& image) {
@@ -91,8 +84,7 @@ void BM_SecondaryEqualTime(benchmark::State& state) {
     for (int run = 0; run < kRuns; ++run)
       for (int m = 0; m < kVariantCount; ++m) {
         const RenderResult r = render_with(scene, kVariants[m], spp[m], uint64_t(run) + 1);
-        const ImageMetrics metrics = compare_images(r.image, ref);
-        mse[m] += metrics.rmse * metrics.rmse / kRuns;
+        mse[m] += bench::mse(r.image, ref) / kRuns;
         seconds[m] += r.stats.seconds / kRuns;
         paths_per_s[m] += double(r.stats.paths) / r.stats.seconds / kRuns;
         evals[m] += double(r.stats.shader_evaluations) / double(r.stats.paths) / kRuns;

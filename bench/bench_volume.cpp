@@ -5,6 +5,8 @@
 // rays).
 #include <benchmark/benchmark.h>
 
+#include "bench_reference.h"
+
 #include <map>
 
 #include "bench_scene.h"
@@ -49,8 +51,7 @@ void BM_LampInFog(benchmark::State& state) {
   int runs = 0;
   for (auto _ : state) {
     const RenderResult r = render(scene, lamp_settings(sampling, spp, uint64_t(runs), bounces));
-    const double rmse = compare_images(r.image, ref).rmse;
-    mse += rmse * rmse;
+    mse += bench::mse(r.image, ref);
     stats = r.stats;
     ++runs;
   }
