@@ -99,6 +99,14 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
 
 namespace {
 
+// The value an option names, or an error that lists the names (the user's text made printable).
+template <class E, size_t N>
+E parse_choice(const char* option, const std::string& text, const std::array<EnumName<E>, N>& names) {
+  if (const std::optional<E> value = enum_from_name(names, text)) return *value;
+  throw InputError(kCommandLine, std::string(option) + ": expected " + enum_choices(names) + ", got \"" +
+                                     printable_for_message(text) + "\"");
+}
+
 // The options that override PathSettings, the scene's limits included.
 void apply_path_options(const RenderOptions& o, PathSettings& path) {
   if (o.max_bounces) {
@@ -111,42 +119,14 @@ void apply_path_options(const RenderOptions& o, PathSettings& path) {
       throw InputError(kCommandLine, "--max-volume-bounces: expected 0 to 10000");
     path.limits.max_volume_bounces = *o.max_volume_bounces;
   }
-  if (o.distance_sampling) {
-    const std::string& d = *o.distance_sampling;
-    if (d == "mis")
-      path.distance_sampling = DistanceSampling::kMis;
-    else if (d == "density")
-      path.distance_sampling = DistanceSampling::kDensity;
-    else if (d == "equiangular")
-      path.distance_sampling = DistanceSampling::kEquiangular;
-    else if (d == "mis-fixed")
-      path.distance_sampling = DistanceSampling::kMisFixed;
-    else
-      throw InputError(kCommandLine, "--distance-sampling: expected mis, mis-fixed, density or equiangular, got \"" +
-                                         d + "\"");
-  }
-  if (o.secondary) {
-    const std::string& v = *o.secondary;
-    if (v == "auto")
-      path.secondary = SecondarySegments::kAuto;
-    else if (v == "track")
-      path.secondary = SecondarySegments::kTrack;
-    else if (v == "march")
-      path.secondary = SecondarySegments::kMarch;
-    else
-      throw InputError(kCommandLine, "--secondary: expected auto, track or march, got \"" + printable_for_message(v) + "\"");
-  }
+  if (o.distance_sampling) path.distance_sampling = parse_choice("--distance-sampling", *o.distance_sampling, kDistanceSamplingNames);
+  if (o.secondary) path.secondary = parse_choice("--secondary", *o.secondary, kSecondarySegmentsNames);
   if (o.deferred_nee) {
     if (*o.deferred_nee < 0 || *o.deferred_nee > 64)
       throw InputError(kCommandLine, "--deferred-nee: expected 0 to 64, got " + std::to_string(*o.deferred_nee));
     path.deferred_nee = *o.deferred_nee;
   }
-  if (o.light_sampler) {
-    const auto kind = light_sampler_from_name(*o.light_sampler);
-    if (!kind)
-      throw InputError(kCommandLine, "--light-sampler: expected tree, power or uniform, got \"" + *o.light_sampler + "\"");
-    path.light_sampler = *kind;
-  }
+  if (o.light_sampler) path.light_sampler = parse_choice("--light-sampler", *o.light_sampler, kLightSamplerNames);
 }
 
 // --crop x0,x1,y0,y1.
@@ -172,10 +152,8 @@ CropWindow parse_crop(const std::string& text) {
 // --filter and --crop; a crop (from either source) must hold a pixel at the final resolution.
 void apply_image_options(const RenderOptions& o, const SceneDesc& desc, RenderSettings& s) {
   if (o.filter) {
-    const auto type = pixel_filter_type_from_name(*o.filter);
-    if (!type)
-      throw InputError(kCommandLine, "--filter: expected box, gaussian or blackman_harris, got \"" + *o.filter + "\"");
-    s.filter = PixelFilter({*type, PixelFilterDesc::default_radius(*type), PixelFilterDesc{}.sigma});
+    const PixelFilterType type = parse_choice("--filter", *o.filter, kPixelFilterNames);
+    s.filter = PixelFilter({type, PixelFilterDesc::default_radius(type), PixelFilterDesc{}.sigma});
   }
   if (o.crop) s.crop = parse_crop(*o.crop);
   if (o.aovs) {

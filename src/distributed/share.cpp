@@ -1,5 +1,7 @@
 #include "distributed/share.h"
 
+#include "core/enum_names.h"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -16,9 +18,7 @@ Range share_of(int total, int first, int rank, int ranks) {
 }
 
 std::optional<Split> split_from_name(std::string_view name) {
-  if (name == "samples") return Split::kSamples;
-  if (name == "rows") return Split::kRows;
-  return std::nullopt;
+  return enum_from_name(std::array<EnumName<Split>, 2>{{{Split::kSamples, "samples"}, {Split::kRows, "rows"}}}, name);
 }
 
 float row_fraction(int row, int height) {

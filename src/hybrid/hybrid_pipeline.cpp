@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <variant>
 
+#include "core/enum_names.h"
+
 #include "core/parallel.h"
 #include "geometry/mesh_generate.h"
 #include "geometry/shapes.h"
@@ -115,29 +117,20 @@ std::string medium_problem(const VolumeScene& volumes, Vec3 eye, Vec3 light) {
 
 }  // namespace
 
+namespace {
+constexpr std::array<EnumName<VolumetricMethod>, 5> kVolumetricMethodNames{{{VolumetricMethod::kMarch, "march"},
+                                                                           {VolumetricMethod::kNone, "none"},
+                                                                           {VolumetricMethod::kBrute, "brute"},
+                                                                           {VolumetricMethod::kHybrid, "hybrid"},
+                                                                           {VolumetricMethod::kTextured, "textured"}}};
+}  // namespace
+
 std::optional<VolumetricMethod> parse_volumetric_method(std::string_view name) {
-  if (name == "march") return VolumetricMethod::kMarch;
-  if (name == "none") return VolumetricMethod::kNone;
-  if (name == "brute") return VolumetricMethod::kBrute;
-  if (name == "hybrid") return VolumetricMethod::kHybrid;
-  if (name == "textured") return VolumetricMethod::kTextured;
-  return std::nullopt;
+  return enum_from_name(kVolumetricMethodNames, name);
 }
 
 const char* volumetric_method_name(VolumetricMethod method) {
-  switch (method) {
-    case VolumetricMethod::kMarch:
-      return "march";
-    case VolumetricMethod::kNone:
-      return "none";
-    case VolumetricMethod::kBrute:
-      return "brute";
-    case VolumetricMethod::kHybrid:
-      return "hybrid";
-    case VolumetricMethod::kTextured:
-      return "textured";
-  }
-  return "?";
+  return enum_name(kVolumetricMethodNames, method).data();
 }
 
 HybridScatterer::HybridScatterer(const Scene& scene, VolumetricMethod method, HybridSettings settings,

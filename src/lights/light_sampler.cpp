@@ -25,20 +25,10 @@ DiscreteDistribution distribution_or_empty(std::span<const float> weights) {
 }  // namespace
 
 std::optional<LightSamplerKind> light_sampler_from_name(std::string_view name) {
-  if (name == "uniform") return LightSamplerKind::kUniform;
-  if (name == "power") return LightSamplerKind::kPower;
-  if (name == "tree") return LightSamplerKind::kTree;
-  return std::nullopt;
+  return enum_from_name(kLightSamplerNames, name);
 }
 
-const char* light_sampler_name(LightSamplerKind kind) {
-  switch (kind) {
-    case LightSamplerKind::kUniform: return "uniform";
-    case LightSamplerKind::kPower: return "power";
-    case LightSamplerKind::kTree: return "tree";
-  }
-  return "?";
-}
+const char* light_sampler_name(LightSamplerKind kind) { return enum_name(kLightSamplerNames, kind).data(); }
 
 LightSampler::LightSampler(LightSamplerKind kind, std::span<const Light> lights) {
   // One light of positive power: every strategy chooses it with probability 1 (the tree's

@@ -86,22 +86,9 @@ float PixelFilter::sample_1d(float u) const {
 }
 
 std::optional<PixelFilterType> pixel_filter_type_from_name(std::string_view name) {
-  if (name == "box") return PixelFilterType::box;
-  if (name == "gaussian") return PixelFilterType::gaussian;
-  if (name == "blackman_harris" || name == "blackman-harris") return PixelFilterType::blackman_harris;
-  return std::nullopt;
+  return enum_from_name(kPixelFilterNames, name);
 }
 
-const char* pixel_filter_name(PixelFilterType type) {
-  switch (type) {
-    case PixelFilterType::box:
-      return "box";
-    case PixelFilterType::gaussian:
-      return "gaussian";
-    case PixelFilterType::blackman_harris:
-      return "blackman_harris";
-  }
-  return "?";
-}
+const char* pixel_filter_name(PixelFilterType type) { return enum_name(kPixelFilterNames, type).data(); }
 
 }  // namespace caligo

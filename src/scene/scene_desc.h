@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/crop_window.h"
+#include "core/enum_names.h"
 #include "core/error.h"
 #include "core/transform.h"
 #include "core/vec.h"
@@ -88,6 +89,11 @@ struct RealtimeDefaults {
 // samples it. Radius in pixels (the support is [-radius, radius]^2; Cycles' "filter width"
 // is 2 x radius); sigma (gaussian only) in pixels.
 enum class PixelFilterType { box, gaussian, blackman_harris };
+inline constexpr std::array<EnumName<PixelFilterType>, 4> kPixelFilterNames{
+    {{PixelFilterType::box, "box"},
+     {PixelFilterType::gaussian, "gaussian"},
+     {PixelFilterType::blackman_harris, "blackman_harris"},
+     {PixelFilterType::blackman_harris, "blackman-harris"}}};
 struct PixelFilterDesc {
   PixelFilterType type = PixelFilterType::box;
   float radius = 0.5f;

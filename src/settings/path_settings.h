@@ -6,6 +6,7 @@
 // integrators/reference.h), so every pipeline counts a path's events the same way.
 #pragma once
 
+#include "core/enum_names.h"
 #include "settings/light_sampler_kind.h"
 
 namespace caligo {
@@ -45,6 +46,15 @@ enum class SecondarySegments {
            // media that do not emit; homogeneous segments keep their closed forms and
            // equiangular sampling, emissive ones their exact per-step emission
 };
+
+// --distance-sampling and --secondary.
+inline constexpr std::array<EnumName<DistanceSampling>, 4> kDistanceSamplingNames{
+    {{DistanceSampling::kMis, "mis"},
+     {DistanceSampling::kMisFixed, "mis-fixed"},
+     {DistanceSampling::kDensity, "density"},
+     {DistanceSampling::kEquiangular, "equiangular"}}};
+inline constexpr std::array<EnumName<SecondarySegments>, 3> kSecondarySegmentsNames{
+    {{SecondarySegments::kAuto, "auto"}, {SecondarySegments::kTrack, "track"}, {SecondarySegments::kMarch, "march"}}};
 
 struct PathSettings {
   PathLimits limits;
