@@ -11,6 +11,7 @@
 // closed.
 #pragma once
 
+#include <stdexcept>
 #include <string>
 
 namespace caligo {
@@ -22,5 +23,18 @@ void* module_symbol(const std::string& name, const char* symbol, const char* pur
 
 // Where the modules are looked for, in order.
 std::string module_search_path();
+
+// A plugin's table of entry points: `symbol` is a C function of module `name` returning a
+// const Api* whose first member is `abi_version`, which must equal `abi` (the module was built
+// with the same headers). Throws std::runtime_error naming the module and `purpose` otherwise.
+template <class Api>
+const Api& load_plugin(const char* name, const char* symbol, int abi, const char* purpose) {
+  using Entry = const Api* (*)();
+  const auto entry = reinterpret_cast<Entry>(module_symbol(name, symbol, purpose));
+  const Api* api = entry();
+  if (api->abi_version != abi)
+    throw std::runtime_error(std::string("the module ") + name + ".so (" + purpose + ") does not match this caligo build");
+  return *api;
+}
 
 }  // namespace caligo

@@ -9,17 +9,9 @@ namespace caligo {
 namespace {
 
 const VdbPluginApi& vdb_plugin() {
-  static const VdbPluginApi* api = [] {
-    constexpr const char* kPurpose = "needed for OpenVDB files and grid conversion";
-    using Entry = const VdbPluginApi* (*)();
-    const auto entry = reinterpret_cast<Entry>(module_symbol(kVdbPluginName, kVdbPluginSymbol, kPurpose));
-    const VdbPluginApi* table = entry();
-    if (table->abi_version != kVdbPluginAbi)
-      throw std::runtime_error(std::string("the module ") + kVdbPluginName + ".so (" + kPurpose +
-                               ") does not match this caligo build");
-    return table;
-  }();
-  return *api;
+  static const VdbPluginApi& api = load_plugin<VdbPluginApi>(kVdbPluginName, kVdbPluginSymbol, kVdbPluginAbi,
+                                                             "needed for OpenVDB files and grid conversion");
+  return api;
 }
 
 }  // namespace

@@ -6,13 +6,7 @@
 namespace caligo {
 
 const OiioPluginApi& oiio_plugin(const char* purpose) {
-  using Entry = const OiioPluginApi* (*)();
-  const auto entry = reinterpret_cast<Entry>(module_symbol(kOiioPluginName, kOiioPluginSymbol, purpose));
-  const OiioPluginApi* api = entry();
-  if (api->abi_version != kOiioPluginAbi)
-    throw std::runtime_error(std::string("the module ") + kOiioPluginName + ".so (" + purpose +
-                             ") does not match this caligo build");
-  return *api;
+  return load_plugin<OiioPluginApi>(kOiioPluginName, kOiioPluginSymbol, kOiioPluginAbi, purpose);
 }
 
 }  // namespace caligo

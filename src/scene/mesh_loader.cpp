@@ -952,17 +952,9 @@ TriangleMesh assimp_scene_mesh(const AssimpSceneCopy& scene) {
 }
 
 const AssimpPluginApi& assimp_plugin() {
-  static const AssimpPluginApi* api = [] {
-    constexpr const char* kPurpose = "needed to read PLY and COLLADA meshes";
-    using Entry = const AssimpPluginApi* (*)();
-    const auto entry = reinterpret_cast<Entry>(module_symbol(kAssimpPluginName, kAssimpPluginSymbol, kPurpose));
-    const AssimpPluginApi* table = entry();
-    if (table->abi_version != kAssimpPluginAbi)
-      throw std::runtime_error(std::string("the module ") + kAssimpPluginName + ".so (" + kPurpose +
-                               ") does not match this caligo build");
-    return table;
-  }();
-  return *api;
+  static const AssimpPluginApi& api = load_plugin<AssimpPluginApi>(kAssimpPluginName, kAssimpPluginSymbol,
+                                                                   kAssimpPluginAbi, "needed to read PLY and COLLADA meshes");
+  return api;
 }
 
 // Imported by the plugin (validate, triangulate, weld); `format` is assimp's extension hint.
