@@ -47,171 +47,192 @@ namespace {
 // every later value (a coordinate then becomes a list length). Each body line is one element, in
 // header order: it must hold numbers only, exactly as many as its properties say (a list counts
 // its length and that many values; an element with more than one list must hold at least that).
-void check_ply_body(const std::string& data, size_t header_end) {
-  struct Property {
-    bool list = false;
-    int count_bytes = 0;  // a list's length: its size in bytes
-    int value_bytes = 0;  // a scalar's size, or each list value's (0: a type we do not know)
-  };
-  struct Element {
-    size_t count = 0;
-    size_t scalars = 0, lists = 0;
-    bool starts_with_list = false;
-    std::vector<Property> properties;
-  };
-  std::vector<Element> elements;
+struct PlyProperty {
+  bool list = false;
+  int count_bytes = 0;  // a list's length: its size in bytes
+  int value_bytes = 0;  // a scalar's size, or each list value's (0: a type we do not know)
+};
+struct PlyElement {
+  size_t count = 0;
+  size_t scalars = 0, lists = 0;
+  bool starts_with_list = false;
+  std::vector<PlyProperty> properties;
+};
+struct PlyHeader {
+  std::vector<PlyElement> elements;
   bool ascii = false, big_endian = false;
   int formats = 0;
-  size_t declared = 0;
-  const auto type_bytes = [](std::string_view type) {
-    if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
-    if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
-    if (type == "int" || type == "uint" || type == "int32" || type == "uint32" || type == "float" || type == "float32")
-      return 4;
-    if (type == "double" || type == "float64") return 8;
-    return 0;
+  size_t declared = 0;  // elements declared so far, all kinds
+  size_t lines = 0;     // header lines read
+};
+
+int ply_type_bytes(std::string_view type) {
+  if (type == "char" || type == "uchar" || type == "int8" || type == "uint8") return 1;
+  if (type == "short" || type == "ushort" || type == "int16" || type == "uint16") return 2;
+  if (type == "int" || type == "uint" || type == "int32" || type == "uint32" || type == "float" || type == "float32")
+    return 4;
+  if (type == "double" || type == "float64") return 8;
+  return 0;
+}
+
+// Names must read as names: assimp takes the digits that begin "5555vertex" as a number.
+bool ply_name_ok(std::string_view w) {
+  return !w.empty() && (std::isalpha(static_cast<unsigned char>(w[0])) || w[0] == '_') &&
+         std::all_of(w.begin(), w.end(),
+                     [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-'; });
+}
+
+// "element NAME COUNT": the count read, bounded by the mesh limits and by the file's size
+// (readers reserve memory for it before reading; each element takes at least one byte).
+void add_ply_element(std::string_view name, std::string_view count_text, size_t data_size, PlyHeader& h) {
+  PlyElement e;
+  const auto [end, ec] = std::from_chars(count_text.data(), count_text.data() + count_text.size(), e.count);
+  if (ec != std::errc() || end != count_text.data() + count_text.size())
+    fail("cannot parse PLY: element " + in_quotes(name) + " has the count " + in_quotes(count_text));
+  const bool vertices = name == "vertex", faces = name == "face";
+  if ((vertices && e.count > kMaxMeshVertices) || (faces && e.count > kMaxMeshTriangles))
+    fail("the PLY header declares " + std::string(count_text) + " " + printable_for_message(name) +
+         " elements; meshes are limited to " +
+         (vertices ? std::to_string(kMaxMeshVertices) + " vertices" : std::to_string(kMaxMeshTriangles) + " triangles"));
+  if (e.count > data_size || h.declared + e.count > data_size)
+    fail("the PLY header declares " + std::string(count_text) + " " + printable_for_message(name) +
+         " elements, more than the file's " + std::to_string(data_size) + " bytes can hold");
+  h.declared += e.count;
+  h.elements.push_back(e);
+}
+
+// One header line (its first five words). The header must be one assimp reads the way we do: one
+// format, known types (a header with two format lines made assimp corrupt its heap); other
+// unknown lines are skipped, as assimp does (Blender 2.47 wrote its credit line without "comment").
+void read_ply_header_line(const std::array<std::string_view, 5>& words, size_t count, size_t data_size,
+                          PlyHeader& h) {
+  const auto header_error = [&](const std::string& what) {
+    fail("cannot parse PLY: header line " + std::to_string(h.lines) + ": " + what);
   };
-  const std::string_view text(data);
-  size_t line_number = 1;
-  for (size_t start = 0; start < header_end; ++line_number) {
+  if (h.lines == 1) {
+    if (words[0] != "ply" || count != 1) header_error("expected \"ply\"");
+    return;
+  }
+  if (words[0] == "format") {
+    if (h.formats++ > 0) header_error("a second format line");
+    if (count < 3 || (words[1] != "ascii" && words[1] != "binary_little_endian" && words[1] != "binary_big_endian"))
+      header_error("expected \"format ascii|binary_little_endian|binary_big_endian 1.0\"");
+    h.ascii = words[1] == "ascii";
+    h.big_endian = words[1] == "binary_big_endian";
+  } else if (words[0] == "element") {
+    if (count < 3 || !ply_name_ok(words[1])) header_error("expected \"element NAME COUNT\" with a name of letters, digits and _");
+    add_ply_element(words[1], words[2], data_size, h);
+  } else if (words[0] == "property") {
+    if (h.elements.empty()) header_error("a property before any element");
+    const bool list = count >= 2 && words[1] == "list";
+    if (!ply_name_ok(list ? words[4] : words[2])) header_error("a property name must be letters, digits and _");
+    if (list ? (count < 5 || ply_type_bytes(words[2]) == 0 || ply_type_bytes(words[3]) == 0)
+             : (count < 3 || ply_type_bytes(words[1]) == 0))
+      header_error("expected \"property TYPE NAME\" or \"property list COUNT_TYPE TYPE NAME\" with known types");
+    PlyElement& e = h.elements.back();
+    if (e.scalars + e.lists == 0) e.starts_with_list = list;
+    ++(list ? e.lists : e.scalars);
+    // "property list COUNT VALUE name" or "property TYPE name".
+    e.properties.push_back(list ? PlyProperty{true, ply_type_bytes(words[2]), ply_type_bytes(words[3])}
+                                : PlyProperty{false, 0, ply_type_bytes(words[1])});
+  }
+}
+
+PlyHeader read_ply_header(std::string_view text, size_t header_end, size_t data_size) {
+  PlyHeader h;
+  for (size_t start = 0; start < header_end;) {
+    ++h.lines;
     const size_t newline = std::min(text.find('\n', start), header_end);
     std::array<std::string_view, 5> words;
     const size_t count = first_words(text.substr(start, newline - start), words);
     start = newline + 1;
-    // The header must be one assimp reads the way we do: one format, known types (a header with
-    // two format lines made assimp corrupt its heap); other unknown lines are skipped, as assimp does.
-    const auto header_error = [&](const std::string& what) {
-      fail("cannot parse PLY: header line " + std::to_string(line_number) + ": " + what);
-    };
-    if (count == 0) continue;
-    if (line_number == 1) {
-      if (words[0] != "ply" || count != 1) header_error("expected \"ply\"");
-      continue;
-    }
-    if (words[0] == "comment" || words[0] == "obj_info") continue;
-    if (words[0] == "format") {
-      if (formats++ > 0) header_error("a second format line");
-      if (count < 3 || (words[1] != "ascii" && words[1] != "binary_little_endian" && words[1] != "binary_big_endian"))
-        header_error("expected \"format ascii|binary_little_endian|binary_big_endian 1.0\"");
-      ascii = words[1] == "ascii";
-      big_endian = words[1] == "binary_big_endian";
-      continue;
-    }
-    // Names must read as names: assimp takes the digits that begin "5555vertex" as a number.
-    const auto name_ok = [](std::string_view w) {
-      return !w.empty() && (std::isalpha(static_cast<unsigned char>(w[0])) || w[0] == '_') &&
-             std::all_of(w.begin(), w.end(), [](char c) {
-               return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
-             });
-    };
-    if (words[0] == "element" && (count < 3 || !name_ok(words[1])))
-      header_error("expected \"element NAME COUNT\" with a name of letters, digits and _");
-    if (words[0] == "property") {
-      if (elements.empty()) header_error("a property before any element");
-      const std::string_view name = count >= 2 && words[1] == "list" ? words[4] : words[2];
-      if (!name_ok(name)) header_error("a property name must be letters, digits and _");
-      const bool list = count >= 2 && words[1] == "list";
-      if (list ? (count < 5 || type_bytes(words[2]) == 0 || type_bytes(words[3]) == 0)
-               : (count < 3 || type_bytes(words[1]) == 0))
-        header_error("expected \"property TYPE NAME\" or \"property list COUNT_TYPE TYPE NAME\" with known types");
-    } else if (words[0] != "element") {
-      continue;  // a line assimp skips too (Blender 2.47 wrote its credit line without "comment")
-    }
-    if (count >= 3 && words[0] == "element") {
-      Element e;
-      const auto [end, ec] = std::from_chars(words[2].data(), words[2].data() + words[2].size(), e.count);
-      if (ec != std::errc() || end != words[2].data() + words[2].size())
-        fail("cannot parse PLY: element " + in_quotes(words[1]) + " has the count " + in_quotes(words[2]));
-      // Readers reserve memory for the declared counts before reading: each element takes at
-      // least one byte (binary) or two characters (a value and a separator).
-      const bool vertices = words[1] == "vertex", faces = words[1] == "face";
-      if ((vertices && e.count > kMaxMeshVertices) || (faces && e.count > kMaxMeshTriangles))
-        fail("the PLY header declares " + std::string(words[2]) + " " + printable_for_message(words[1]) +
-             " elements; meshes are limited to " +
-             (vertices ? std::to_string(kMaxMeshVertices) + " vertices"
-                       : std::to_string(kMaxMeshTriangles) + " triangles"));
-      if (e.count > data.size() || declared + e.count > data.size())
-        fail("the PLY header declares " + std::string(words[2]) + " " + printable_for_message(words[1]) +
-             " elements, more than the file's " + std::to_string(data.size()) + " bytes can hold");
-      declared += e.count;
-      elements.push_back(e);
-    } else if (count >= 2 && words[0] == "property" && !elements.empty()) {
-      Element& e = elements.back();
-      const bool list = words[1] == "list";
-      if (e.scalars + e.lists == 0) e.starts_with_list = list;
-      ++(list ? e.lists : e.scalars);
-      // "property list COUNT VALUE name" or "property TYPE name".
-      e.properties.push_back(list ? Property{true, type_bytes(words[2]), type_bytes(words[3])}
-                                  : Property{false, 0, type_bytes(words[1])});
-    }
+    if (count == 0 || (h.lines > 1 && (words[0] == "comment" || words[0] == "obj_info"))) continue;
+    read_ply_header_line(words, count, data_size, h);
   }
-  if (formats == 0) fail("cannot parse PLY: no format line in the header");
-  for (const Element& e : elements)
+  if (h.formats == 0) fail("cannot parse PLY: no format line in the header");
+  for (const PlyElement& e : h.elements)
     if (e.properties.empty() && e.count > 0) fail("cannot parse PLY: an element with no properties");
-  if (!ascii) {
-    // Binary: walk the elements, reading each list's length, so that no length promises more
-    // values than the file holds (assimp allocates them first: 24 GB for "list uint uint" with a
-    // length of 0x03000000, found by fuzzing).
-    size_t at = text.find('\n', header_end);
-    if (at == std::string_view::npos) return;
-    ++at;
-    for (const Element& e : elements)
-      for (size_t i = 0; i < e.count; ++i)
-        for (const Property& p : e.properties) {
-          if (p.value_bytes == 0 || (p.list && p.count_bytes == 0)) return;  // an unknown type: assimp reports it
-          if (!p.list) {
-            at += size_t(p.value_bytes);
-            continue;
-          }
-          if (p.count_bytes > 4 || at + size_t(p.count_bytes) > text.size())
-            fail("cannot parse PLY: the data ends inside element " + std::to_string(i) + " of a list property");
-          uint64_t length = 0;
-          for (int b = 0; b < p.count_bytes; ++b) {
-            const uint64_t byte = static_cast<unsigned char>(text[at + size_t(big_endian ? b : p.count_bytes - 1 - b)]);
-            length = length << 8 | byte;
-          }
-          at += size_t(p.count_bytes);
-          if (length > (text.size() - std::min(at, text.size())) / size_t(p.value_bytes))
-            fail("cannot parse PLY: a list says it holds " + std::to_string(length) + " values, more than the " +
-                 std::to_string(text.size() - std::min(at, text.size())) + " bytes left in the file");
-          at += size_t(length) * size_t(p.value_bytes);
+  return h;
+}
+
+// Binary: walk the elements, reading each list's length, so that no length promises more values
+// than the file holds (assimp allocates them first: 24 GB for "list uint uint" with a length of
+// 0x03000000, found by fuzzing).
+void check_ply_binary_body(std::string_view text, size_t header_end, const PlyHeader& h) {
+  size_t at = text.find('\n', header_end);
+  if (at == std::string_view::npos) return;
+  ++at;
+  for (const PlyElement& e : h.elements)
+    for (size_t i = 0; i < e.count; ++i)
+      for (const PlyProperty& p : e.properties) {
+        if (p.value_bytes == 0 || (p.list && p.count_bytes == 0)) return;  // an unknown type: assimp reports it
+        if (!p.list) {
+          at += size_t(p.value_bytes);
+          continue;
         }
-    return;
-  }
-  size_t pos = text.find('\n', header_end);  // the end of the end_header line
-  ++line_number;
+        if (p.count_bytes > 4 || at + size_t(p.count_bytes) > text.size())
+          fail("cannot parse PLY: the data ends inside element " + std::to_string(i) + " of a list property");
+        uint64_t length = 0;
+        for (int b = 0; b < p.count_bytes; ++b) {
+          const uint64_t byte = static_cast<unsigned char>(text[at + size_t(h.big_endian ? b : p.count_bytes - 1 - b)]);
+          length = length << 8 | byte;
+        }
+        at += size_t(p.count_bytes);
+        if (length > (text.size() - std::min(at, text.size())) / size_t(p.value_bytes))
+          fail("cannot parse PLY: a list says it holds " + std::to_string(length) + " values, more than the " +
+               std::to_string(text.size() - std::min(at, text.size())) + " bytes left in the file");
+        at += size_t(length) * size_t(p.value_bytes);
+      }
+}
+
+// One ASCII body line of element `e`: numbers only, as many as its properties say.
+void check_ply_ascii_line(std::string_view line, const PlyElement& e, size_t line_number) {
   const auto line_error = [&](const std::string& what) { fail("PLY line " + std::to_string(line_number) + ": " + what); };
-  for (const Element& e : elements)
+  size_t tokens = 0;
+  bool in_token = false;
+  for (char c : line) {
+    const bool space = c == ' ' || c == '\t' || c == '\r';
+    if (!space && !in_token) ++tokens;
+    in_token = !space;
+    if (!space && !(std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.' || c == 'e' ||
+                    c == 'E'))
+      line_error("expected numbers only, found " + quote_for_message(line.substr(0, 40)));
+  }
+  size_t expected = e.scalars + e.lists;  // each list at least its length
+  if (e.starts_with_list && tokens > 0) {
+    const size_t first = line.find_first_not_of(" \t\r");
+    size_t length = 0;
+    const auto [end, ec] = std::from_chars(line.data() + first, line.data() + line.size(), length);
+    const std::string_view said = line.substr(first, size_t(end - (line.data() + first)));
+    if (ec != std::errc() || length > tokens - 1)
+      line_error("a list says it holds " + quote_for_message(said.empty() ? line.substr(first, 24) : said) +
+                 " values, but the line has " + std::to_string(tokens - 1) + " after it");
+    expected += length;
+  }
+  const bool exact = e.lists <= (e.starts_with_list ? 1u : 0u);
+  if (exact ? tokens != expected : tokens < expected)
+    line_error("expected " + std::to_string(expected) + " values for its element, found " + std::to_string(tokens));
+}
+
+void check_ply_ascii_body(std::string_view text, size_t header_end, const PlyHeader& h) {
+  size_t pos = text.find('\n', header_end);  // the end of the end_header line
+  size_t line_number = h.lines + 2;  // after the header's lines and its end_header line
+  for (const PlyElement& e : h.elements)
     for (size_t i = 0; i < e.count && pos != std::string_view::npos && pos + 1 < text.size(); ++i, ++line_number) {
       const size_t line_start = pos + 1;
       pos = text.find('\n', line_start);
-      const std::string_view line =
-          text.substr(line_start, (pos == std::string_view::npos ? text.size() : pos) - line_start);
-      size_t tokens = 0;
-      bool in_token = false;
-      for (char c : line) {
-        const bool space = c == ' ' || c == '\t' || c == '\r';
-        if (!space && !in_token) ++tokens;
-        in_token = !space;
-        if (!space && !(std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.' ||
-                        c == 'e' || c == 'E'))
-          line_error("expected numbers only, found " + quote_for_message(line.substr(0, 40)));
-      }
-      size_t expected = e.scalars + e.lists;  // each list at least its length
-      if (e.starts_with_list && tokens > 0) {
-        const size_t first = line.find_first_not_of(" \t\r");
-        size_t length = 0;
-        const auto [end, ec] = std::from_chars(line.data() + first, line.data() + line.size(), length);
-        const std::string_view said = line.substr(first, size_t(end - (line.data() + first)));
-        if (ec != std::errc() || length > tokens - 1)
-          line_error("a list says it holds " + quote_for_message(said.empty() ? line.substr(first, 24) : said) +
-                     " values, but the line has " + std::to_string(tokens - 1) + " after it");
-        expected += length;
-      }
-      const bool exact = e.lists <= (e.starts_with_list ? 1u : 0u);
-      if (exact ? tokens != expected : tokens < expected)
-        line_error("expected " + std::to_string(expected) + " values for its element, found " + std::to_string(tokens));
+      check_ply_ascii_line(text.substr(line_start, (pos == std::string_view::npos ? text.size() : pos) - line_start),
+                           e, line_number);
     }
+}
+
+void check_ply_body(const std::string& data, size_t header_end) {
+  const std::string_view text(data);
+  const PlyHeader h = read_ply_header(text, header_end, data.size());
+  if (h.ascii)
+    check_ply_ascii_body(text, header_end, h);
+  else
+    check_ply_binary_body(text, header_end, h);
 }
 
 // Where the header's "end_header" LINE starts (blanks and a CR may follow it), as assimp finds
