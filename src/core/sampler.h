@@ -21,7 +21,7 @@ namespace caligo {
 // kBounceBase + d * kPerBounce + <offset>; camera dimensions come first.
 namespace sample_dim {
 inline constexpr uint32_t kFilm = 0;  // 2D: position inside the pixel
-inline constexpr uint32_t kLens = 1;  // 2D: aperture (reserved for depth of field)
+inline constexpr uint32_t kLens = 1;  // 2D: the thin lens's aperture (Camera::has_aperture)
 inline constexpr uint32_t kBounceBase = 2;
 enum Bounce : uint32_t {
   kLightSelect = 0,      // 1D: which light for next-event estimation
