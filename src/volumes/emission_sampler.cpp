@@ -10,7 +10,11 @@
 namespace caligo {
 namespace {
 
-constexpr int kEstimatePoints = 4;  // per cell axis (a grid block's voxel centres 1, 3, 5, 7)
+// Points per cell axis of the power estimate (a grid block's voxel centres 1, 3, 5, 7), and 2
+// for fields of more than kManyCells cells, whose build would otherwise take seconds (64 shader
+// calls per block of a 1000^3 explosion).
+constexpr int kEstimatePoints = 4;
+constexpr size_t kManyCells = size_t(1) << 16;
 constexpr int kAnalyticCells = 4;   // per axis of an analytic primitive's bounds
 constexpr double kCoverageFloor = 1e-3;
 
@@ -30,24 +34,25 @@ struct OccupiedCell {
 };
 
 // The estimated power of `primitive` in cell c: the mean emission (channel average) at
-// kEstimatePoints^3 stratified points of its non-zero part, times that part's world volume. The
+// points^3 stratified points of its non-zero part, times that part's world volume. The
 // tight box matters: the shell of blocks a trilinear footprint adds around data emits only in its
 // last voxel layer, which points spread over the whole block would miss.
-double cell_power(const VolumePrimitive& primitive, const Field& field, const OccupiedCell& oc, VolumeContext& context) {
+double cell_power(const VolumePrimitive& primitive, const Field& field, const OccupiedCell& oc, int points,
+                  VolumeContext& context) {
   const int32_t c[3] = {oc.cell % field.dims[0], oc.cell / field.dims[0] % field.dims[1],
                         oc.cell / (field.dims[0] * field.dims[1])};
   const Vec3 corner{float(c[0]), float(c[1]), float(c[2])}, extent = oc.hi - oc.lo;
   double sum = 0.0;
-  for (int z = 0; z < kEstimatePoints; ++z)
-    for (int y = 0; y < kEstimatePoints; ++y)
-      for (int x = 0; x < kEstimatePoints; ++x) {
-        const float n = float(2 * kEstimatePoints);
+  for (int z = 0; z < points; ++z)
+    for (int y = 0; y < points; ++y)
+      for (int x = 0; x < points; ++x) {
+        const float n = float(2 * points);
         const Vec3 at{oc.lo.x + extent.x * float(2 * x + 1) / n, oc.lo.y + extent.y * float(2 * y + 1) / n,
                       oc.lo.z + extent.z * float(2 * z + 1) / n};
         const Vec3 p = field.lattice_to_world.point(corner + at);
         sum += std::max(0.0f, shade_volume(primitive, p, context).emission.average());
       }
-  const double power = sum / (kEstimatePoints * kEstimatePoints * kEstimatePoints) * field.cell_volume * extent.x *
+  const double power = sum / double(points * points * points) * field.cell_volume * extent.x *
                        extent.y * extent.z;
   return std::isfinite(power) ? power : 0.0;
 }
@@ -138,8 +143,9 @@ EmissionSampler EmissionSampler::build(const VolumeScene& volumes, VolumeContext
     if (f) f->cell_volume = cell_world_volume(*f);
     if (!f || !(f->cell_volume > 0.0f)) return {};  // an emitter left uncovered: no sampler
     std::vector<CellWeight>& w = weights.emplace_back();
+    const int points = occupied.size() > kManyCells ? 2 : kEstimatePoints;
     for (const OccupiedCell& oc : occupied) {
-      const double power = cell_power(primitive, *f, oc, context);
+      const double power = cell_power(primitive, *f, oc, points, context);
       w.push_back({uint32_t(oc.cell), power});
       total += power;
       positive += power > 0.0;

@@ -4,7 +4,8 @@
 // The proposal: each emissive primitive (constant emission, blackbody temperature or flame) is a
 // lattice of cells -- a grid's occupied 8^3 blocks, or 4^3 cells over an analytic primitive's
 // bounds -- each weighted by its estimated emitted power (the mean of the emission's channel
-// average at 4^3 points inside it, times its world volume); a cell is chosen by that weight and a
+// average at 4^3 points of its non-zero part, 2^3 in fields of over 65,536 cells, times that
+// part's world volume); a cell is chosen by that weight and a
 // point uniformly inside it. The density per unit world volume is piecewise constant per cell,
 // summed over primitives where they overlap.
 //
