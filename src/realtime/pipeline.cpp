@@ -102,6 +102,109 @@ void RealtimePipeline::update_shadow_maps(const std::vector<Light>& lights, Real
   }
 }
 
+namespace {
+
+// Runs `stage` and adds its duration to `micros` (one timing helper for every pass).
+template <typename Stage>
+void timed(double& micros, Stage&& stage) {
+  const auto start = Clock::now();
+  stage();
+  micros += micros_since(start);
+}
+
+}  // namespace
+
+void RealtimePipeline::draw_scene_buffers(RealtimeFrame& next) {
+  if (settings_.scene_buffers == SceneBufferMethod::raster)
+    rasterize_gbuffer(*raster_, next.view, *gbuffer_, settings_.simd);
+  else
+    *gbuffer_ = trace_gbuffer(*scene_, next.view);
+}
+
+// The camera side of the march is built on the first light that marches: when a scatterer takes
+// every light, no frame pays for it. The scatterer's lights go to their own buffer: their
+// noise-free result wants the small gather.
+void RealtimePipeline::accumulate_lights(const std::vector<FrameLight>& lights, const VolumeScene& volumes,
+                                         Vec2i low_res, uint32_t frame_index, RealtimeFrame& next,
+                                         ColorPlanes& accum, bool* marched, bool* scattered) {
+  PassTimes& times = next.times;
+  next.low_depth = downsample_depth(gbuffer_->depth, settings_.scale);
+  accum = ColorPlanes(low_res.x, low_res.y);
+  AccumulationSettings acc = settings_.accumulation;
+  acc.frame_seed = frame_index;
+  acc.simd = settings_.simd;
+  times.per_light.assign(lights.size(), 0.0);
+  bool rays_built = false;
+  if (scatterer_) {
+    if (scatter_accum_.width() != low_res.x || scatter_accum_.height() != low_res.y)
+      scatter_accum_ = ColorPlanes(low_res.x, low_res.y);
+    else
+      scatter_accum_.clear();
+  }
+  for (size_t i = 0; i < lights.size(); ++i) {
+    if (!lights[i].options.volumetric) continue;
+    const auto light_start = Clock::now();
+    const double rays_before = times.rays;
+    if (scatterer_ && scatterer_->scatter(i, lights[i], volumes, next.low_view, next.low_depth, scatter_accum_)) {
+      *scattered = true;
+    } else {
+      *marched = true;
+      if (!rays_built) {
+        times.rays = 0.0;
+        timed(times.rays, [&] { accumulation_rays_.build(volumes, next.low_view, next.low_depth, acc); });
+        rays_built = true;
+      }
+      accumulate_light(lights[i], volumes, accumulation_rays_, acc, accum);
+    }
+    times.per_light[i] = micros_since(light_start) - (times.rays - rays_before);  // rays reported apart
+  }
+}
+
+ColorPlanes RealtimePipeline::gather(ColorPlanes& accum, bool marched, bool scattered, const RealtimeFrame& next) {
+  const auto pass = [&](ColorPlanes& in, int radius) {
+    return radius > 0 ? bilateral_gather(in, next.low_depth, radius, settings_.gather_depth_falloff, settings_.simd)
+                      : std::move(in);
+  };
+  ColorPlanes gathered = scattered && !marched ? pass(scatter_accum_, settings_.scatter_gather_radius)
+                                               : pass(accum, settings_.gather_radius);
+  if (scattered && marched) gathered.add(pass(scatter_accum_, settings_.scatter_gather_radius));
+  return gathered;
+}
+
+// Temporal reprojection at accumulation resolution: the interleaving pattern and the flicker it
+// fights live there, and it costs scale^2 times less than at full resolution.
+void RealtimePipeline::reproject(ColorPlanes& gathered, RealtimeFrame& next) {
+  if (settings_.temporal && has_history_)
+    temporal_reproject(gathered, next.low_depth, next.low_view, previous_.low_volumetric, previous_.low_depth,
+                       previous_.low_view, settings_.temporal_blend, next.low_volumetric, settings_.simd);
+  else
+    next.low_volumetric = std::move(gathered);
+}
+
+void RealtimePipeline::upsample(RealtimeFrame& next) {
+  if (settings_.scale == 1)
+    next.volumetric = next.low_volumetric;
+  else
+    upsample_nearest_depth(next.low_volumetric, next.low_depth, gbuffer_->depth, next.volumetric, 0.05f,
+                           settings_.simd);
+}
+
+// Composite before tone mapping (the seed adds the upscaled buffer to the lit scene).
+void RealtimePipeline::composite(RealtimeFrame& next) {
+  if (next.color.width() != settings_.resolution.x || next.color.height() != settings_.resolution.y)
+    next.color = ColorPlanes(settings_.resolution.x, settings_.resolution.y);
+  parallel_for(settings_.resolution.y, [&](int y) {
+    const auto add_row = [y](Plane& out, const Plane& a, const Plane& b) {
+      float* o = out.row(y);
+      const float *pa = a.row(y), *pb = b.row(y);
+      for (int x = 0; x < out.width; ++x) o[x] = pa[x] + pb[x];
+    };
+    add_row(next.color.r, next.surfaces.r, next.volumetric.r);
+    add_row(next.color.g, next.surfaces.g, next.volumetric.g);
+    add_row(next.color.b, next.surfaces.b, next.volumetric.b);
+  });
+}
+
 const RealtimeFrame& RealtimePipeline::render(float time, uint32_t frame_index) {
   const auto frame_start = Clock::now();
   const SceneDesc now = desc_.at_time(time);
@@ -115,109 +218,23 @@ const RealtimeFrame& RealtimePipeline::render(float time, uint32_t frame_index) 
   const Vec2i low_res{(settings_.resolution.x + scale - 1) / scale, (settings_.resolution.y + scale - 1) / scale};
   next.low_view = View::from_camera(camera, low_res);
 
-  auto t = Clock::now();
-  if (settings_.scene_buffers == SceneBufferMethod::raster)
-    rasterize_gbuffer(*raster_, next.view, *gbuffer_, settings_.simd);
-  else
-    *gbuffer_ = trace_gbuffer(*scene_, next.view);
-  times.depth = micros_since(t);
-
-  t = Clock::now();
-  update_shadow_maps(now.lights, next);
-  times.shadows = micros_since(t);
-
+  timed(times.depth, [&] { draw_scene_buffers(next); });
+  timed(times.shadows, [&] { update_shadow_maps(now.lights, next); });
   std::vector<FrameLight> lights;
   for (size_t i = 0; i < now.lights.size(); ++i)
     lights.push_back({now.lights[i], desc_.options(i), shadows_[i].map ? &*shadows_[i].map : nullptr});
-
   // Media move with the wind: their frame-time description drives the in-scattering.
   const VolumeScene volumes(now.volumes);
-  t = Clock::now();
-  next.low_depth = downsample_depth(gbuffer_->depth, scale);
-  ColorPlanes accum(low_res.x, low_res.y);
-  AccumulationSettings acc = settings_.accumulation;
-  acc.frame_seed = frame_index;
-  acc.simd = settings_.simd;
-  times.per_light.assign(lights.size(), 0.0);
-  // The camera side of the march is built on the first light that marches: when a scatterer
-  // takes every light, no frame pays for it.
-  // The scatterer's lights go to their own buffer: their noise-free result wants the small gather.
-  bool rays_built = false, marched = false, scattered = false;
-  ColorPlanes& scatter_accum = scatter_accum_;
-  if (scatterer_) {
-    if (scatter_accum.width() != low_res.x || scatter_accum.height() != low_res.y)
-      scatter_accum = ColorPlanes(low_res.x, low_res.y);
-    else
-      scatter_accum.clear();
-  }
-  for (size_t i = 0; i < lights.size(); ++i) {
-    if (!lights[i].options.volumetric) continue;
-    const auto light_start = Clock::now();
-    const double rays_before = times.rays;
-    if (scatterer_ && scatterer_->scatter(i, lights[i], volumes, next.low_view, next.low_depth, scatter_accum)) {
-      scattered = true;
-    } else {
-      marched = true;
-      if (!rays_built) {
-        const auto rays_start = Clock::now();
-        accumulation_rays_.build(volumes, next.low_view, next.low_depth, acc);
-        times.rays = micros_since(rays_start);
-        rays_built = true;
-      }
-      accumulate_light(lights[i], volumes, accumulation_rays_, acc, accum);
-    }
-    times.per_light[i] = micros_since(light_start) - (times.rays - rays_before);  // rays reported apart
-  }
-  times.accumulation = micros_since(t);
-
-  t = Clock::now();
-  const auto gather = [&](ColorPlanes& in, int radius) {
-    return radius > 0 ? bilateral_gather(in, next.low_depth, radius, settings_.gather_depth_falloff, settings_.simd)
-                      : std::move(in);
-  };
-  ColorPlanes gathered = scattered && !marched ? gather(scatter_accum, settings_.scatter_gather_radius)
-                                               : gather(accum, settings_.gather_radius);
-  if (scattered && marched) gathered.add(gather(scatter_accum, settings_.scatter_gather_radius));
-  times.gather = micros_since(t);
-
-  // Temporal reprojection at accumulation resolution: the interleaving pattern and the
-  // flicker it fights live there, and it costs scale^2 times less than at full resolution.
-  t = Clock::now();
-  if (settings_.temporal && has_history_)
-    temporal_reproject(gathered, next.low_depth, next.low_view, previous_.low_volumetric, previous_.low_depth,
-                       previous_.low_view, settings_.temporal_blend, next.low_volumetric, settings_.simd);
-  else
-    next.low_volumetric = std::move(gathered);
-  times.temporal = micros_since(t);
-
-  t = Clock::now();
-  if (scale == 1)
-    next.volumetric = next.low_volumetric;
-  else
-    upsample_nearest_depth(next.low_volumetric, next.low_depth, gbuffer_->depth, next.volumetric, 0.05f,
-                           settings_.simd);
-  times.upsample = micros_since(t);
-
-  t = Clock::now();
-  shade_surfaces(*gbuffer_, next.view, *scene_, lights, next.surfaces, settings_.simd);
-  times.surfaces = micros_since(t);
-
-  // Composite before tone mapping (the seed adds the upscaled buffer to the lit scene).
-  t = Clock::now();
-  if (next.color.width() != settings_.resolution.x || next.color.height() != settings_.resolution.y)
-    next.color = ColorPlanes(settings_.resolution.x, settings_.resolution.y);
-  parallel_for(settings_.resolution.y, [&](int y) {
-    const auto add_row = [y](Plane& out, const Plane& a, const Plane& b) {
-      float* o = out.row(y);
-      const float *pa = a.row(y), *pb = b.row(y);
-      for (int x = 0; x < out.width; ++x) o[x] = pa[x] + pb[x];
-    };
-    add_row(next.color.r, next.surfaces.r, next.volumetric.r);
-    add_row(next.color.g, next.surfaces.g, next.volumetric.g);
-    add_row(next.color.b, next.surfaces.b, next.volumetric.b);
-  });
-  times.composite = micros_since(t);
-
+  ColorPlanes accum;
+  bool marched = false, scattered = false;
+  timed(times.accumulation,
+        [&] { accumulate_lights(lights, volumes, low_res, frame_index, next, accum, &marched, &scattered); });
+  ColorPlanes gathered;
+  timed(times.gather, [&] { gathered = gather(accum, marched, scattered, next); });
+  timed(times.temporal, [&] { reproject(gathered, next); });
+  timed(times.upsample, [&] { upsample(next); });
+  timed(times.surfaces, [&] { shade_surfaces(*gbuffer_, next.view, *scene_, lights, next.surfaces, settings_.simd); });
+  timed(times.composite, [&] { composite(next); });
   times.total = micros_since(frame_start);
   has_history_ = true;
   return next;

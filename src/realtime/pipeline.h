@@ -104,6 +104,17 @@ class RealtimePipeline {
   struct CachedShadow;
 
   void update_shadow_maps(const std::vector<Light>& lights, RealtimeFrame& frame);
+  // The frame's stages, in order (render() times each).
+  void draw_scene_buffers(RealtimeFrame& next);
+  // Accumulation per light: the marched lights into `accum`, the scatterer's into
+  // scatter_accum_; sets *marched and *scattered when any light went that way.
+  void accumulate_lights(const std::vector<FrameLight>& lights, const VolumeScene& volumes, Vec2i low_res,
+                         uint32_t frame_index, RealtimeFrame& next, ColorPlanes& accum, bool* marched,
+                         bool* scattered);
+  ColorPlanes gather(ColorPlanes& accum, bool marched, bool scattered, const RealtimeFrame& next);
+  void reproject(ColorPlanes& gathered, RealtimeFrame& next);
+  void upsample(RealtimeFrame& next);
+  void composite(RealtimeFrame& next);
 
   SceneDesc desc_;
   RealtimeSettings settings_;
