@@ -484,85 +484,104 @@ SurfaceStep surface_step(const Bsdf& bsdf) {
                     bsdf);
 }
 
-RGB reference_delta_tracking(const Scene& scene, const Ray& camera_ray, PathLimits limits, Pcg32& rng) {
-  const int channel = std::min(int(rng.next_float() * 3.0f), 2);
+// One ladder path's state (one channel).
+struct LadderPath {
+  int channel = 0;
   float radiance = 0.0f, throughput = 1.0f;
   // Emission the ray reaches counts only when the ray left the camera or a specular event;
   // after a diffuse or phase event next-event estimation has already counted it.
   bool count_emission = true;
   bool camera_view = true;  // only specular events so far
-  MediumStack stack = scene.camera_stack();
+  MediumStack stack;
   std::vector<Crossed> crossed;  // false hits in front of the seen surface
-  Ray ray = camera_ray;
+  Ray ray;
   int surface_bounces = 0, volume_bounces = 0, boundary_crossings = 0;
   int volume_runs = 0;  // runs of consecutive volume events count once against max_bounces
   bool in_volume_run = false;
-  while (throughput > 0.0f) {
-    const auto hit = nearest_seen_hit(scene, ray, stack, crossed);
-    const Segment seg = make_segment(scene, ray, hit ? hit->t : kInfinity, channel, stack.current().medium);
-    if (const auto t = sample_collision(seg, channel, rng)) {
-      const ChannelCoefficients c = coefficients(seg, *t, channel);
-      // Absorbed (probability sigma_a / sigma_t), or out of scattering events.
-      if (rng.next_float() * c.sigma_t >= c.sigma_s || volume_bounces >= limits.max_volume_bounces ||
-          (!in_volume_run && surface_bounces + volume_runs >= limits.max_bounces))
-        break;
-      cross_before(stack, crossed, *t);
-      radiance += throughput * medium_direct_light(scene, seg, *t, c.sigma_s, stack, channel, rng);
-      ray = Ray{ray.at(*t), sample_phase_mixture(seg, *t, c.sigma_s, channel, rng), 0.0f, kInfinity};
-      ++volume_bounces;
-      if (!in_volume_run) ++volume_runs;
-      in_volume_run = true;
-      count_emission = false;
-      camera_view = false;
+};
+
+// A real collision at t of the path's segment: absorbed (probability sigma_a / sigma_t), out of
+// scattering events, or a phase event with its light connection. False when the path ends.
+bool ladder_collision(const Scene& scene, const Segment& seg, float t, PathLimits limits, LadderPath& p,
+                      Pcg32& rng) {
+  const ChannelCoefficients c = coefficients(seg, t, p.channel);
+  if (rng.next_float() * c.sigma_t >= c.sigma_s || p.volume_bounces >= limits.max_volume_bounces ||
+      (!p.in_volume_run && p.surface_bounces + p.volume_runs >= limits.max_bounces))
+    return false;
+  cross_before(p.stack, p.crossed, t);
+  p.radiance += p.throughput * medium_direct_light(scene, seg, t, c.sigma_s, p.stack, p.channel, rng);
+  p.ray = Ray{p.ray.at(t), sample_phase_mixture(seg, t, c.sigma_s, p.channel, rng), 0.0f, kInfinity};
+  ++p.volume_bounces;
+  if (!p.in_volume_run) ++p.volume_runs;
+  p.in_volume_run = true;
+  p.count_emission = false;
+  p.camera_view = false;
+  return true;
+}
+
+// The surface the path sees: a real null crossing, glass, a diffuse event with its light
+// connection, or a black surface that absorbs. False when the path ends.
+bool ladder_surface(const Scene& scene, const SurfaceHit& hit, PathLimits limits, LadderPath& p, Pcg32& rng) {
+  const SurfaceInteraction si = scene.interaction(p.ray, hit);
+  const Vec3 wo = -p.ray.direction;
+  const std::optional<MediumEntry> entry = scene.medium_entry(hit.geom_id);
+  const Bsdf& bsdf = si.material->bsdf;
+  const SurfaceStep step = surface_step(bsdf);
+  if (step == SurfaceStep::kCross) {
+    // A priority null surface whose crossing is real (Off ones are never seen): the medium
+    // changes, nothing else happens.
+    p.stack.cross(*entry);
+    p.ray = Ray{offset_ray_origin(si.p, si.ng, p.ray.direction), p.ray.direction, 0.0f, kInfinity};
+    return ++p.boundary_crossings <= kMaxNullCrossings;
+  }
+  if (p.count_emission) p.radiance += p.throughput * surface_emission(si, wo)[p.channel];
+  if (p.surface_bounces + p.volume_runs >= limits.max_bounces || step == SurfaceStep::kAbsorb) return false;
+  std::optional<BsdfSample> bs;
+  if (step == SurfaceStep::kSpecular) {
+    // Specular: no next-event estimation, so emission the new ray reaches counts.
+    const float ior = std::get<DielectricBsdf>(bsdf).ior;
+    const Bsdf interface = DielectricBsdf{interface_eta(p.stack, entry, ior, dot(si.ng, wo) > 0.0f)};
+    const float u_lobe = rng.next_float();
+    bs = bsdf_sample(interface, si.ns, wo, u_lobe, next_2d(rng));
+    if (!bs) return false;
+    // Only a transmitted path gets past the surface (and a priority surface's medium with it).
+    if (entry && dot(si.ng, bs->wi) * dot(si.ng, wo) < 0.0f) p.stack.cross(*entry);
+    p.count_emission = true;
+  } else {  // SurfaceStep::kDiffuse
+    p.radiance += p.throughput * surface_direct_light(scene, si, wo, p.stack, p.channel, rng);
+    const float u_lobe = rng.next_float();
+    bs = bsdf_sample(bsdf, si.ns, wo, u_lobe, next_2d(rng));
+    if (!bs || dot(si.ng, bs->wi) * dot(si.ng, wo) <= 0.0f) return false;
+    p.count_emission = false;
+    p.camera_view = false;
+  }
+  p.throughput *= bs->weight[p.channel];
+  p.ray = Ray{offset_ray_origin(si.p, si.ng, bs->wi), bs->wi, 0.0f, kInfinity};
+  ++p.surface_bounces;
+  p.in_volume_run = false;
+  return true;
+}
+
+RGB reference_delta_tracking(const Scene& scene, const Ray& camera_ray, PathLimits limits, Pcg32& rng) {
+  LadderPath p;
+  p.channel = std::min(int(rng.next_float() * 3.0f), 2);
+  p.stack = scene.camera_stack();
+  p.ray = camera_ray;
+  while (p.throughput > 0.0f) {
+    const auto hit = nearest_seen_hit(scene, p.ray, p.stack, p.crossed);
+    const Segment seg = make_segment(scene, p.ray, hit ? hit->t : kInfinity, p.channel, p.stack.current().medium);
+    if (const auto t = sample_collision(seg, p.channel, rng)) {
+      if (!ladder_collision(scene, seg, *t, limits, p, rng)) break;
       continue;
     }
-    cross_before(stack, crossed, kInfinity);
+    cross_before(p.stack, p.crossed, kInfinity);
     if (!hit) {
-      if (count_emission) radiance += throughput * environment(scene, ray.direction, camera_view)[channel];
+      if (p.count_emission) p.radiance += p.throughput * environment(scene, p.ray.direction, p.camera_view)[p.channel];
       break;
     }
-    const SurfaceInteraction si = scene.interaction(ray, *hit);
-    const Vec3 wo = -ray.direction;
-    const std::optional<MediumEntry> entry = scene.medium_entry(hit->geom_id);
-    const Bsdf& bsdf = si.material->bsdf;
-    const SurfaceStep step = surface_step(bsdf);
-    if (step == SurfaceStep::kCross) {
-      // A priority null surface whose crossing is real (Off ones are never seen): the medium
-      // changes, nothing else happens.
-      stack.cross(*entry);
-      if (++boundary_crossings > kMaxNullCrossings) break;
-      ray = Ray{offset_ray_origin(si.p, si.ng, ray.direction), ray.direction, 0.0f, kInfinity};
-      continue;
-    }
-    if (count_emission) radiance += throughput * surface_emission(si, wo)[channel];
-    if (surface_bounces + volume_runs >= limits.max_bounces) break;
-    std::optional<BsdfSample> bs;
-    if (step == SurfaceStep::kSpecular) {
-      // Specular: no next-event estimation, so emission the new ray reaches counts.
-      const float ior = std::get<DielectricBsdf>(bsdf).ior;
-      const Bsdf interface = DielectricBsdf{interface_eta(stack, entry, ior, dot(si.ng, wo) > 0.0f)};
-      const float u_lobe = rng.next_float();
-      bs = bsdf_sample(interface, si.ns, wo, u_lobe, next_2d(rng));
-      if (!bs) break;
-      // Only a transmitted path gets past the surface (and a priority surface's medium with it).
-      if (entry && dot(si.ng, bs->wi) * dot(si.ng, wo) < 0.0f) stack.cross(*entry);
-      count_emission = true;
-    } else if (step == SurfaceStep::kDiffuse) {
-      radiance += throughput * surface_direct_light(scene, si, wo, stack, channel, rng);
-      const float u_lobe = rng.next_float();
-      bs = bsdf_sample(bsdf, si.ns, wo, u_lobe, next_2d(rng));
-      if (!bs || dot(si.ng, bs->wi) * dot(si.ng, wo) <= 0.0f) break;
-      count_emission = false;
-      camera_view = false;
-    } else {
-      break;  // SurfaceStep::kAbsorb: black surfaces absorb
-    }
-    throughput *= bs->weight[channel];
-    ray = Ray{offset_ray_origin(si.p, si.ng, bs->wi), bs->wi, 0.0f, kInfinity};
-    ++surface_bounces;
-    in_volume_run = false;
+    if (!ladder_surface(scene, *hit, limits, p, rng)) break;
   }
-  return in_channel(channel, 3.0f * radiance);
+  return in_channel(p.channel, 3.0f * p.radiance);
 }
 
 std::vector<RGB> reference_image(const Scene& scene, Vec2i resolution, const ReferenceOptions& options) {
