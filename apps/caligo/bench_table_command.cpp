@@ -306,107 +306,112 @@ size_t find_variant(const std::vector<Variant>& vs, VolumetricMethod method, int
   return vs.size();
 }
 
-std::string markdown(const BenchTableOptions& o, const std::vector<int>& scales,
-                     const std::vector<Variant>& vs, const std::vector<SceneResult>& results) {
+// What the report's tables read, and the markdown they are written to.
+struct Report {
+  const BenchTableOptions& o;
+  const std::vector<int>& scales;
+  const std::vector<Variant>& vs;
+  const std::vector<SceneResult>& results;
   std::string md;
-  const auto line = [&md](const std::string& s) {
+
+  void line(const std::string& s) {
     md += s;
     md += '\n';
-  };
-  const auto low = [&o](int scale) {
+  }
+  std::string low(int scale) const {
     std::string s = std::to_string((o.resolution + scale - 1) / scale);
     s += "²";
     return s;
-  };
-  line("Wyman & Ramsey 2008, Table 1, on Caligo's scenes: output " + std::to_string(o.resolution) +
-       "², frames per second (median frame time of " + std::to_string(o.frames) + " frames after " +
-       std::to_string(kWarmup) + " warm-up; temporal off, surfaces black).");
-  line("");
+  }
+};
+
+// Table 1 itself: frames per second of each main-table variant at each accumulation scale.
+void fps_table(Report& rep) {
+  const BenchTableOptions& o = rep.o;
+  rep.line("Wyman & Ramsey 2008, Table 1, on Caligo's scenes: output " + std::to_string(o.resolution) +
+           "², frames per second (median frame time of " + std::to_string(o.frames) + " frames after " +
+           std::to_string(kWarmup) + " warm-up; temporal off, surfaces black).");
+  rep.line("");
   std::string head = "| scene | triangles |", rule = "|---|---:|";
-  for (int s : scales)
-    for (const Variant& v : vs)
+  for (int s : rep.scales)
+    for (const Variant& v : rep.vs)
       if (v.in_main_table) {
-        head += cell(v.label + " @" + low(s));
+        head += cell(v.label + " @" + rep.low(s));
         rule += "---:|";
       }
-  line(head);
-  line(rule);
-  for (const SceneResult& r : results) {
+  rep.line(head);
+  rep.line(rule);
+  for (const SceneResult& r : rep.results) {
     std::string row = "|" + cell(r.name) + cell(r.triangles ? with_commas(r.triangles) : "?");
-    for (size_t si = 0; si < scales.size(); ++si)
-      for (size_t vi = 0; vi < vs.size(); ++vi)
-        if (vs[vi].in_main_table)
+    for (size_t si = 0; si < rep.scales.size(); ++si)
+      for (size_t vi = 0; vi < rep.vs.size(); ++vi)
+        if (rep.vs[vi].in_main_table)
           row += cell(r.runs[si][vi].ran ? fmt("%.1f", 1e6 / r.runs[si][vi].frame_us) : "–");
-    line(row);
+    rep.line(row);
   }
-  // corrected: also the error with the reference's noise taken out in quadrature, in parentheses.
-  const auto error_table = [&](const std::string& title, auto get, auto format, bool corrected) {
-    line("");
-    line(title);
-    line("");
-    std::string h = corrected ? "| scene | scattering | ref. noise |" : "| scene | scattering |";
-    std::string ru = corrected ? "|---|---|---:|" : "|---|---|";
-    for (const Variant& v : vs) {
-      h += cell(v.label);
-      ru += "---:|";
-    }
-    line(h);
-    line(ru);
-    for (const SceneResult& r : results)
-      for (size_t si = 0; si < scales.size(); ++si) {
-        std::string row = "|" + cell(r.name) + cell(low(scales[si]));
-        if (corrected) row += cell(percent(r.reference_noise));
-        for (size_t vi = 0; vi < vs.size(); ++vi) {
-          const Run& run = r.runs[si][vi];
-          if (!run.ran) {
-            row += cell("–");
-            continue;
-          }
-          const double noise = run.reference_noise;
-          std::string c = format(get(run));
-          if (corrected) {
-            c += " (" + format(std::sqrt(std::max(0.0, get(run) * get(run) - noise * noise))) + ")";
-            if (vs[vi].spot) c += " [spot ref. noise " + percent(noise) + "]";
-          }
-          // A hybrid that fell back to brute (open occluder) must not pass for the hybrid.
-          if (run.used != volumetric_method_name(vs[vi].method)) c += " (ran " + run.used + ")";
-          row += cell(c);
+}
+
+// One error per run and variant; `corrected`: also the error with the reference's noise taken
+// out in quadrature, in parentheses.
+template <typename Get, typename Format>
+void error_table(Report& rep, const std::string& title, Get get, Format format, bool corrected) {
+  rep.line("");
+  rep.line(title);
+  rep.line("");
+  std::string h = corrected ? "| scene | scattering | ref. noise |" : "| scene | scattering |";
+  std::string ru = corrected ? "|---|---|---:|" : "|---|---|";
+  for (const Variant& v : rep.vs) {
+    h += cell(v.label);
+    ru += "---:|";
+  }
+  rep.line(h);
+  rep.line(ru);
+  for (const SceneResult& r : rep.results)
+    for (size_t si = 0; si < rep.scales.size(); ++si) {
+      std::string row = "|" + cell(r.name) + cell(rep.low(rep.scales[si]));
+      if (corrected) row += cell(percent(r.reference_noise));
+      for (size_t vi = 0; vi < rep.vs.size(); ++vi) {
+        const Run& run = r.runs[si][vi];
+        if (!run.ran) {
+          row += cell("–");
+          continue;
         }
-        line(row);
+        const double noise = run.reference_noise;
+        std::string c = format(get(run));
+        if (corrected) {
+          c += " (" + format(std::sqrt(std::max(0.0, get(run) * get(run) - noise * noise))) + ")";
+          if (rep.vs[vi].spot) c += " [spot ref. noise " + percent(noise) + "]";
+        }
+        // A hybrid that fell back to brute (open occluder) must not pass for the hybrid.
+        if (run.used != volumetric_method_name(rep.vs[vi].method)) c += " (ran " + run.used + ")";
+        row += cell(c);
       }
-  };
-  error_table(
-      "Relative RMSE against the path-traced single-scattering reference (" +
-          std::to_string(results.empty() ? 0 : results[0].reference_spp) +
-          " spp, two halves of different seeds; ref. noise: the average's own, half the halves' difference; "
-          "in parentheses: the error with that noise "
-          "removed in quadrature, sqrt(e² - noise²)):",
-      [](const Run& r) { return r.error.relative_rmse; }, percent, true);
-  error_table(
-      "Step error: relative RMSE against the same pipeline (same shadow map, gather and upsampling; no "
-      "reference noise) with " +
-          std::to_string(kConvergedSteps) +
-          " steps: brute force for the point-light columns, the textured pass for the spot:",
-      [](const Run& r) { return r.step_error; }, percent3, false);
-  line("");
+      rep.line(row);
+    }
+}
+
+// The speed-up of hybrid 50 over brute force at equal step error.
+void speedup_table(Report& rep) {
+  const std::vector<Variant>& vs = rep.vs;
+  rep.line("");
   std::string sweep;
   for (int n : kBruteSweep) sweep += (sweep.empty() ? "" : ", ") + std::to_string(n);
   const int most = kBruteSweep[std::size(kBruteSweep) - 1];
-  line("Speed-up of hybrid 50 over brute force at equal step error: the fewest brute steps (of " + sweep +
-       ") whose step error is at most " + fmt("%.0f", 100.0 + kMatchTolerance * 100) +
-       " % of the hybrid's; ratio of median frame times (and of the volumetric passes alone). \">=\": no "
-       "count "
-       "matched, a lower bound against " +
-       std::to_string(most) + " steps.");
-  line("");
-  line(
+  rep.line("Speed-up of hybrid 50 over brute force at equal step error: the fewest brute steps (of " + sweep +
+           ") whose step error is at most " + fmt("%.0f", 100.0 + kMatchTolerance * 100) +
+           " % of the hybrid's; ratio of median frame times (and of the volumetric passes alone). \">=\": no "
+           "count "
+           "matched, a lower bound against " +
+           std::to_string(most) + " steps.");
+  rep.line("");
+  rep.line(
       "| scene | scattering | hybrid step error | brute steps | brute step error | brute fps | hybrid fps | "
       "speed-up (frame) | speed-up (volumetric) |");
-  line("|---|---|---:|---:|---:|---:|---:|---:|---:|");
+  rep.line("|---|---|---:|---:|---:|---:|---:|---:|---:|");
   const size_t hybrid = find_variant(vs, VolumetricMethod::kHybrid);
   const size_t most_steps = find_variant(vs, VolumetricMethod::kBrute, most);
-  for (const SceneResult& r : results)
-    for (size_t si = 0; si < scales.size(); ++si) {
+  for (const SceneResult& r : rep.results)
+    for (size_t si = 0; si < rep.scales.size(); ++si) {
       const auto& runs = r.runs[si];
       const double target = runs[hybrid].step_error * (1.0 + kMatchTolerance);
       size_t match = vs.size();
@@ -417,14 +422,36 @@ std::string markdown(const BenchTableOptions& o, const std::vector<int>& scales,
       const bool found = match != vs.size();
       const size_t b = found ? match : most_steps;
       const std::string bound = found ? "" : ">= ";
-      line("|" + cell(r.name) + cell(low(scales[si])) + cell(percent3(runs[hybrid].step_error)) +
-           cell(found ? std::to_string(vs[b].brute_samples) : "> " + std::to_string(most)) +
-           cell(percent3(runs[b].step_error)) + cell(fmt("%.1f", 1e6 / runs[b].frame_us)) +
-           cell(fmt("%.1f", 1e6 / runs[hybrid].frame_us)) +
-           cell(bound + fmt("%.2fx", runs[b].frame_us / runs[hybrid].frame_us)) +
-           cell(bound + fmt("%.2fx", runs[b].volumetric_us / runs[hybrid].volumetric_us)));
+      rep.line("|" + cell(r.name) + cell(rep.low(rep.scales[si])) + cell(percent3(runs[hybrid].step_error)) +
+               cell(found ? std::to_string(vs[b].brute_samples) : "> " + std::to_string(most)) +
+               cell(percent3(runs[b].step_error)) + cell(fmt("%.1f", 1e6 / runs[b].frame_us)) +
+               cell(fmt("%.1f", 1e6 / runs[hybrid].frame_us)) +
+               cell(bound + fmt("%.2fx", runs[b].frame_us / runs[hybrid].frame_us)) +
+               cell(bound + fmt("%.2fx", runs[b].volumetric_us / runs[hybrid].volumetric_us)));
     }
-  return md;
+}
+
+std::string markdown(const BenchTableOptions& o, const std::vector<int>& scales,
+                     const std::vector<Variant>& vs, const std::vector<SceneResult>& results) {
+  Report rep{o, scales, vs, results, {}};
+  fps_table(rep);
+  error_table(
+      rep,
+      "Relative RMSE against the path-traced single-scattering reference (" +
+          std::to_string(results.empty() ? 0 : results[0].reference_spp) +
+          " spp, two halves of different seeds; ref. noise: the average's own, half the halves' difference; "
+          "in parentheses: the error with that noise "
+          "removed in quadrature, sqrt(e² - noise²)):",
+      [](const Run& r) { return r.error.relative_rmse; }, percent, true);
+  error_table(
+      rep,
+      "Step error: relative RMSE against the same pipeline (same shadow map, gather and upsampling; no "
+      "reference noise) with " +
+          std::to_string(kConvergedSteps) +
+          " steps: brute force for the point-light columns, the textured pass for the spot:",
+      [](const Run& r) { return r.step_error; }, percent3, false);
+  speedup_table(rep);
+  return rep.md;
 }
 }  // namespace
 
