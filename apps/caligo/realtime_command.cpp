@@ -262,65 +262,43 @@ void compare_with_reference(const RealtimeOptions& o, const SceneDesc& desc, con
   std::printf("comparison (real-time | reference | |error| / mean, 0..50 %%) -> %s\n", png.string().c_str());
 }
 
-}  // namespace
-
-int run_realtime(const RealtimeOptions& o) {
-  const SceneDesc desc = load_scene(o.scene);
-  const RealtimeSettings settings = settings_from(o, desc);
-  const int frames = check_int(o.frames, 1, 100000, "--frames", desc.realtime.frames);
+// The options run_realtime checks itself (the scene's own values are checked by its parser).
+void check_realtime_options(const RealtimeOptions& o, const SceneDesc& desc, OutputKind kind) {
   if (o.warmup < 0) throw InputError(kCommandLine, "--warmup: expected 0 or more");
   if (!(o.reference_spp >= 1 && o.reference_spp <= 1'000'000))
     throw InputError(kCommandLine, "--reference-spp: expected 1 to 1000000");
   if (!std::isfinite(o.exposure)) throw InputError(kCommandLine, "--exposure: expected a finite number");
   if (o.still_time && !(*o.still_time >= 0.0f && *o.still_time <= 1e6f))
     throw InputError(kCommandLine, "--time: expected seconds in [0, 1e6]");
-  const OutputKind kind = output_kind(o.output);
   check_output(o.output, kind);
   if (o.reference_per_light && has_other_emitters(desc))
     throw InputError(kCommandLine,
                      "--reference-per-light: the scene has emissive materials or media, whose light a per-light "
                      "reference would count once per light");
+}
 
-  RealtimePipeline pipeline(desc, settings);
-  const VolumetricMethod method = *parse_volumetric_method(o.method);
-  HybridScatterer* scatterer = nullptr;  // owned by the pipeline
-  if (method != VolumetricMethod::kMarch) {
-    auto owned = std::make_unique<HybridScatterer>(pipeline.scene(), method);
-    scatterer = owned.get();
-    pipeline.set_scatterer(std::move(owned));
-  }
-  std::vector<PassTimes> timed;
-  std::vector<std::vector<uint8_t>> gif_frames;
+// Frame i's output: a file per frame in a folder, a GIF frame, or the last frame as one image.
+void write_frame(const RealtimeOptions& o, OutputKind kind, const RealtimeFrame& frame, int i, bool last,
+                 std::vector<std::vector<uint8_t>>& gif_frames) {
   const PreviewSettings preview{o.exposure, true};
-  float time = 0.0f;
-  const RealtimeFrame* last_frame = nullptr;
-  ColorPlanes previous_volumetric;
-  std::vector<double> changes;
-  for (int i = 0; i < frames; ++i) {
-    time = o.still_time ? *o.still_time : float(i) / desc.realtime.fps;
-    const RealtimeFrame& frame = pipeline.render(time, uint32_t(i));
-    last_frame = &frame;
-    if (i > 0) changes.push_back(frame_change(frame.volumetric, previous_volumetric));
-    previous_volumetric = frame.volumetric;
-    if (i >= std::min(o.warmup, frames - 1)) timed.push_back(frame.times);
-    const bool last = i == frames - 1;
-    if (kind == OutputKind::folder) {
-      const Image image = to_image(frame.color);
-      if (o.exr) write_exr(frame_name(o.output, i, true), image);
-      else write_png(frame_name(o.output, i, false), image.width(), image.height(), to_srgb8_preview(image, preview));
-    } else if (kind == OutputKind::gif) {
-      gif_frames.push_back(to_srgb8_preview(to_image(frame.color), preview));
-    } else if (last && kind == OutputKind::single_png) {
-      const Image image = to_image(frame.color);
-      write_png(o.output, image.width(), image.height(), to_srgb8_preview(image, preview));
-    } else if (last && kind == OutputKind::single_exr) {
-      write_exr(o.output, to_image(frame.color));
-    }
+  if (kind == OutputKind::folder) {
+    const Image image = to_image(frame.color);
+    if (o.exr) write_exr(frame_name(o.output, i, true), image);
+    else write_png(frame_name(o.output, i, false), image.width(), image.height(), to_srgb8_preview(image, preview));
+  } else if (kind == OutputKind::gif) {
+    gif_frames.push_back(to_srgb8_preview(to_image(frame.color), preview));
+  } else if (last && kind == OutputKind::single_png) {
+    const Image image = to_image(frame.color);
+    write_png(o.output, image.width(), image.height(), to_srgb8_preview(image, preview));
+  } else if (last && kind == OutputKind::single_exr) {
+    write_exr(o.output, to_image(frame.color));
   }
-  if (kind == OutputKind::gif)
-    write_gif(o.output, settings.resolution.x, settings.resolution.y, gif_frames, desc.realtime.fps);
+}
 
-  if (!o.quiet) print_table(desc, timed, scatterer);
+// The one-line summary, the method per light and the frame-to-frame change.
+void print_summary(const RealtimeOptions& o, const SceneDesc& desc, const RealtimeSettings& settings, int frames,
+                   const std::vector<PassTimes>& timed, const HybridScatterer* scatterer,
+                   const std::vector<double>& changes) {
   std::vector<double> volumetric, total;
   for (const PassTimes& t : timed) {
     volumetric.push_back(t.volumetric());
@@ -342,6 +320,45 @@ int run_realtime(const RealtimeOptions& o) {
   if (!changes.empty())
     std::printf("volumetric frame-to-frame change: %.2f %% (median over %zu frame pairs)\n", median(changes) * 100.0,
                 changes.size());
+}
+
+}  // namespace
+
+int run_realtime(const RealtimeOptions& o) {
+  const SceneDesc desc = load_scene(o.scene);
+  const RealtimeSettings settings = settings_from(o, desc);
+  const int frames = check_int(o.frames, 1, 100000, "--frames", desc.realtime.frames);
+  const OutputKind kind = output_kind(o.output);
+  check_realtime_options(o, desc, kind);
+
+  RealtimePipeline pipeline(desc, settings);
+  const VolumetricMethod method = *parse_volumetric_method(o.method);
+  HybridScatterer* scatterer = nullptr;  // owned by the pipeline
+  if (method != VolumetricMethod::kMarch) {
+    auto owned = std::make_unique<HybridScatterer>(pipeline.scene(), method);
+    scatterer = owned.get();
+    pipeline.set_scatterer(std::move(owned));
+  }
+  std::vector<PassTimes> timed;
+  std::vector<std::vector<uint8_t>> gif_frames;
+  float time = 0.0f;
+  const RealtimeFrame* last_frame = nullptr;
+  ColorPlanes previous_volumetric;
+  std::vector<double> changes;
+  for (int i = 0; i < frames; ++i) {
+    time = o.still_time ? *o.still_time : float(i) / desc.realtime.fps;
+    const RealtimeFrame& frame = pipeline.render(time, uint32_t(i));
+    last_frame = &frame;
+    if (i > 0) changes.push_back(frame_change(frame.volumetric, previous_volumetric));
+    previous_volumetric = frame.volumetric;
+    if (i >= std::min(o.warmup, frames - 1)) timed.push_back(frame.times);
+    write_frame(o, kind, frame, i, i == frames - 1, gif_frames);
+  }
+  if (kind == OutputKind::gif)
+    write_gif(o.output, settings.resolution.x, settings.resolution.y, gif_frames, desc.realtime.fps);
+
+  if (!o.quiet) print_table(desc, timed, scatterer);
+  print_summary(o, desc, settings, frames, timed, scatterer, changes);
   if (o.compare_reference) compare_with_reference(o, desc, settings, time, *last_frame, o.output);
   return 0;
 }
