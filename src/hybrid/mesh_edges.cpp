@@ -46,18 +46,40 @@ std::string format_point(Vec3 p) {
   return s.str();
 }
 
-}  // namespace
-
-MeshEdges::MeshEdges(const TriangleMesh& mesh) {
+// Welds positions that are equal (bit for bit): `vertices` gets each once; returns, for every
+// input position, its welded index.
+std::vector<uint32_t> weld_positions(const TriangleMesh& mesh, std::vector<Vec3>& vertices) {
   std::unordered_map<PositionKey, uint32_t, PositionHash> welded;
   welded.reserve(mesh.positions.size());
   std::vector<uint32_t> remap(mesh.positions.size());
   for (size_t i = 0; i < mesh.positions.size(); ++i) {
-    const auto [it, inserted] = welded.try_emplace(key_of(mesh.positions[i]), uint32_t(vertices_.size()));
-    if (inserted) vertices_.push_back(mesh.positions[i]);
+    const auto [it, inserted] = welded.try_emplace(key_of(mesh.positions[i]), uint32_t(vertices.size()));
+    if (inserted) vertices.push_back(mesh.positions[i]);
     remap[i] = it->second;
   }
+  return remap;
+}
 
+// Sorting half-edges by their undirected key groups each edge's triangles together
+// (cheaper and smaller than a hash map of vectors for meshes of a million triangles).
+std::vector<HalfEdge> sorted_half_edges(const std::vector<std::array<uint32_t, 3>>& triangles) {
+  std::vector<HalfEdge> half;
+  half.reserve(3 * triangles.size());
+  for (uint32_t t = 0; t < uint32_t(triangles.size()); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t a = triangles[t][size_t(k)], b = triangles[t][size_t((k + 1) % 3)];
+      half.push_back({std::min(a, b), std::max(a, b), t, a < b});
+    }
+  std::sort(half.begin(), half.end(), [](const HalfEdge& x, const HalfEdge& y) {
+    return x.lo != y.lo ? x.lo < y.lo : (x.hi != y.hi ? x.hi < y.hi : x.tri < y.tri);
+  });
+  return half;
+}
+
+}  // namespace
+
+MeshEdges::MeshEdges(const TriangleMesh& mesh) {
+  const std::vector<uint32_t> remap = weld_positions(mesh, vertices_);
   triangles_.reserve(mesh.triangle_count());
   for (size_t t = 0; t < mesh.triangle_count(); ++t) {
     const std::array<uint32_t, 3> tri{remap[mesh.indices[3 * t]], remap[mesh.indices[3 * t + 1]],
@@ -68,20 +90,7 @@ MeshEdges::MeshEdges(const TriangleMesh& mesh) {
     }
     triangles_.push_back(tri);
   }
-
-  // Sorting half-edges by their undirected key groups each edge's triangles together
-  // (cheaper and smaller than a hash map of vectors for meshes of a million triangles).
-  std::vector<HalfEdge> half;
-  half.reserve(3 * triangles_.size());
-  for (uint32_t t = 0; t < uint32_t(triangles_.size()); ++t)
-    for (int k = 0; k < 3; ++k) {
-      const uint32_t a = triangles_[t][size_t(k)], b = triangles_[t][size_t((k + 1) % 3)];
-      half.push_back({std::min(a, b), std::max(a, b), t, a < b});
-    }
-  std::sort(half.begin(), half.end(), [](const HalfEdge& x, const HalfEdge& y) {
-    return x.lo != y.lo ? x.lo < y.lo : (x.hi != y.hi ? x.hi < y.hi : x.tri < y.tri);
-  });
-
+  const std::vector<HalfEdge> half = sorted_half_edges(triangles_);
   std::string first_boundary, first_non_manifold, first_misoriented;
   auto describe = [&](const HalfEdge& h) {
     return "from " + format_point(vertices_[h.lo]) + " to " + format_point(vertices_[h.hi]);
@@ -103,7 +112,11 @@ MeshEdges::MeshEdges(const TriangleMesh& mesh) {
     }
     i = j;
   }
+  describe_problems(first_boundary, first_non_manifold, first_misoriented);
+}
 
+void MeshEdges::describe_problems(const std::string& first_boundary, const std::string& first_non_manifold,
+                                  const std::string& first_misoriented) {
   std::vector<std::string> problems;
   if (triangles_.empty()) problems.push_back("no triangles left after welding");
   if (boundary_ > 0)

@@ -57,6 +57,9 @@ class MeshEdges {
   const std::string& problem() const { return problem_; }
 
  private:
+  // problem_ from the counts and the first offending edge of each kind.
+  void describe_problems(const std::string& first_boundary, const std::string& first_non_manifold,
+                         const std::string& first_misoriented);
   std::vector<Vec3> vertices_;
   std::vector<std::array<uint32_t, 3>> triangles_;
   std::vector<MeshEdge> edges_;
