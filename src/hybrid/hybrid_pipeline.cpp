@@ -226,7 +226,6 @@ bool HybridScatterer::scatter(size_t index, const FrameLight& frame_light, const
             sigma_t = (medium.shader.sigma_a + medium.shader.sigma_s) * density;
   const ClippedDepth clipped = clip_to_medium(low_depth, low_view, medium.shape, point->position);
   const Plane& depth = clipped.depth;
-  const AirlightTable& table = AirlightTable::shared();
 
   const ShadowVolumeBuffers* buffers = nullptr;
   ShadowVolumeBuffers sv;
@@ -235,14 +234,25 @@ bool HybridScatterer::scatter(size_t index, const FrameLight& frame_light, const
     buffers = &sv;
   }
 
-  // Grey media take one evaluation, coloured ones one per channel.
+  const RGB weight = point->intensity * frame_light.options.volumetric_intensity;
+  if (!scatter_channels(method, sigma_s, sigma_t, point->position, weight, frame_light, low_view, depth, buffers,
+                        accum))
+    return false;
+  used_[index] = method;
+  return true;
+}
+
+// The airlight passes for one point light, once for a grey medium, once per channel otherwise.
+bool HybridScatterer::scatter_channels(VolumetricMethod method, RGB sigma_s, RGB sigma_t, Vec3 position, RGB weight,
+                                       const FrameLight& frame_light, const View& low_view, const Plane& depth,
+                                       const ShadowVolumeBuffers* buffers, ColorPlanes& accum) const {
+  const AirlightTable& table = AirlightTable::shared();
   const bool grey =
       sigma_s.r == sigma_s.g && sigma_s.g == sigma_s.b && sigma_t.r == sigma_t.g && sigma_t.g == sigma_t.b;
-  const RGB weight = point->intensity * frame_light.options.volumetric_intensity;
   const int passes = grey ? 1 : 3;
   for (int c = 0; c < passes; ++c) {
     const AirlightMedium m{sigma_s[c], sigma_t[c]};
-    const HybridLight light{point->position, 1.0f, RGB(1.0f)};
+    const HybridLight light{position, 1.0f, RGB(1.0f)};
     ColorPlanes result;
     switch (method) {
       case VolumetricMethod::kNone:
@@ -252,18 +262,16 @@ bool HybridScatterer::scatter(size_t index, const FrameLight& frame_light, const
         result = scatter_brute(low_view, depth, *frame_light.shadow, table, m, light, settings_).radiance;
         break;
       case VolumetricMethod::kHybrid:
-        result = scatter_hybrid(low_view, depth, *buffers, *frame_light.shadow, table, m, light, settings_)
-                     .radiance;
+        result = scatter_hybrid(low_view, depth, *buffers, *frame_light.shadow, table, m, light, settings_).radiance;
         break;
       case VolumetricMethod::kMarch:
       case VolumetricMethod::kTextured:
-        return false;  // handled above
+        return false;  // handled by scatter()
     }
     RGB w = weight;
     if (!grey) w = RGB(c == 0 ? weight.r : 0.0f, c == 1 ? weight.g : 0.0f, c == 2 ? weight.b : 0.0f);
     accum.add(result, w);
   }
-  used_[index] = method;
   return true;
 }
 

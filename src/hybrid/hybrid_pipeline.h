@@ -82,6 +82,9 @@ class HybridScatterer : public LightScatterer {
   ShadowVolumeBuffers shadow_volume_buffers(size_t index, Vec3 light, float light_reach, const View& low_view,
                                             const Plane& depth);
   // kTextured for a spot light: the textured-spotlight pass (hybrid/textured_spot.h).
+  bool scatter_channels(VolumetricMethod method, RGB sigma_s, RGB sigma_t, Vec3 position, RGB weight,
+                        const FrameLight& frame_light, const View& low_view, const Plane& depth,
+                        const ShadowVolumeBuffers* buffers, ColorPlanes& accum) const;
   bool scatter_spot(size_t index, const SpotLight& spot, const FrameLight& frame_light, const VolumeScene& volumes,
                     const View& low_view, const Plane& low_depth, ColorPlanes& accum);
 
