@@ -125,14 +125,15 @@ TEST(HybridPipeline, HybridMatchesBruteForceAndNoShadowsIsBrighter) {
 }
 
 // The march (accumulate_light, 64 steps, interleaved) integrates the same single scattering of
-// the same light in the same medium: the means agree within a few per cent.
+// the same light in the same medium. Both frames are deterministic; their means measured
+// +0.28 % apart (2026-12), held to twice that.
 TEST(HybridPipeline, HybridAgreesWithTheMarch) {
   const SceneDesc desc = wyman_like();
   const double h = mean(render(desc, VolumetricMethod::kHybrid).volumetric);
   const double m = mean(render(desc, VolumetricMethod::kMarch, 64).volumetric);
   std::printf("volumetric means: hybrid %.6g, march %.6g (hybrid/march - 1 = %+.2f %%)\n", h, m,
               (h / m - 1.0) * 100.0);
-  EXPECT_NEAR(h / m, 1.0, 0.04);
+  EXPECT_NEAR(h / m, 1.0, 0.006);
 }
 
 // An anisotropic phase is outside the airlight model: the light is left to the march, and the
@@ -189,9 +190,10 @@ TEST(HybridPipeline, TexturedSpotAgreesWithTheMarch) {
   ASSERT_GT(m, 0.0);
   std::printf("volumetric means: textured %.6g, march %.6g (textured/march - 1 = %+.2f %%)\n", t, m,
               (t / m - 1.0) * 100.0);
-  // Measured: +0.03 %. The tolerance leaves room for the two passes placing the shadow edge
-  // differently (the march's 64 interleaved steps against the textured pass's 16-150).
-  EXPECT_NEAR(t / m, 1.0, 0.04) << "textured " << t << ", march " << m;
+  // Deterministic frames, measured +1.47 % apart (2026-12; the two passes place the shadow edge
+  // differently: the march's 64 interleaved steps against the textured pass's 16-150), held to
+  // twice that.
+  EXPECT_NEAR(t / m, 1.0, 0.03) << "textured " << t << ", march " << m;
   // Under kHybrid the spot is not taken (the point-light model): it keeps the march.
   EXPECT_EQ(render(desc, VolumetricMethod::kHybrid).used, VolumetricMethod::kMarch);
 }
