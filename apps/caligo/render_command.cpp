@@ -412,13 +412,7 @@ int run_render(const RenderOptions& o) {
   RenderStats total;
   const auto start = std::chrono::steady_clock::now();
   const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-  const auto add = [&](const RenderStats& s) {
-    total.paths += s.paths;
-    total.rays += s.rays;
-    total.camera_march_steps += s.camera_march_steps;
-    total.march_steps += s.march_steps;
-    total.shader_evaluations += s.shader_evaluations;
-  };
+  const auto add = [&](const RenderStats& s) { total += s; };
   std::string stopped_by;
   if (!progressive.passes()) {
     add(render_up_to(film, *scene, settings, target, &interrupt.stop(), style));

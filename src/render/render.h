@@ -19,6 +19,17 @@ struct RenderStats {
   uint64_t camera_march_steps = 0;  // TransmittanceRecord steps of camera rays (per camera ray: / paths)
   uint64_t march_steps = 0;         // every marched step: camera, bounce and shadow rays
   uint64_t shader_evaluations = 0;  // every volume shader call
+
+  // Adds another render's counts (passes, resumed work); `seconds` is left to the caller, who
+  // times the whole.
+  RenderStats& operator+=(const RenderStats& o) {
+    paths += o.paths;
+    rays += o.rays;
+    camera_march_steps += o.camera_march_steps;
+    march_steps += o.march_steps;
+    shader_evaluations += o.shader_evaluations;
+    return *this;
+  }
 };
 
 struct RenderResult {
