@@ -49,4 +49,7 @@ constexpr RGB operator*(RGB a, float s) { return {a.r * s, a.g * s, a.b * s}; }
 constexpr RGB operator*(float s, RGB a) { return a * s; }
 constexpr RGB operator/(RGB a, float s) { return a * (1.0f / s); }
 
+// exp(-depth) per channel: the transmittance of an optical depth.
+inline RGB exp_neg(RGB depth) { return {std::exp(-depth.r), std::exp(-depth.g), std::exp(-depth.b)}; }
+
 }  // namespace caligo

@@ -45,8 +45,8 @@ RGB emission_direct_light(const PathContext& ctx, const EmissionVertex& v, int v
   if (!(p_e > 0.0f)) return RGB(0.0f);
   // The line's emission up to the first surface that is not null, as the bounce ray would see it.
   Ray line{s.origin, wi, 0.0f, kInfinity};
-  ++ctx.counters.rays;
-  if (const auto hit = nearest_non_null_hit(ctx.scene, line)) line.tmax = hit->t;
+  if (const auto hit = nearest_non_null_hit(ctx.scene, line, kMaxNullCrossings, &ctx.counters.rays))
+    line.tmax = hit->t;
   const RGB gathered = march_emission(ctx.scene.volumes(), line, sampler.get_1d(emission(vertex, sample_dim::kEmissionJitter)),
                                       ctx.scratch.march_settings, ctx.scratch.march);
   if (gathered.is_black()) return RGB(0.0f);

@@ -29,8 +29,6 @@ Vec2 next_2d(Pcg32& rng) {
   return {a, rng.next_float()};
 }
 
-RGB exp_negative(RGB depth) { return {std::exp(-depth.r), std::exp(-depth.g), std::exp(-depth.b)}; }
-
 // An RGB with `value` in one channel and zero in the others.
 RGB in_channel(int channel, float value) {
   return {channel == 0 ? value : 0.0f, channel == 1 ? value : 0.0f, channel == 2 ? value : 0.0f};
@@ -246,7 +244,7 @@ RGB transmittance_of_runs(const Scene& scene, const Ray& ray, const std::vector<
     stretch.tmin = run.t0;
     depth += optical_depth(scene, stretch, run.t1, steps, run.medium);
   }
-  return exp_negative(depth);
+  return exp_neg(depth);
 }
 
 // ---- single scattering ----
@@ -451,7 +449,7 @@ RGB surface_emission(const SurfaceInteraction& si, Vec3 wo) {
 }  // namespace
 
 RGB reference_transmittance(const Scene& scene, const Ray& ray, float t_max, int steps) {
-  return exp_negative(optical_depth(scene, ray, t_max, steps, -1));
+  return exp_neg(optical_depth(scene, ray, t_max, steps, -1));
 }
 
 RGB reference_transmittance(const Scene& scene, const Ray& ray, float t_max, int steps, const MediumStack& stack) {

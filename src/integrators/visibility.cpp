@@ -27,7 +27,8 @@ RGB stretch_transmittance(const Scene& scene, const Ray& stretch, const ShadowMe
   if (!collect_coarse_spans(scene.volumes(), stretch, settings, scratch.march, stack_medium)) return RGB(1.0f);
   if (medium.policy == SecondarySegments::kAuto && collected_spans_homogeneous(scratch.march))
     return march_transmittance_collected(scene.volumes(), stretch, medium.jitter, settings, scratch.march);
-  return track_transmittance(scene.volumes(), stretch, settings, scratch.march, rng, stack_medium, medium.residual);
+  return track_transmittance_chunked(scene.volumes(), stretch, settings, stack_medium, scratch.march, rng,
+                                     medium.residual);
 }
 
 RGB nested_transmittance(const Scene& scene, const Ray& shadow, bool casts_shadows, const ShadowMedium& medium,

@@ -170,7 +170,7 @@ RGB march_transmittance_collected(const VolumeScene& volumes, const Ray& ray, fl
                   return !opaque;
                 });
   if (opaque) return RGB(0.0f);
-  return {std::exp(-optical_depth.r), std::exp(-optical_depth.g), std::exp(-optical_depth.b)};
+  return exp_neg(optical_depth);
 }
 
 RGB march_emission(const VolumeScene& volumes, const Ray& ray, float jitter, const MarchSettings& settings,
@@ -181,8 +181,7 @@ RGB march_emission(const VolumeScene& volumes, const Ray& ray, float jitter, con
                 [&](float a, float b, float t_shade, std::span<const uint32_t> prims, float scale) {
                   const StepCoefficients c = shade_span(volumes, prims, ray.at(t_shade), scale, scratch.volume, nullptr);
                   if (!c.emission.is_black()) emission += integrate_emission(tr, c.sigma_t, c.emission, b - a);
-                  tr *= RGB(std::exp(-c.sigma_t.r * (b - a)), std::exp(-c.sigma_t.g * (b - a)),
-                            std::exp(-c.sigma_t.b * (b - a)));
+                  tr *= exp_neg(c.sigma_t * (b - a));
                   return tr.max_component() >= settings.opacity_threshold;
                 });
   return emission;

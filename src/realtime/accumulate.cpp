@@ -44,8 +44,6 @@ RGB camera_optical_depth(const VolumeScene& volumes, const PixelMarch& march, fl
   return tau;
 }
 
-RGB exp_neg(RGB tau) { return {std::exp(-tau.r), std::exp(-tau.g), std::exp(-tau.b)}; }
-
 constexpr int kLanes = int(LightVolumeLanes::Batch::size);
 
 // The light-volume spans of pixels x0 .. x0 + n - 1 of row y (n <= kLanes), tested 8 at a

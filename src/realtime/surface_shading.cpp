@@ -110,7 +110,7 @@ bool spot_cone_may_reach(const SpotLight& l, const Bounds3& b) {
 RGB transmittance(const VolumeScene& volumes, Vec3 a, Vec3 b) {
   if (volumes.empty()) return RGB(1.0f);
   const RGB tau = segment_optical_depth(volumes, a, b);
-  return {std::exp(-tau.r), std::exp(-tau.g), std::exp(-tau.b)};
+  return exp_neg(tau);
 }
 
 RGB light_term(const ShadeContext& c, const FrameLight& fl, Vec3 p, Vec3 n, RGB f) {

@@ -22,8 +22,6 @@ bool survive_roulette(RGB& weight, Pcg32& rng) {
   return true;
 }
 
-RGB exp_neg(RGB depth) { return {std::exp(-depth.r), std::exp(-depth.g), std::exp(-depth.b)}; }
-
 // Calls collision(t, span, mu) for every tentative collision of the collected spans, front to
 // back, where mu is the span's scalar majorant per unit t less its `control(span)` (also per unit
 // t: the walk samples the residual); stops when it returns false. Returns false when the walk was
@@ -152,6 +150,11 @@ TrackedSegment track_free_flight_chunked(const VolumeScene& volumes, const Ray& 
 RGB track_transmittance(const VolumeScene& volumes, const Ray& ray, const MarchSettings& settings,
                         MarchScratch& scratch, Pcg32& rng, int medium, bool residual) {
   if (!collect_coarse_spans(volumes, ray, settings, scratch, medium)) return RGB(1.0f);
+  return track_transmittance_chunked(volumes, ray, settings, medium, scratch, rng, residual);
+}
+
+RGB track_transmittance_chunked(const VolumeScene& volumes, const Ray& ray, const MarchSettings& settings, int medium,
+                                MarchScratch& scratch, Pcg32& rng, bool residual) {
   RGB tr(1.0f);
   for_each_chunk(volumes, ray, settings, medium, scratch, [&](const Ray& chunk) {
     tr = track_transmittance_collected(volumes, chunk, scratch, rng, residual, tr);

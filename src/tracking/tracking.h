@@ -82,6 +82,9 @@ inline constexpr float kTrackingChunkDepth = 4.0f;
 // block DDA), their lengths from the majorants met so far.
 RGB track_transmittance(const VolumeScene& volumes, const Ray& ray, const MarchSettings& settings,
                         MarchScratch& scratch, Pcg32& rng, int medium = -1, bool residual = true);
+// The same for a ray whose coarse spans (collect_coarse_spans) are already in scratch.
+RGB track_transmittance_chunked(const VolumeScene& volumes, const Ray& ray, const MarchSettings& settings, int medium,
+                                MarchScratch& scratch, Pcg32& rng, bool residual = true);
 // The same over the spans collect_spans() left in scratch, continuing a walk whose running
 // weight is `weight` (1: a new walk).
 RGB track_transmittance_collected(const VolumeScene& volumes, const Ray& ray, MarchScratch& scratch, Pcg32& rng,
