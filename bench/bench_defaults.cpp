@@ -30,7 +30,7 @@ constexpr int kRuns = 4;
 const char* const kScenes[] = {"lamp-in-fog", "default", "spot-shafts", "stage"};
 
 RenderSettings settings(const char* scene, bool former, int spp, uint64_t seed) {
-  RenderSettings s = default_settings(bench::builtin_scene(scene).desc());
+  RenderSettings s = render_settings(bench::builtin_scene(scene).desc());
   s.resolution = kResolution;
   s.spp = spp;
   s.seed = seed;

@@ -40,7 +40,7 @@ const Scene& dense_scene() {
 }
 
 RenderSettings settings(int deferred, int spp, uint64_t seed) {
-  RenderSettings s = default_settings(dense_scene().desc());
+  RenderSettings s = render_settings(dense_scene().desc());
   s.spp = spp;
   s.seed = seed;
   s.path.limits.max_volume_bounces = 256;

@@ -23,7 +23,7 @@ namespace {
 constexpr Vec2i kEfficiencyResolution{64, 36};
 
 RenderSettings cloud_settings(Vec2i resolution, int spp, uint64_t seed) {
-  RenderSettings s = default_settings(bench::builtin_scene("cloud").desc());
+  RenderSettings s = render_settings(bench::builtin_scene("cloud").desc());
   s.resolution = resolution;
   s.spp = spp;
   s.seed = seed;
@@ -87,7 +87,7 @@ void BM_CloudEfficiency(benchmark::State& state) {
     if (delta_tracking) {
       ReferenceOptions o;
       o.samples_per_pixel = spp;
-      o.limits = scene.desc().render.limits;
+      o.limits = scene.desc().render.path.limits;
       o.seed = uint64_t(runs) + 1;
       image = to_image(reference_image(scene, kEfficiencyResolution, o), kEfficiencyResolution);
     } else {

@@ -31,7 +31,7 @@ constexpr int kTreeSpp = 32;
 constexpr int kRuns = 8;
 
 RenderSettings lamp_settings(LightSamplerKind kind, int spp, uint64_t seed) {
-  RenderSettings s = default_settings(bench::builtin_scene("many-lamps").desc());
+  RenderSettings s = render_settings(bench::builtin_scene("many-lamps").desc());
   s.resolution = kResolution;
   s.spp = spp;
   s.seed = seed;

@@ -89,7 +89,7 @@ void BM_MeshVolumeIntervals(benchmark::State& state) {
   const MeshVolume& volume = *found;
   const std::vector<Ray> rays = rays_through_box(volume.bounds(), 4096);
   std::vector<SurfaceHit> hits;
-  std::vector<std::pair<float, float>> out;
+  std::vector<RayRange> out;
   size_t i = 0, intervals = 0;
   for (auto _ : state) {
     out.clear();

@@ -34,7 +34,7 @@ void BM_NestedOverhead(benchmark::State& state) {
     desc.shapes.push_back(box);
   }
   const auto scene = Scene::build(desc);
-  RenderSettings settings = default_settings(desc);
+  RenderSettings settings = render_settings(desc);
   settings.resolution = {160, 120};
   settings.spp = 16;
   uint64_t paths = 0;
@@ -63,7 +63,7 @@ void BM_NestedMediaPerRay(benchmark::State& state) {
   }
   desc.lights.push_back(EnvironmentLight{RGB(1.0f)});
   const auto scene = Scene::build(desc);
-  RenderSettings settings = default_settings(desc);
+  RenderSettings settings = render_settings(desc);
   settings.spp = 16;
   settings.path.limits.max_bounces = 1;
   uint64_t paths = 0;

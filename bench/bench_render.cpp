@@ -10,7 +10,7 @@ namespace {
 
 void BM_RenderDefault(benchmark::State& state) {
   const Scene& scene = bench::builtin_scene("default");
-  RenderSettings settings = default_settings(scene.desc());
+  RenderSettings settings = render_settings(scene.desc());
   settings.resolution = {int(state.range(0)), int(state.range(0)) * 3 / 4};
   settings.spp = int(state.range(1));
   uint64_t paths = 0, rays = 0;

@@ -44,7 +44,7 @@ constexpr Variant kVariants[] = {{"former", SecondarySegments::kMarch, true, fal
 constexpr int kVariantCount = int(std::size(kVariants));
 
 RenderResult render_with(const char* scene, const Variant& v, int spp, uint64_t seed) {
-  RenderSettings s = default_settings(bench::builtin_scene(scene).desc());
+  RenderSettings s = render_settings(bench::builtin_scene(scene).desc());
   s.resolution = kResolution;
   s.spp = spp;
   s.seed = seed;

@@ -20,7 +20,7 @@ constexpr Vec2i kResolution{160, 120};
 constexpr int kReferenceSpp = 1024;
 
 RenderSettings lamp_settings(DistanceSampling sampling, int spp, uint64_t seed, int bounces) {
-  RenderSettings s = default_settings(bench::builtin_scene("lamp-in-fog").desc());
+  RenderSettings s = render_settings(bench::builtin_scene("lamp-in-fog").desc());
   s.resolution = kResolution;
   s.spp = spp;
   s.seed = seed;

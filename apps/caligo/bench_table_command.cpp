@@ -205,7 +205,7 @@ struct Reference {
 };
 
 Reference render_reference(const SceneDesc& still, int resolution, int spp) {
-  RenderSettings rs = default_settings(still);
+  RenderSettings rs = render_settings(still);
   rs.resolution = {resolution, resolution};
   rs.spp = std::max(1, spp / 2);
   rs.path.limits.max_bounces = 1;

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "render/render_settings.h"
+#include "settings/render_settings.h"
 
 namespace caligo {
 

@@ -220,7 +220,7 @@ bool has_other_emitters(const SceneDesc& desc) {
 // light choice per vertex, a scene whose sun outshines its spots picks each spot rarely and
 // the reference fills with fireflies.
 Image reference_image(const RealtimeOptions& o, const SceneDesc& still, Vec2i resolution) {
-  RenderSettings rs = default_settings(still);
+  RenderSettings rs = render_settings(still);
   rs.resolution = resolution;
   rs.spp = o.reference_spp;
   rs.path.limits.max_bounces = 1;

@@ -153,7 +153,7 @@ CropWindow parse_crop(const std::string& text) {
 void apply_image_options(const RenderOptions& o, const SceneDesc& desc, RenderSettings& s) {
   if (o.filter) {
     const PixelFilterType type = parse_choice("--filter", *o.filter, kPixelFilterNames);
-    s.filter = PixelFilter({type, PixelFilterDesc::default_radius(type), PixelFilterDesc{}.sigma});
+    s.filter = {type, PixelFilterDesc::default_radius(type), PixelFilterDesc{}.sigma};
   }
   if (o.crop) s.crop = parse_crop(*o.crop);
   if (o.aovs) {
@@ -172,7 +172,7 @@ void apply_image_options(const RenderOptions& o, const SceneDesc& desc, RenderSe
 
 // The scene's settings with every option of the command line applied.
 RenderSettings settings_from(const RenderOptions& o, const SceneDesc& desc) {
-  RenderSettings s = default_settings(desc);
+  RenderSettings s = render_settings(desc);
   if (o.spp) {
     if (*o.spp < 1 || *o.spp > 1'000'000) throw InputError(kCommandLine, "--spp: expected 1 to 1000000");
     s.spp = *o.spp;

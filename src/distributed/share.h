@@ -12,7 +12,7 @@
 #include <optional>
 #include <string_view>
 
-#include "render/render_settings.h"
+#include "settings/render_settings.h"
 
 namespace caligo::distributed {
 

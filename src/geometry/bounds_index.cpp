@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/ray_solids.h"
+
 namespace caligo {
 namespace {
 
@@ -38,9 +40,8 @@ struct BoundsIndex::Impl {
     if (!args->valid[0]) return;
     const auto* self = static_cast<const Impl*>(args->geometryUserPtr);
     const RTCRay& r = reinterpret_cast<RTCRayHit*>(args->rayhit)->ray;
-    const Ray ray{{r.org_x, r.org_y, r.org_z}, {r.dir_x, r.dir_y, r.dir_z}, r.tnear, r.tfar};
-    float t0, t1;
-    if (self->boxes[args->primID].intersect(ray, &t0, &t1))
+    const Bounds3& box = self->boxes[args->primID];
+    if (ray_box({r.org_x, r.org_y, r.org_z}, {r.dir_x, r.dir_y, r.dir_z}, box.lo, box.hi, r.tnear, r.tfar))
       reinterpret_cast<CandidateContext*>(args->context)->out->push_back(args->primID);
   }
 };

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "core/ray_solids.h"
 #include "core/rng.h"
 
 namespace caligo {
@@ -29,10 +30,8 @@ TEST(BoundsIndex, FindsExactlyTheBoxesTheRayCrosses) {
     index.candidates(ray, found);
     std::sort(found.begin(), found.end());
     std::vector<uint32_t> expected;
-    for (uint32_t i = 0; i < boxes.size(); ++i) {
-      float t0, t1;
-      if (boxes[i].intersect(ray, &t0, &t1)) expected.push_back(i);
-    }
+    for (uint32_t i = 0; i < boxes.size(); ++i)
+      if (ray_box(ray.origin, ray.direction, boxes[i].lo, boxes[i].hi, ray.tmin, ray.tmax)) expected.push_back(i);
     EXPECT_EQ(found, expected) << "ray " << r;
   }
 }

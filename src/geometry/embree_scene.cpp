@@ -135,7 +135,7 @@ void EmbreeScene::Impl::sphere_intersect(const RTCIntersectFunctionNArguments* a
   const Ray ray = from_embree(rh->ray);
   const auto roots = intersect_sphere(*sphere, ray);
   if (!roots) return;
-  for (float t : {roots->t_near, roots->t_far}) {
+  for (float t : {roots->t0, roots->t1}) {
     if (t < ray.tmin || t >= rh->ray.tfar) continue;
     const Vec3 n = sphere_normal(*sphere, ray.at(t));
     RTCHit candidate{};
@@ -171,7 +171,7 @@ void EmbreeScene::Impl::sphere_occluded(const RTCOccludedFunctionNArguments* arg
   const Ray ray = from_embree(*r);
   const auto roots = intersect_sphere(*sphere, ray);
   if (!roots) return;
-  for (float t : {roots->t_near, roots->t_far}) {
+  for (float t : {roots->t0, roots->t1}) {
     if (t < ray.tmin || t >= ray.tmax) continue;
     const Vec3 n = sphere_normal(*sphere, ray.at(t));
     RTCHit candidate{};

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/ray_solids.h"
+
 namespace caligo {
 
 TriangleMesh box_mesh(Vec3 lo, Vec3 hi) {
@@ -32,25 +34,11 @@ Sphere Sphere::make(Vec3 center, float radius, const Transform& placement) {
   return {placement * Transform::translate(center) * Transform::scale(Vec3(radius))};
 }
 
-// Unit sphere in object space. The discriminant is formed as a * (1 - |l|^2) with l the
-// point of closest approach, which loses far less precision than b^2 - ac for distant
-// origins (Haines et al., Ray Tracing Gems, ch. 7); the roots use the stable q form.
-std::optional<SphereRoots> intersect_sphere(const Sphere& sphere, const Ray& world_ray) {
+// The unit sphere in object space (an affine map keeps the ray parameter).
+std::optional<RayRange> intersect_sphere(const Sphere& sphere, const Ray& world_ray) {
   const Transform& to_object = sphere.object_to_world;
-  const Vec3 o = to_object.inverse_point(world_ray.origin);
-  const Vec3 d = to_object.inverse_vector(world_ray.direction);
-  const float a = dot(d, d);
-  if (!(a > 0.0f)) return std::nullopt;
-  const float b = dot(o, d);
-  const float c = dot(o, o) - 1.0f;
-  const Vec3 l = o - d * (b / a);
-  const float disc = a * (1.0f - dot(l, l));
-  if (disc < 0.0f) return std::nullopt;
-  const float q = -(b + std::copysign(std::sqrt(disc), b));
-  float t0 = q / a;
-  float t1 = q != 0.0f ? c / q : -t0;
-  if (t0 > t1) std::swap(t0, t1);
-  return SphereRoots{t0, t1};
+  return sphere_roots(to_object.inverse_point(world_ray.origin), to_object.inverse_vector(world_ray.direction),
+                      Vec3(0.0f), 1.0f);
 }
 
 Vec3 sphere_normal(const Sphere& sphere, Vec3 world_point) {

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "core/ray.h"
+#include "core/ray_range.h"
 #include "core/transform.h"
 #include "geometry/triangle_mesh.h"
 
@@ -26,11 +27,9 @@ struct Sphere {
 };
 
 // Both roots of a ray against a sphere, in the ray's own parameter (not clipped to the
-// ray's range): t_near <= t_far. std::nullopt when the ray misses.
-struct SphereRoots {
-  float t_near, t_far;
-};
-std::optional<SphereRoots> intersect_sphere(const Sphere& sphere, const Ray& world_ray);
+// ray's range): t0 <= t1 (core/ray_solids.h's sphere_roots in object space). std::nullopt when
+// the ray misses.
+std::optional<RayRange> intersect_sphere(const Sphere& sphere, const Ray& world_ray);
 // Outward unit normal of the sphere at a world-space point on (or near) it.
 Vec3 sphere_normal(const Sphere& sphere, Vec3 world_point);
 

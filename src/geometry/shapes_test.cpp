@@ -37,8 +37,8 @@ TEST(Sphere, RootsMatchTheAnalyticDistances) {
   const Sphere s = Sphere::make({0, 0, 10}, 2.0f, {});
   const auto roots = intersect_sphere(s, {{0, 0, 0}, {0, 0, 1}});
   ASSERT_TRUE(roots);
-  EXPECT_NEAR(roots->t_near, 8.0f, 1e-5f);
-  EXPECT_NEAR(roots->t_far, 12.0f, 1e-5f);
+  EXPECT_NEAR(roots->t0, 8.0f, 1e-5f);
+  EXPECT_NEAR(roots->t1, 12.0f, 1e-5f);
   EXPECT_FALSE(intersect_sphere(s, {{0, 2.01f, 0}, {0, 0, 1}}));
 }
 
@@ -46,14 +46,14 @@ TEST(Sphere, FarOriginKeepsPrecision) {
   const Sphere s = Sphere::make({0, 0, 0}, 1.0f, {});
   const auto roots = intersect_sphere(s, {{0, 0.5f, -1e4f}, {0, 0, 1}});
   ASSERT_TRUE(roots);
-  EXPECT_NEAR(roots->t_near, 1e4f - std::sqrt(0.75f), 2e-3f);
+  EXPECT_NEAR(roots->t0, 1e4f - std::sqrt(0.75f), 2e-3f);
 }
 
 TEST(Sphere, NonUniformScaleMakesAnEllipsoid) {
   const Sphere s = Sphere::make({0, 0, 0}, 1.0f, Transform::scale({3, 1, 1}));
   const auto along_x = intersect_sphere(s, {{-10, 0, 0}, {1, 0, 0}});
   ASSERT_TRUE(along_x);
-  EXPECT_NEAR(along_x->t_near, 7.0f, 1e-5f);
+  EXPECT_NEAR(along_x->t0, 7.0f, 1e-5f);
   const Vec3 n = sphere_normal(s, {3, 0, 0});
   EXPECT_NEAR(n.x, 1.0f, 1e-5f);
   // On the ellipse x^2/9 + y^2 = 1 the normal is proportional to (x/9, y).

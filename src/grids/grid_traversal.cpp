@@ -1,9 +1,10 @@
 #include "grids/grid_traversal.h"
 
-#include "grids/grid_dda.h"
-
 #include <algorithm>
 #include <cmath>
+
+#include "core/ray_solids.h"
+#include "grids/grid_dda.h"
 
 namespace caligo {
 namespace {
@@ -74,21 +75,6 @@ bool clip_to_tight_box(Vec3 o, Vec3 d, Vec3 corner, const TightBox& box, float& 
 
 }  // namespace
 
-bool clip_to_box(Vec3 origin, Vec3 direction, Vec3 lo, Vec3 hi, float& t0, float& t1) {
-  for (int a = 0; a < 3; ++a) {
-    if (direction[a] == 0.0f) {
-      if (!(origin[a] >= lo[a] && origin[a] <= hi[a])) return false;
-      continue;
-    }
-    const float inv = 1.0f / direction[a];
-    float tn = (lo[a] - origin[a]) * inv, tf = (hi[a] - origin[a]) * inv;
-    if (tn > tf) std::swap(tn, tf);
-    t0 = std::max(t0, tn);
-    t1 = std::min(t1, tf);
-  }
-  return t0 < t1;
-}
-
 void block_intervals(const GridBlocks& blocks, Vec3 origin, Vec3 direction, float t0, float t1,
                      float merge_tolerance, std::vector<GridInterval>& out) {
   if (blocks.empty() || !is_finite(origin) || !is_finite(direction) || length_squared(direction) == 0.0f)
@@ -99,7 +85,10 @@ void block_intervals(const GridBlocks& blocks, Vec3 origin, Vec3 direction, floa
   const Vec3 box_hi(float((blocks.block_hi[0] + 1) * kBlockEdge),
                     float((blocks.block_hi[1] + 1) * kBlockEdge),
                     float((blocks.block_hi[2] + 1) * kBlockEdge));
-  if (!clip_to_box(origin, direction, box_lo, box_hi, t0, t1)) return;
+  const auto clipped = ray_box(origin, direction, box_lo, box_hi, t0, t1);
+  if (!clipped || !(clipped->t0 < clipped->t1)) return;
+  t0 = clipped->t0;
+  t1 = clipped->t1;
 
   IntervalMerger merger(out, merge_tolerance);
   const Vec3 parent_origin(float(blocks.parent_lo[0] * kParentVoxels),

@@ -21,8 +21,4 @@ namespace caligo {
 void block_intervals(const GridBlocks& blocks, Vec3 origin, Vec3 direction, float t0, float t1,
                      float merge_tolerance, std::vector<GridInterval>& out);
 
-// The ray's overlap with the box [lo, hi] clipped to [t0, t1]; false when empty. Handles zero
-// direction components (the slab is then all or nothing).
-bool clip_to_box(Vec3 origin, Vec3 direction, Vec3 lo, Vec3 hi, float& t0, float& t1);
-
 }  // namespace caligo

@@ -10,6 +10,7 @@
 #include <limits>
 #include <vector>
 
+#include "core/ray_solids.h"
 #include "core/rng.h"
 #include "grids/grid_accessor_cache.h"
 #include "grids/grid_test_grids.h"
@@ -130,14 +131,13 @@ void check_against_samples(const VolumeGrid& grid, const Ray& ray, float t0, flo
   std::vector<GridInterval> iv;
   grid.intervals(ray, t0, t1, iv, tolerance);
   expect_ordered(iv, t0, t1);
-  float b0 = t0, b1 = t1;
-  Ray clip = ray;
-  clip.tmin = t0;
-  clip.tmax = t1;
-  if (!grid.world_bounds().intersect(clip, &b0, &b1)) {
+  const Bounds3 bounds = grid.world_bounds();
+  const auto inside = ray_box(ray.origin, ray.direction, bounds.lo, bounds.hi, t0, t1);
+  if (!inside) {
     EXPECT_TRUE(iv.empty());
     return;
   }
+  const float b0 = inside->t0, b1 = inside->t1;
   const float index_length = length(ray.direction) / kVoxel * (b1 - b0);
   const int n = std::min(20000, std::max(16, int(index_length * 20.0f)));
   std::vector<float> lo(iv.size(), kInfinity), hi(iv.size(), 0.0f), first(iv.size(), -1.0f);

@@ -23,7 +23,7 @@ TEST(AirlightReference, MatchesThePathTracersSingleScattering) {
   desc.volumes.push_back({SphereVolumeShape{Sphere::make({0, 0, 0}, radius, {})}, {RGB(sigma_a), RGB(sigma_s)}});
   desc.lights.push_back(PointLight{light, RGB(intensity)});
   const auto scene = Scene::build(desc);
-  RenderSettings s = default_settings(desc);
+  RenderSettings s = render_settings(desc);
   s.spp = 1024;
   s.path.limits.max_bounces = 1;
   s.path.limits.max_volume_bounces = 1;

@@ -67,7 +67,7 @@ bool inside(const VolumeShape& shape, Vec3 p) {
   // A short ray from p: p is inside a convex hull when the hull interval starts at p.
   const Ray ray{p, Vec3(0, 1, 0), 0.0f, kInfinity};
   const auto hull = volume_hull_interval(shape, ray);
-  return hull && hull->first <= 0.0f && hull->second > 0.0f;
+  return hull && hull->t0 <= 0.0f && hull->t1 > 0.0f;
 }
 
 // The opaque depth cut at the medium's exit, so every pass integrates the lit medium only, and
@@ -88,7 +88,7 @@ ClippedDepth clip_to_medium(const Plane& depth, const View& view, const VolumeSh
       ray.tmax = kInfinity;
       const auto hull = volume_hull_interval(shape, ray);
       const float per_t = view.depth_per_t(ray.direction);
-      const float exit_depth = hull ? hull->second * per_t : 0.0f;
+      const float exit_depth = hull ? hull->t1 * per_t : 0.0f;
       const float d = std::min(depth.at(x, y), exit_depth);
       out.depth.at(x, y) = d;
       const float t = per_t > 0.0f && d < kSkyDepth ? d / per_t : kInfinity;

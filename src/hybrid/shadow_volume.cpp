@@ -10,7 +10,8 @@
 #include <xsimd/xsimd.hpp>
 
 #include "core/parallel.h"
-#include "realtime/raster_setup.h"
+#include "core/ray_solids.h"
+#include "realtime/raster_row.h"
 #include "realtime/scene_buffers.h"
 
 namespace caligo {
@@ -55,7 +56,6 @@ int segment_crossing(const double p[3], const double q[3], Vec3 a, Vec3 b, Vec3 
 
 bool segment_hits_box(Vec3 p, Vec3 q, const Bounds3& b) {
   if (b.empty()) return false;
-  Ray r{p, q - p, 0.0f, 1.0f};
   // Pad the box: the slab test in float must not reject a segment the exact test accepts.
   Bounds3 padded = b;
   const float pad =
@@ -63,8 +63,7 @@ bool segment_hits_box(Vec3 p, Vec3 q, const Bounds3& b) {
                                         Vec3(std::abs(b.hi.x), std::abs(b.hi.y), std::abs(b.hi.z)))));
   padded.lo = padded.lo - Vec3(pad);
   padded.hi = padded.hi + Vec3(pad);
-  float t0, t1;
-  return padded.intersect(r, &t0, &t1);
+  return ray_box(p, q - p, padded.lo, padded.hi, 0.0f, 1.0f).has_value();
 }
 
 // Winding number towards one target; false when some crossing grazed an edge.
@@ -215,7 +214,6 @@ struct BandTarget {
 
 inline float depth_to_key(float depth, bool perspective) { return perspective ? 1.0f / depth : -depth; }
 inline float key_to_depth(float key, bool perspective) { return perspective ? 1.0f / key : -key; }
-inline bool covered(float e, bool tie) { return e > 0.0f || (e == 0.0f && tie); }
 
 // Narrows [*x0, *x1) to the pixels of one row that can be covered. Side quads are long
 // slivers whose bounding boxes span much of the screen, so testing every pixel of the box
@@ -229,7 +227,7 @@ bool row_span(const raster::ScreenTri& tri, const std::array<float, 3>& inv_dy, 
   for (int i = 0; i < 3; ++i) {
     const float dy = tri.dy[i];
     if (dy == 0.0f) {  // e = -r along the whole row
-      if (!covered(-r[size_t(i)], tri.tie[i])) return false;
+      if (!raster::covered(-r[size_t(i)], tri.tie[i])) return false;
       continue;
     }
     // e = 0 at px = cross; clamped to the screen's neighbourhood before converting to int.
@@ -249,67 +247,39 @@ bool row_span(const raster::ScreenTri& tri, const std::array<float, 3>& inv_dy, 
 // ground, behind every pixel). False when none.
 bool row_pixels(const raster::ScreenTri& tri, const std::array<float, 3>& inv_dy, float py, const BandTarget& t,
                 int row, std::array<float, 3>* r, int* x0, int* x1) {
-  *r = {(py - tri.ay[0]) * tri.dx[0], (py - tri.ay[1]) * tri.dx[1], (py - tri.ay[2]) * tri.dx[2]};
+  *r = raster::row_terms(tri, py);
   if (!row_span(tri, inv_dy, *r, x0, x1)) return false;
-  auto key_at = [&](float px) {
-    return ((px - tri.ax[0]) * tri.dy[0] - (*r)[0]) * tri.c[0] + ((px - tri.ax[1]) * tri.dy[1] - (*r)[1]) * tri.c[1] +
-           ((px - tri.ax[2]) * tri.dy[2] - (*r)[2]) * tri.c[2];
-  };
-  const float best = std::max(key_at(float(*x0) + 0.5f), key_at(float(*x1) - 0.5f));
+  const float best = std::max(raster::key_at(tri, *r, float(*x0) + 0.5f), raster::key_at(tri, *r, float(*x1) - 0.5f));
   return best + 1e-5f * std::abs(best) > t.span_limit(row, *x0, *x1);
 }
 
-// One pixel row of a triangle, a pixel at a time (the reference for the SIMD loop below).
+// One pixel row of a triangle: each covered pixel in front of the opaque surface widens the
+// pixel's key range and adds the triangle's sign to its crossings. The 8-lane walk gives the
+// same buffers as the scalar one (raster_row.h).
 void raster_row_scalar(const raster::ScreenTri& tri, float sign, const std::array<float, 3>& r, int x0, int x1,
                        size_t row, BandTarget& t) {
-  for (int x = x0; x < x1; ++x) {
-    const float px = float(x) + 0.5f;
-    const float e0 = (px - tri.ax[0]) * tri.dy[0] - r[0];
-    const float e1 = (px - tri.ax[1]) * tri.dy[1] - r[1];
-    const float e2 = (px - tri.ax[2]) * tri.dy[2] - r[2];
-    if (!covered(e0, tri.tie[0]) || !covered(e1, tri.tie[1]) || !covered(e2, tri.tie[2])) continue;
-    const float key = e0 * tri.c[0] + e1 * tri.c[1] + e2 * tri.c[2];
+  raster::for_covered_pixels(tri, r, x0, x1, [&](int x, float key) {
     const size_t i = row + size_t(x);
-    if (!(key > t.limit[i])) continue;  // at or behind the opaque surface
+    if (!(key > t.limit[i])) return;  // at or behind the opaque surface
     t.nearest[i] = std::max(t.nearest[i], key);
     t.farthest[i] = std::min(t.farthest[i], key);
     t.crossings[i] += sign;
-  }
-}
-
-// The same row 8 pixels at a time (AVX2). The arithmetic is the scalar loop's, operation for
-// operation (this file is compiled without FMA contraction), so both give identical buffers.
-using Batch = xsimd::batch<float>;
-inline xsimd::batch_bool<float> covered(Batch e, bool tie) {
-  return tie ? (e >= Batch(0.0f)) : (e > Batch(0.0f));
+  });
 }
 
 void raster_row_simd(const raster::ScreenTri& tri, float sign, const std::array<float, 3>& r, int x0, int x1,
                      size_t row, BandTarget& t) {
-  alignas(32) static constexpr float kLaneCentres[8] = {0.5f, 1.5f, 2.5f, 3.5f, 4.5f, 5.5f, 6.5f, 7.5f};
-  const Batch lanes = Batch::load_aligned(kLaneCentres);
-  const Batch lo = Batch(float(x0)), hi = Batch(float(x1));
-  const Batch ax0(tri.ax[0]), ax1(tri.ax[1]), ax2(tri.ax[2]);
-  const Batch dy0(tri.dy[0]), dy1(tri.dy[1]), dy2(tri.dy[2]);
-  const Batch c0(tri.c[0]), c1(tri.c[1]), c2(tri.c[2]);
-  const Batch r0(r[0]), r1(r[1]), r2(r[2]), step(sign), zero(0.0f);
-  for (int x = x0 & ~7; x < x1; x += 8) {
-    const Batch px = Batch(float(x)) + lanes;
-    const Batch e0 = (px - ax0) * dy0 - r0;
-    const Batch e1 = (px - ax1) * dy1 - r1;
-    const Batch e2 = (px - ax2) * dy2 - r2;
-    auto mask = covered(e0, tri.tie[0]) & covered(e1, tri.tie[1]) & covered(e2, tri.tie[2]) & (px > lo) &
-                (px < hi);
-    if (!xsimd::any(mask)) continue;
-    const Batch key = e0 * c0 + e1 * c1 + e2 * c2;
+  using raster::Batch;
+  const Batch step(sign), zero(0.0f);
+  raster::for_covered_lanes(tri, r, x0, x1, [&](int x, Batch key, raster::Mask mask) {
     const size_t i = row + size_t(x);
     mask = mask & (key > Batch::load_unaligned(&t.limit[i]));
-    if (!xsimd::any(mask)) continue;
+    if (!xsimd::any(mask)) return;
     const Batch nearest = Batch::load_unaligned(&t.nearest[i]), farthest = Batch::load_unaligned(&t.farthest[i]);
     xsimd::select(mask, xsimd::max(nearest, key), nearest).store_unaligned(&t.nearest[i]);
     xsimd::select(mask, xsimd::min(farthest, key), farthest).store_unaligned(&t.farthest[i]);
     (Batch::load_unaligned(&t.crossings[i]) + xsimd::select(mask, step, zero)).store_unaligned(&t.crossings[i]);
-  }
+  });
 }
 
 // One band of rows [y0, y1): every triangle overlapping it, row by row. Bands rather than the

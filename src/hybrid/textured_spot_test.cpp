@@ -63,7 +63,7 @@ float ray_end(const Scene& s, const Ray& ray, int x, int y, float max_distance =
 
 // The ray's stretch inside the spot's cone, clipped to the surface (light_volume_interval, whose
 // agreement with delta_arrival along whole rays OnlyRaysInsideTheConeAreMarched checks).
-std::optional<TInterval> cone_span(const Scene& s, const SpotLight& spot, int x, int y) {
+std::optional<RayRange> cone_span(const Scene& s, const SpotLight& spot, int x, int y) {
   const Ray ray = s.view.ray({float(x) + 0.5f, float(y) + 0.5f});
   return light_volume_interval(Light{spot}, ray.origin, ray.direction, 0.0f, ray_end(s, ray, x, y));
 }

@@ -38,7 +38,7 @@ RGB mean_rgb(const Image& image, bool (*keep)(const Image&, int, int) = nullptr)
 
 RenderResult render_desc(const SceneDesc& desc, int spp, int max_bounces) {
   const auto scene = Scene::build(desc);
-  RenderSettings settings = default_settings(desc);
+  RenderSettings settings = render_settings(desc);
   settings.spp = spp;
   settings.path.limits.max_bounces = max_bounces;
   return render(*scene, settings);
@@ -117,7 +117,7 @@ TEST(Render, IdenticalForAnyThreadCount) {
   SceneDesc desc = point_in_sphere(0.7f);
   desc.lights.push_back(QuadLight{{-0.5f, 1.5f, -0.5f}, {1, 0, 0}, {0, 0, 1}, RGB(3.0f)});
   const auto scene = Scene::build(desc);
-  RenderSettings settings = default_settings(desc);
+  RenderSettings settings = render_settings(desc);
   settings.spp = 8;
   settings.threads = 1;
   const Image one = render(*scene, settings).image;

@@ -28,7 +28,7 @@ Comparison compare_builtin(const char* name, Vec2i resolution, int production_sp
                            int max_volume_bounces, int first_row = 0) {
   const SceneDesc desc = parse_builtin(*find_builtin(name));
   const auto scene = Scene::build(desc);
-  RenderSettings settings = default_settings(desc);
+  RenderSettings settings = render_settings(desc);
   settings.resolution = resolution;
   settings.spp = production_spp;
   settings.path.limits.max_volume_bounces = max_volume_bounces;
@@ -36,7 +36,7 @@ Comparison compare_builtin(const char* name, Vec2i resolution, int production_sp
   ReferenceOptions options;
   options.estimator = ReferenceEstimator::kDeltaTracking;
   options.samples_per_pixel = reference_spp;
-  options.limits = {.max_bounces = desc.render.limits.max_bounces, .max_volume_bounces = max_volume_bounces};
+  options.limits = {.max_bounces = desc.render.path.limits.max_bounces, .max_volume_bounces = max_volume_bounces};
   options.seed = 77;
   const std::vector<RGB> reference = reference_image(*scene, resolution, options);
   Comparison c;
@@ -65,8 +65,8 @@ TEST(BuiltinScenes, OverlapAgreesWithDeltaTracking) {
 // over seeds about 5 %, against about 1 % below it). Tolerance 3 %.
 TEST(BuiltinScenes, SpotShaftsAgreesWithDeltaTracking) {
   const SceneDesc desc = parse_builtin(*find_builtin("spot-shafts"));
-  ASSERT_EQ(desc.render.limits.max_bounces, 1);
-  ASSERT_EQ(desc.render.limits.max_volume_bounces, 1);
+  ASSERT_EQ(desc.render.path.limits.max_bounces, 1);
+  ASSERT_EQ(desc.render.path.limits.max_volume_bounces, 1);
   const Comparison c = compare_builtin("spot-shafts", {24, 18}, 512, 2048, 1, 6);
   expect_close(c.production, c.reference, 0.03f);
 }
@@ -83,7 +83,7 @@ struct PixelMean {
 PixelMean render_builtin_mean(const char* name, Vec2i resolution, int spp) {
   const SceneDesc desc = parse_builtin(*find_builtin(name));
   const auto scene = Scene::build(desc);
-  RenderSettings settings = default_settings(desc);
+  RenderSettings settings = render_settings(desc);
   settings.resolution = resolution;
   settings.spp = spp;
   const Image image = render(*scene, settings).image;

@@ -142,7 +142,7 @@ TEST(EmissionScenes, SampledEmissionKeepsTheMeanAndLowersTheNoise) {
   for (int sampled = 0; sampled < 2; ++sampled) {
     std::vector<Stat> pixels(size_t(desc.camera.resolution.x * desc.camera.resolution.y));
     for (int run = 0; run < runs; ++run) {
-      RenderSettings s = default_settings(desc);
+      RenderSettings s = render_settings(desc);
       s.spp = 16;
       s.seed = uint64_t(run);
       s.path.limits = {.max_bounces = 8, .max_volume_bounces = 8};
@@ -174,7 +174,7 @@ TEST(EmissionScenes, TrackedEmissiveImagesArePureFunctionsOfTheSample) {
   SceneDesc desc = flame_over_floor();
   desc.camera.look_at = {1.2f, 0.5f, 1.2f};  // the emitter in view as well
   const auto scene = Scene::build(desc);
-  RenderSettings s = default_settings(desc);
+  RenderSettings s = render_settings(desc);
   s.spp = 6;
   s.path.secondary = SecondarySegments::kTrack;
   s.threads = 1;

@@ -27,7 +27,7 @@ int add_material(SceneDesc& desc, Bsdf bsdf) {
 
 Image render_desc(const SceneDesc& desc, int spp, int max_bounces = 8) {
   const auto scene = Scene::build(desc);
-  RenderSettings s = default_settings(desc);
+  RenderSettings s = render_settings(desc);
   s.spp = spp;
   s.path.limits.max_bounces = max_bounces;
   return render(*scene, s).image;

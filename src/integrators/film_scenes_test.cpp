@@ -25,7 +25,7 @@ int add_material(SceneDesc& desc, Bsdf bsdf, RGB emission = RGB(0.0f)) {
 }
 
 RenderSettings settings_for(const SceneDesc& desc, int spp, AovSet aovs = AovSet::all()) {
-  RenderSettings s = default_settings(desc);
+  RenderSettings s = render_settings(desc);
   s.spp = spp;
   s.aovs = aovs;
   return s;

@@ -233,14 +233,14 @@ TEST(GridVolume, ProductionMarcherAgreesWithDeltaTrackingOnAGridCloud) {
   SceneDesc desc;
   desc.file = "test";
   desc.camera = {{0, 0.3f, 5}, {0, 0, 0}, {0, 1, 0}, 30.0f, {8, 8}};
-  desc.render.limits.max_bounces = 16;
+  desc.render.path.limits.max_bounces = 16;
   desc.volumes.push_back(grid_primitive(cloud, RGB(0.4f), RGB(3.6f)));
   desc.volumes.back().shader.phase = HenyeyGreensteinPhase{0.5f};
   desc.lights.push_back(DirectionalLight{normalize(Vec3(-0.5f, -0.7f, -0.4f)), RGB(3.0f)});
   desc.lights.push_back(EnvironmentLight{RGB(0.2f, 0.3f, 0.5f)});
   const auto scene = Scene::build(desc);
 
-  RenderSettings s = default_settings(desc);
+  RenderSettings s = render_settings(desc);
   s.spp = 2048;
   s.path.limits = {.max_bounces = 16, .max_volume_bounces = 16};
   s.path.secondary = SecondarySegments::kMarch;

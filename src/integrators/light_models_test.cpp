@@ -32,7 +32,7 @@ BoxLight box_over_the_ray() {
 
 float render_green(const SceneDesc& desc, int spp, DistanceSampling sampling) {
   const auto scene = Scene::build(desc);
-  RenderSettings s = default_settings(desc);
+  RenderSettings s = render_settings(desc);
   s.spp = spp;
   s.path.limits.max_volume_bounces = 1;
   s.path.limits.max_bounces = 1;
@@ -121,7 +121,7 @@ TEST(LightModels, LightsWithoutShadowsAreNotBlockedBySurfaces) {
     desc.light_options.push_back({});
     desc.light_options[0].shadow = shadow;
     const auto scene = Scene::build(desc);
-    RenderSettings s = default_settings(desc);
+    RenderSettings s = render_settings(desc);
     s.spp = 4;
     s.path.limits.max_bounces = 1;
     const float g = render(*scene, s).image.rgb(0, 0, 0).g;

@@ -63,7 +63,7 @@ struct Estimate {
 Estimate image_mean(const Scene& scene, const SceneDesc& desc, LightSamplerKind kind) {
   double sum = 0.0, sum_sq = 0.0;
   for (int run = 0; run < kRuns; ++run) {
-    RenderSettings s = default_settings(desc);
+    RenderSettings s = render_settings(desc);
     s.path.light_sampler = kind;
     s.seed = uint64_t(1000 + run);
     const Image image = render(scene, s).image;
@@ -104,7 +104,7 @@ TEST(LightTreeRender, OneLightScenesAreIdenticalUnderTreeAndPower) {
   for (const char* name : {"lamp-in-fog", "spot-shafts"}) {
     const SceneDesc desc = parse_builtin(*find_builtin(name));
     const auto scene = Scene::build(desc);
-    RenderSettings s = default_settings(desc);
+    RenderSettings s = render_settings(desc);
     s.resolution = {16, 12};
     s.spp = 4;
     s.path.light_sampler = LightSamplerKind::kPower;

@@ -45,7 +45,7 @@ void add_box(SceneDesc& desc, Vec3 lo, Vec3 hi, int material) {
 
 Image render_desc(const SceneDesc& desc, int spp) {
   const auto scene = Scene::build(desc);
-  RenderSettings s = default_settings(desc);
+  RenderSettings s = render_settings(desc);
   s.spp = spp;
   return render(*scene, s).image;
 }
@@ -149,7 +149,7 @@ TEST(NestedMedia, GlassToWaterReflectsWithTheirIorRatio) {
   add_box(desc, {-50, -0.5f, -50}, {50, 0.5f, 50}, glass);
   add_box(desc, {-50, -20, -50}, {50, -0.4f, 50}, water);
   desc.lights.push_back(EnvironmentLight{RGB(1.0f)});
-  desc.render.limits.max_bounces = 16;
+  desc.render.path.limits.max_bounces = 16;
   const auto scene = Scene::build(desc);
   ASSERT_EQ(scene->camera_stack().size(), 1u);  // the camera is in the glass
   const int spp = 1 << 18;
@@ -235,7 +235,7 @@ TEST(NestedMedia, CameraUnderOpenWaterSeesThroughTheWater) {
 TEST(NestedMedia, ShadowRaysSeeTheMediaTheCameraSees) {
   for (bool dielectric : {false, true}) {
     SceneDesc desc = camera_at({-0.5f, 0, 0}, {10, 0, 0}, {1, 1}, 0.2f);
-    desc.render.priority_shadows = true;
+    desc.render.path.priority_shadows = true;
     const RGB sigma{0.4f, 0.2f, 0.1f};
     const int box = add_boundary(desc, "box", kPriorityNormal, add_medium(desc, "m", sigma), 1.0f, dielectric);
     add_box(desc, {-1, -1, -1}, {1, 1, 1}, box);
@@ -248,12 +248,12 @@ TEST(NestedMedia, ShadowRaysSeeTheMediaTheCameraSees) {
     const Vec3 x{-0.5f, 0, 0};
     const auto ls = sample_light(scene->lights()[0], x, {0.5f, 0.5f});
     ASSERT_TRUE(ls);
-    const RGB tr = light_transmittance(*scene, x, x, *ls, true, 0.5f, scratch, counters);
+    ShadowMedium passing(0.5f);
+    passing.priority_shadows = true;
+    const RGB tr = light_transmittance(*scene, x, x, *ls, true, passing, scratch, counters);
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(tr[c], std::exp(-sigma[c] * 1.5f), 1e-5f) << "dielectric " << dielectric;
     // With priority_shadows off a dielectric boundary blocks; a null one never does.
-    desc.render.priority_shadows = false;
-    const auto blocking = Scene::build(desc);
-    const RGB tr2 = light_transmittance(*blocking, x, x, *ls, true, 0.5f, scratch, counters);
+    const RGB tr2 = light_transmittance(*scene, x, x, *ls, true, ShadowMedium(0.5f), scratch, counters);
     EXPECT_EQ(tr2.is_black(), dielectric);
     // The camera ray from inside, out through the box's face to the sky: exp(-sigma 1.5) too
     // (free-flight estimate from 2^16 paths; pass probability p = mean T = 0.72, so the relative
@@ -270,7 +270,7 @@ TEST(NestedMedia, ShadowRaysSeeTheMediaTheCameraSees) {
 // box (very high, vacuum) the water surface is a hidden crossing, straight for BSDF samples too.
 TEST(NestedMedia, HiddenDielectricCrossingsKeepMis) {
   SceneDesc desc = camera_at({0, 3, 5}, {0, 0, 0}, {1, 1}, 30.0f);
-  desc.render.priority_shadows = true;
+  desc.render.path.priority_shadows = true;
   const int water = add_boundary(desc, "water", kPriorityNormal, add_medium(desc, "w", RGB(0.1f)), 1.33f, true);
   add_box(desc, {-10, -10, -10}, {10, 0, 10}, water);
   const int clip = add_boundary(desc, "clip", kPriorityVeryHigh, -1);
@@ -284,7 +284,9 @@ TEST(NestedMedia, HiddenDielectricCrossingsKeepMis) {
     scratch.pending.clear();
     const LightSample ls{RGB(1.0f), normalize(light - x), distance(light, x), 1.0f, true};
     bool crossed = false;
-    const RGB tr = light_transmittance(*scene, x, x, ls, true, 0.5f, scratch, counters, kInfinity, &crossed);
+    ShadowMedium passing(0.5f);
+    passing.priority_shadows = true;
+    const RGB tr = light_transmittance(*scene, x, x, ls, true, passing, scratch, counters, kInfinity, &crossed);
     EXPECT_FALSE(tr.is_black());
     return crossed;
   };

@@ -139,7 +139,7 @@ struct Limits {
 };
 
 MeanEstimate production_mean(const Scene& scene, int spp, Limits limits, uint64_t seed = 1) {
-  PathSettings settings;
+  PathSettings settings = scene.desc().render.path;  // its priority_shadows
   settings.absorption_by_weight = limits.absorption_by_weight;
   settings.limits = limits.path;
   return image_mean(scene, spp, [&](const Camera& camera, int x, int y, int s) {

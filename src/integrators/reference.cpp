@@ -95,7 +95,7 @@ std::optional<std::vector<MediumRun>> medium_runs(const Scene& scene, const Ray&
     const bool null = std::holds_alternative<NullBsdf>(scene.material(h).bsdf);
     const auto entry = scene.medium_entry(h.geom_id);
     if (blocking == Blocking::kShadow &&
-        ((!entry && !null) || (entry && !null && !scene.desc().render.priority_shadows)))
+        ((!entry && !null) || (entry && !null && !scene.desc().render.path.priority_shadows)))
       return std::nullopt;
     if (!entry) continue;
     runs.push_back({t0, h.t, stack.current().medium});

@@ -21,7 +21,7 @@
 // stack only when the sampled direction transmits. The medium the stack puts a stretch in is
 // a homogeneous unbounded primitive (VolumeScene::intervals' `medium`), tracked like any other.
 // Shadow rays carry a copy of the stack: Off non-null surfaces block, priority dielectrics
-// block unless RenderDefaults::priority_shadows, null surfaces never do, and each stretch
+// block unless the scene's PathSettings::priority_shadows, null surfaces never do, and each stretch
 // between priority crossings is attenuated by the medium the rules give it (no Fresnel).
 //
 // Conventions of all three: rays have unit directions (t is in metres); overlapping volume

@@ -115,7 +115,7 @@ struct ProductionRun {
 };
 
 std::vector<RGB> render_production(const Scene& scene, const SceneDesc& desc, const ProductionRun& run) {
-  RenderSettings settings = default_settings(desc);
+  RenderSettings settings = render_settings(desc);
   settings.spp = run.spp;
   settings.path.limits.max_volume_bounces = run.max_volume_bounces;
   settings.path.distance_sampling = run.distance_sampling;

@@ -30,7 +30,7 @@ PixelStats render_stats(const std::string& json, int spp, LightSamplingOptions o
                         int max_bounces = 1) {
   const SceneDesc desc = parse_scene_text(json, "test", "");
   const auto scene = Scene::build(desc);
-  RenderSettings s = default_settings(desc);
+  RenderSettings s = render_settings(desc);
   s.spp = spp;
   s.path.limits.max_bounces = max_bounces;
   s.path.limits.max_volume_bounces = 1;
@@ -137,7 +137,7 @@ TEST(SolidAngleScenes, NeonAndStageBuildAndRender) {
     const auto triangles = std::count_if(scene->lights().begin(), scene->lights().end(),
                                          [](const Light& l) { return std::holds_alternative<TriangleLight>(l); });
     EXPECT_EQ(triangles, std::string(name) == "neon" ? 3 * 2048 : 0);
-    RenderSettings s = default_settings(desc);
+    RenderSettings s = render_settings(desc);
     s.resolution = {16, 9};
     s.spp = 4;
     const Image image = render(*scene, s).image;

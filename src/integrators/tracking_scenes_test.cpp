@@ -53,7 +53,7 @@ ChannelStats channel_stats(const Image& image) {
 
 Image render_with(const SceneDesc& desc, int spp, SecondarySegments secondary, uint64_t seed = 0) {
   const auto scene = Scene::build(desc);
-  RenderSettings s = default_settings(desc);
+  RenderSettings s = render_settings(desc);
   s.spp = spp;
   s.seed = seed;
   s.path.limits = {.max_bounces = 1024, .max_volume_bounces = 1024};
@@ -131,7 +131,7 @@ TEST(TrackingScenes, TrackedImagesAreIdenticalForAnyThreadCount) {
   desc.volumes.push_back(puff);
   desc.lights.push_back(DirectionalLight{normalize(Vec3(-0.4f, -0.8f, -0.3f)), RGB(3.0f)});
   const auto scene = Scene::build(desc);
-  RenderSettings s = default_settings(desc);
+  RenderSettings s = render_settings(desc);
   s.spp = 8;
   s.path.secondary = SecondarySegments::kTrack;
   s.threads = 1;

@@ -42,7 +42,7 @@ RGB nested_transmittance(const Scene& scene, const Ray& shadow, bool casts_shado
   hits.clear();
   if (casts_shadows) {
     ++counters.rays;
-    if (scene.surfaces().occluded(shadow, scene.shadow_deferred(), hits)) return RGB(0.0f);
+    if (scene.surfaces().occluded(shadow, scene.shadow_deferred(medium.priority_shadows), hits)) return RGB(0.0f);
   }
   std::sort(hits.begin(), hits.end(), [](const SurfaceHit& a, const SurfaceHit& b) {
     return a.t != b.t ? a.t < b.t : a.geom_id < b.geom_id;
@@ -81,6 +81,7 @@ RGB nested_transmittance(const Scene& scene, const Ray& shadow, bool casts_shado
 
 ShadowMedium shadow_medium(const PathContext& ctx, int vertex, bool secondary, sample_dim::Bounce key_dimension) {
   ShadowMedium m(march_jitter(ctx.scene, ctx.sampler, vertex));
+  m.priority_shadows = ctx.settings.priority_shadows;
   if (secondary && ctx.settings.secondary != SecondarySegments::kMarch) {
     m.policy = ctx.settings.secondary;
     m.tracking_key = ctx.sampler.stream_key(sample_dim::bounce(vertex, key_dimension));

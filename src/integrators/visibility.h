@@ -21,6 +21,7 @@ struct ShadowMedium {
   SecondarySegments policy = SecondarySegments::kMarch;
   uint64_t tracking_key = 0;
   bool residual = true;  // residual ratio tracking (PathSettings::residual_ratio_tracking)
+  bool priority_shadows = false;  // priority dielectrics pass shadow rays (PathSettings::priority_shadows)
 };
 
 // The shadow medium of a light connection made at path vertex `vertex` (its sample dimensions),
@@ -35,14 +36,14 @@ ShadowMedium shadow_medium(const PathContext& ctx, int vertex, bool secondary, s
 // Nested media (Scene::has_priority_objects()): the shadow ray starts with the path's stack
 // (scratch.stack, plus the queued false crossings of the current segment before `segment_t`,
 // the origin's distance along it). Hits on priority surfaces that do not block
-// (Scene::shadow_deferred()) come back unsorted from the occlusion query; only when nothing
+// (Scene::shadow_deferred(priority_shadows)) come back unsorted from the occlusion query; only when nothing
 // else blocks are they sorted and walked with a copy of the stack, each stretch attenuated by
 // the medium the rules give it (no Fresnel: approximate caustics). A ray that meets no
 // priority surface costs one occlusion query and one march, as without nesting. A light that
 // casts no shadows sees the origin's medium along the whole ray.
 //
 // *through_interface (when given) is set when the ray crossed a priority dielectric for real
-// (render.priority_shadows): no BSDF or phase sample can reach the light along that straight
+// (PathSettings::priority_shadows): no BSDF or phase sample can reach the light along that straight
 // line (it would refract), so the caller weights such a sample 1, not by MIS.
 RGB light_transmittance(const Scene& scene, Vec3 origin, Vec3 sampled_from, const LightSample& ls,
                         bool casts_shadows, ShadowMedium medium, PathScratch& scratch, PathCounters& counters,

@@ -37,7 +37,7 @@ RGB image_mean(const Image& image) {
 Image render_desc(const SceneDesc& desc, int spp, DistanceSampling sampling = DistanceSampling::kMis,
                   int max_volume_bounces = 1024) {
   const auto scene = Scene::build(desc);
-  RenderSettings s = default_settings(desc);
+  RenderSettings s = render_settings(desc);
   s.spp = spp;
   s.path.limits.max_volume_bounces = max_volume_bounces;
   s.path.distance_sampling = sampling;
@@ -158,7 +158,7 @@ TEST(VolumeScenes, DeferredNeeMatchesPerSegmentNee) {
   const auto mean_and_error = [&](int deferred) {
     std::vector<double> means;
     for (uint64_t seed = 0; seed < 8; ++seed) {
-      RenderSettings s = default_settings(desc);
+      RenderSettings s = render_settings(desc);
       s.spp = 64;
       s.seed = seed;
       s.path.limits.max_volume_bounces = 64;

@@ -21,7 +21,7 @@ Vec3 random_dir(Pcg32& rng) {
 // Every point of [tmin, tmax] (1000 samples) is inside the interval exactly when `inside`
 // says so, up to one sample spacing at the ends.
 template <typename Inside>
-void expect_matches(std::optional<RayInterval> got, Vec3 o, Vec3 d, float tmin, float tmax, Inside inside) {
+void expect_matches(std::optional<RayRange> got, Vec3 o, Vec3 d, float tmin, float tmax, Inside inside) {
   const int n = 1000;
   const float step = (tmax - tmin) / n;
   for (int i = 0; i <= n; ++i) {

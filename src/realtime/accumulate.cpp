@@ -50,7 +50,7 @@ constexpr int kLanes = int(LightVolumeLanes::Batch::size);
 // time in float, with light_volume_interval's double answer where float is unsure.
 struct PixelSpans {
   bool hit[kLanes];
-  TInterval span[kLanes];
+  RayRange span[kLanes];
 };
 
 bool light_spans(const LightVolumeLanes& lanes, const Light& light, const AccumulationRays& rays, int x0,
@@ -70,9 +70,9 @@ bool light_spans(const LightVolumeLanes& lanes, const Light& light, const Accumu
   }
   if (!any) return false;
   const LightVolumeLanes::Result r =
-      lanes.intervals(Batch::load_aligned(v[0]), Batch::load_aligned(v[1]), Batch::load_aligned(v[2]),
-                      Batch::load_aligned(v[3]), Batch::load_aligned(v[4]), Batch::load_aligned(v[5]),
-                      Batch::load_aligned(v[6]));
+      lanes.intervals({Batch::load_aligned(v[0]), Batch::load_aligned(v[1]), Batch::load_aligned(v[2]),
+                       Batch::load_aligned(v[3]), Batch::load_aligned(v[4]), Batch::load_aligned(v[5]),
+                       Batch::load_aligned(v[6])});
   alignas(32) float t0[kLanes], t1[kLanes], hit[kLanes], unsure[kLanes];
   r.t0.store_aligned(t0);
   r.t1.store_aligned(t1);
@@ -117,7 +117,7 @@ const Vec3* equiangular_focus(const Light& light) {
   return std::visit(Focus{}, light);
 }
 
-bool setup_pixel_march(TInterval span, const AccumulationRays::PixelRay& ray,
+bool setup_pixel_march(RayRange span, const AccumulationRays::PixelRay& ray,
                        std::span<const VolumeInterval> intervals, const AccumulationSettings& settings,
                        PixelMarch& march, const Vec3* focus) {
   // Clamped to the extent of the media on the ray (the light volume is convex, so clipping

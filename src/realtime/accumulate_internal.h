@@ -46,7 +46,7 @@ inline float march_sample(const PixelMarch& m, float k, float& weight) {
 // The march of one pixel's ray given the light volume's span of it (light_volume_interval over
 // [0, t_end]), or false when the span, the depth and the media leave nothing to march.
 // `focus`: the point light or spot apex the steps crowd towards (null: uniform steps).
-bool setup_pixel_march(TInterval span, const AccumulationRays::PixelRay& ray,
+bool setup_pixel_march(RayRange span, const AccumulationRays::PixelRay& ray,
                        std::span<const VolumeInterval> intervals, const AccumulationSettings& settings,
                        PixelMarch& march, const Vec3* focus = nullptr);
 // The point equiangular placement aims at: point lights and spot apexes; null otherwise.

@@ -107,7 +107,7 @@ Batch noise_density_batch(const NoiseModulation& noise, const Batch& px, const B
 
 namespace {
 
-enum class LightKind { point, spot, box, directional, unsupported };
+enum class LaneLightKind { point, spot, box, directional, unsupported };
 
 Batch range_window(const Batch& dist, float range, float inv_range) {
   if (!std::isfinite(range)) return Batch(1.0f);
@@ -128,7 +128,7 @@ Batch smoothstep(float e0, float e1, const Batch& x) {
 
 struct SimdMarcher::Data {
   const FrameLight* light = nullptr;
-  LightKind kind = LightKind::unsupported;
+  LaneLightKind kind = LaneLightKind::unsupported;
   Vec3 position, direction, up, right;
   float cos_inner = 1.0f, cos_outer = 0.0f, range = kInfinity, inv_range = 0.0f;
   float half_width = 0.0f, half_height = 0.0f;
@@ -157,7 +157,7 @@ struct DescribeLight {
   SimdMarcher::Data& d;
   static float inv(float range) { return std::isfinite(range) ? 1.0f / range : 0.0f; }
   void operator()(const PointLight& l) const {
-    d.kind = LightKind::point;
+    d.kind = LaneLightKind::point;
     d.position = l.position;
     d.range = l.range;
     d.inv_range = inv(l.range);
@@ -165,7 +165,7 @@ struct DescribeLight {
     if (l.ies.profile) d.ies.emplace(l.ies);
   }
   void operator()(const SpotLight& l) const {
-    d.kind = LightKind::spot;
+    d.kind = LaneLightKind::spot;
     d.position = l.position;
     d.direction = l.direction;
     d.cos_inner = l.cos_inner;
@@ -177,7 +177,7 @@ struct DescribeLight {
     if (l.gobo.image) d.spot_gobo.emplace(l);
   }
   void operator()(const BoxLight& l) const {
-    d.kind = LightKind::box;
+    d.kind = LaneLightKind::box;
     d.position = l.position;
     d.direction = l.direction;
     d.up = l.up;
@@ -189,14 +189,14 @@ struct DescribeLight {
     if (l.gobo.image) d.box_gobo.emplace(l.gobo);
   }
   void operator()(const DirectionalLight& l) const {
-    d.kind = LightKind::directional;
+    d.kind = LaneLightKind::directional;
     d.direction = l.direction;
     d.color = l.irradiance;
   }
-  void operator()(const SphereLight&) const { d.kind = LightKind::unsupported; }
-  void operator()(const QuadLight&) const { d.kind = LightKind::unsupported; }
-  void operator()(const TriangleLight&) const { d.kind = LightKind::unsupported; }
-  void operator()(const EnvironmentLight&) const { d.kind = LightKind::unsupported; }
+  void operator()(const SphereLight&) const { d.kind = LaneLightKind::unsupported; }
+  void operator()(const QuadLight&) const { d.kind = LaneLightKind::unsupported; }
+  void operator()(const TriangleLight&) const { d.kind = LaneLightKind::unsupported; }
+  void operator()(const EnvironmentLight&) const { d.kind = LaneLightKind::unsupported; }
 };
 
 }  // namespace
@@ -205,8 +205,8 @@ SimdMarcher::Data::LaneArrival SimdMarcher::Data::arrival(const BatchVec& p) con
   LaneArrival a;
   Batch scale, r(color.r), g(color.g), b(color.b);
   switch (kind) {
-    case LightKind::point:
-    case LightKind::spot: {
+    case LaneLightKind::point:
+    case LaneLightKind::spot: {
       const BatchVec d{position.x - p.x, position.y - p.y, position.z - p.z};
       const Batch dist2 = d.x * d.x + d.y * d.y + d.z * d.z;
       a.dist = xsimd::sqrt(dist2);
@@ -214,7 +214,7 @@ SimdMarcher::Data::LaneArrival SimdMarcher::Data::arrival(const BatchVec& p) con
       a.wi = {d.x * inv, d.y * inv, d.z * inv};
       scale = range_window(a.dist, range, inv_range) * (inv * inv);
       const BatchVec out{-a.wi.x, -a.wi.y, -a.wi.z};  // leaving the light
-      if (kind == LightKind::spot) scale *= smoothstep(cos_outer, cos_inner, lanes::dot(out, direction));
+      if (kind == LaneLightKind::spot) scale *= smoothstep(cos_outer, cos_inner, lanes::dot(out, direction));
       scale = xsimd::select(dist2 > 0.0f, scale, Batch(0.0f));
       if (ies && xsimd::any(scale > 0.0f)) scale *= ies->factor(out.x, out.y, out.z);
       if (spot_gobo && xsimd::any(scale > 0.0f)) {
@@ -223,7 +223,7 @@ SimdMarcher::Data::LaneArrival SimdMarcher::Data::arrival(const BatchVec& p) con
       }
       break;
     }
-    case LightKind::box: {
+    case LaneLightKind::box: {
       const BatchVec l{p.x - position.x, p.y - position.y, p.z - position.z};
       const Batch along = lanes::dot(l, direction);
       const Batch x = lanes::dot(l, right), y = lanes::dot(l, up);
@@ -238,8 +238,8 @@ SimdMarcher::Data::LaneArrival SimdMarcher::Data::arrival(const BatchVec& p) con
       }
       break;
     }
-    case LightKind::directional:
-    case LightKind::unsupported:
+    case LaneLightKind::directional:
+    case LaneLightKind::unsupported:
       a.wi = {Batch(-direction.x), Batch(-direction.y), Batch(-direction.z)};
       a.dist = Batch(kInfinity);
       scale = Batch(1.0f);
@@ -259,7 +259,7 @@ SimdMarcher::SimdMarcher(const FrameLight& light, const VolumeScene& volumes, fl
   d.floor = multiple_scattering_floor;
   d.far = far;
   std::visit(DescribeLight{d}, light.light);
-  supported_ = d.kind != LightKind::unsupported;
+  supported_ = d.kind != LaneLightKind::unsupported;
   d.prims.resize(volumes.primitives().size());
   for (size_t i = 0; i < d.prims.size(); ++i) {
     supported_ = supported_ && lanes::describe_primitive(volumes.primitives()[i], d.prims[i]);
@@ -267,7 +267,7 @@ SimdMarcher::SimdMarcher(const FrameLight& light, const VolumeScene& volumes, fl
     d.grey = d.grey && st.r == st.g && st.g == st.b;
   }
   if (!supported_) return;
-  const bool parallel = d.kind == LightKind::directional || d.kind == LightKind::box;
+  const bool parallel = d.kind == LaneLightKind::directional || d.kind == LaneLightKind::box;
   for (size_t i = 0; i < d.prims.size(); ++i) {
     d.sides.push_back(parallel
                           ? lanes::LightSide::parallel_light(d.prims[i], -d.direction)
@@ -358,7 +358,7 @@ RGB SimdMarcher::march(const PixelMarch& m) const {
   // Directional and box lights arrive from one direction everywhere, so the scattering
   // angle is the same at every sample of the ray: each primitive's phase once per pixel.
   constexpr size_t kPhaseSlots = 8;
-  const bool parallel = d.kind == LightKind::directional || d.kind == LightKind::box;
+  const bool parallel = d.kind == LaneLightKind::directional || d.kind == LaneLightKind::box;
   const bool hoist_phase = parallel && m.intervals.size() <= kPhaseSlots;
   Batch phase[kPhaseSlots];
   const ShadowMap* map = d.light->shadow;

@@ -83,7 +83,7 @@ void expect_agreement(const std::string& light) {
   const Image realtime = box_downsample(to_image(pipeline.render(0.0f, 0).color), kSupersample);
 
   const auto scene = Scene::build(desc);
-  RenderSettings rs = default_settings(desc);
+  RenderSettings rs = render_settings(desc);
   rs.spp = kReferenceSpp;
   rs.path.limits.max_bounces = 1;
   rs.path.limits.max_volume_bounces = 1;

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/rng.h"
-#include "realtime/test_random.h"
+#include "core/testing/random_rays.h"
 #include "realtime/light_volume.h"
 
 namespace caligo {
@@ -37,9 +37,9 @@ void expect_matches_scalar(const Light& light, const Ray8& rays, Counts& counts)
     v[6][i] = rays.tmax[i];
   }
   const LightVolumeLanes lanes(light);
-  const auto got = lanes.intervals(B::load_aligned(v[0]), B::load_aligned(v[1]), B::load_aligned(v[2]),
-                                   B::load_aligned(v[3]), B::load_aligned(v[4]), B::load_aligned(v[5]),
-                                   B::load_aligned(v[6]));
+  const auto got = lanes.intervals({B::load_aligned(v[0]), B::load_aligned(v[1]), B::load_aligned(v[2]),
+                                    B::load_aligned(v[3]), B::load_aligned(v[4]), B::load_aligned(v[5]),
+                                    B::load_aligned(v[6])});
   alignas(32) float t0[8], t1[8];
   got.t0.store_aligned(t0);
   got.t1.store_aligned(t1);

@@ -5,84 +5,14 @@
 #include <functional>
 
 #include "core/rng.h"
-#include "realtime/test_random.h"
+#include "core/testing/random_rays.h"
 
 namespace caligo {
 namespace {
 
+using testing::expect_matches_brute_force;
 using testing::random_direction;
 using testing::random_in_cube;
-
-// Brute force: the first and last of kSteps dense samples along [tmin, tmax] where `inside`
-// holds. The analytic interval must contain every inside sample and start/end within one
-// sample spacing of the first/last one (the sets are convex, so there are no gaps).
-void expect_matches_brute_force(const std::function<bool(Vec3)>& inside, Vec3 o, Vec3 d, float tmin,
-                                float tmax, std::optional<TInterval> got, int ray) {
-  constexpr int kSteps = 20000;
-  const float dt = (tmax - tmin) / kSteps;
-  float first = kInfinity, last = -kInfinity;
-  for (int i = 0; i <= kSteps; ++i) {
-    const float t = tmin + dt * float(i);
-    if (inside(o + d * t)) {
-      first = std::min(first, t);
-      last = std::max(last, t);
-    }
-  }
-  if (first == kInfinity) {
-    // Nothing sampled inside: the interval may only be a sliver thinner than the spacing.
-    if (got) {
-      EXPECT_LT(got->t1 - got->t0, 2.0f * dt) << "ray " << ray;
-    }
-    return;
-  }
-  ASSERT_TRUE(got.has_value()) << "ray " << ray << " brute force [" << first << ", " << last << "]";
-  const float tol = dt * 1.01f + 1e-4f;
-  EXPECT_LE(got->t0, first + 1e-4f) << "ray " << ray;
-  EXPECT_GE(got->t1, last - 1e-4f) << "ray " << ray;
-  EXPECT_GT(got->t0, first - tol) << "ray " << ray;
-  EXPECT_LT(got->t1, last + tol) << "ray " << ray;
-}
-
-TEST(LightVolume, SphereIntervalMatchesBruteForce) {
-  Pcg32 rng(7, 1);
-  int hits = 0;
-  for (int ray = 0; ray < 300; ++ray) {
-    const Vec3 c = random_in_cube(rng, 2.0f), o = random_in_cube(rng, 6.0f);
-    const float r = 0.5f + 3.0f * rng.next_float();
-    // Half the rays aim near the sphere (hits, grazing misses), half go anywhere.
-    const Vec3 d = ray % 2 ? normalize(c + random_in_cube(rng, r * 1.2f) - o) : random_direction(rng);
-    const float tmin = rng.next_float() * 2.0f, tmax = tmin + 15.0f * rng.next_float();
-    const auto got = ray_sphere_interval(o, d, c, r, tmin, tmax);
-    hits += got.has_value();
-    expect_matches_brute_force([&](Vec3 p) { return length_squared(p - c) <= r * r; }, o, d, tmin, tmax, got,
-                               ray);
-  }
-  EXPECT_GT(hits, 60);  // the random rays exercise both outcomes
-  EXPECT_LT(hits, 290);
-}
-
-TEST(LightVolume, ConeIntervalMatchesBruteForce) {
-  Pcg32 rng(11, 2);
-  int hits = 0;
-  for (int ray = 0; ray < 400; ++ray) {
-    const Vec3 apex = random_in_cube(rng, 1.0f), axis = random_direction(rng);
-    const float cos_half = std::cos(radians(5.0f + 80.0f * rng.next_float()));
-    // Half the rays start near the apex: both nappes, the apex itself and grazing rays.
-    const Vec3 o = ray % 2 ? apex + random_in_cube(rng, 0.5f) : random_in_cube(rng, 6.0f);
-    const Vec3 d = random_direction(rng);
-    const float tmin = 0.0f, tmax = 12.0f;
-    const auto got = ray_cone_interval(o, d, apex, axis, cos_half, tmin, tmax);
-    hits += got.has_value();
-    expect_matches_brute_force(
-        [&](Vec3 p) {
-          const Vec3 v = p - apex;
-          return dot(v, axis) >= cos_half * length(v);
-        },
-        o, d, tmin, tmax, got, ray);
-  }
-  EXPECT_GT(hits, 80);
-  EXPECT_LT(hits, 390);
-}
 
 TEST(LightVolume, SpotIntervalIsConeAndRangeSphere) {
   Pcg32 rng(5, 3);

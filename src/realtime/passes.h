@@ -10,22 +10,11 @@
 #include "realtime/frame_light.h"
 #include "realtime/plane.h"
 #include "realtime/view.h"
+#include "settings/realtime_settings.h"
 
 namespace caligo {
 
 class VolumeScene;
-
-struct AccumulationSettings {
-  int samples = 16;                        // march steps per pixel per light
-  int tile_size = 8;                       // interleaved sampling tile side; 1 = no interleaving (midpoints)
-  uint32_t frame_seed = 0;                 // randomises the offsets' order per tile and per frame
-  float multiple_scattering_floor = 0.0f;  // shadow term never below this (faked multiple scattering)
-  // Point and spot lights: steps uniform in the angle seen from the light (equiangular,
-  // Kulla & Fajardo 2012) instead of the seed's uniform steps in distance. Resolves the
-  // 1/d^2 peak of rays passing near a light; costs a tangent per step.
-  bool equiangular = false;
-  bool simd = true;
-};
 
 // Low-resolution depth for accumulation: the full-resolution depth at each low-resolution
 // pixel's centre (so each low-resolution ray ends exactly where that full-resolution ray does).

@@ -48,18 +48,8 @@ struct RealtimePipeline::CachedShadow {
 };
 
 RealtimeSettings realtime_settings(const SceneDesc& desc) {
-  const RealtimeDefaults& d = desc.realtime;
-  RealtimeSettings s;
+  RealtimeSettings s = desc.realtime;
   s.resolution = desc.camera.resolution;
-  s.scale = d.scale;
-  s.accumulation.samples = d.samples;
-  s.accumulation.tile_size = d.tile_size;
-  s.accumulation.multiple_scattering_floor = d.multiple_scattering_floor;
-  s.accumulation.equiangular = d.equiangular_steps;
-  s.gather_radius = d.gather_radius;
-  s.gather_depth_falloff = d.gather_depth_falloff;
-  s.temporal = d.temporal;
-  s.temporal_blend = d.temporal_blend;
   return s;
 }
 

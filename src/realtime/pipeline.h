@@ -41,24 +41,7 @@ class LightScatterer {
                        const Plane& low_depth, ColorPlanes& accum) = 0;
 };
 
-enum class SceneBufferMethod { raster, embree };
-
-struct RealtimeSettings {
-  Vec2i resolution{640, 480};
-  int scale = 4;  // accumulation at resolution / scale
-  AccumulationSettings accumulation;
-  int gather_radius = 7;
-  // The gather of the lights a LightScatterer takes: their analytic result has no sampling
-  // noise to blur, only low-resolution edges, so Wyman & Ramsey's 3x3 bilateral filter.
-  int scatter_gather_radius = 1;
-  float gather_depth_falloff = 1000.0f;
-  bool temporal = true;
-  float temporal_blend = 0.1f;
-  bool simd = true;
-  SceneBufferMethod scene_buffers = SceneBufferMethod::raster;
-};
-
-// The scene's `realtime` defaults at the camera's resolution.
+// The scene's `realtime` object at the camera's resolution.
 RealtimeSettings realtime_settings(const SceneDesc& desc);
 
 // Microseconds spent in each pass of one frame.

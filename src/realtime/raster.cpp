@@ -11,16 +11,15 @@
 #include <cmath>
 
 #include "core/parallel.h"
-#include "realtime/raster_setup.h"
+#include "realtime/raster_row.h"
 
 namespace caligo {
 namespace {
 
 using raster::ScreenTri;
 using raster::Setup;
-using Batch = xsimd::batch<float>;
+using raster::Batch;
 using IntBatch = xsimd::batch<int32_t>;
-static_assert(Batch::size == 8, "the tile loop assumes 8 lanes (AVX2)");
 
 // One tile's depth keys and triangle ids, local to the thread running it (L1/L2 sized), so
 // no full-frame scratch buffer is cleared or faulted in per frame.
@@ -38,74 +37,42 @@ struct Target {
   size_t at(int x, int y) const { return size_t(y - y0) * stride + size_t(x - x0); }
 };
 
-inline bool covered(float e, bool tie) { return e > 0.0f || (e == 0.0f && tie); }
-
 void raster_tile_scalar(const Setup& s, const Tile& tile, Target& out, bool write_id) {
   for (uint32_t index : s.bins[size_t(tile.index)]) {
     const ScreenTri& t = s.tris[index];
     const int x0 = std::max(t.x0, tile.x0), x1 = std::min(t.x1, tile.x1);
     const int y0 = std::max(t.y0, tile.y0), y1 = std::min(t.y1, tile.y1);
     for (int y = y0; y < y1; ++y) {
-      const float py = float(y) + 0.5f;
-      const float r0 = (py - t.ay[0]) * t.dx[0], r1 = (py - t.ay[1]) * t.dx[1], r2 = (py - t.ay[2]) * t.dx[2];
       float* key_row = out.key + out.at(out.x0, y);
-      for (int x = x0; x < x1; ++x) {
-        const float px = float(x) + 0.5f;
-        const float e0 = (px - t.ax[0]) * t.dy[0] - r0;
-        const float e1 = (px - t.ax[1]) * t.dy[1] - r1;
-        const float e2 = (px - t.ax[2]) * t.dy[2] - r2;
-        if (!covered(e0, t.tie[0]) || !covered(e1, t.tie[1]) || !covered(e2, t.tie[2])) continue;
-        const float key = e0 * t.c[0] + e1 * t.c[1] + e2 * t.c[2];
-        if (!(key > key_row[x - out.x0])) continue;
+      raster::for_covered_pixels(t, raster::row_terms(t, float(y) + 0.5f), x0, x1, [&](int x, float key) {
+        if (!(key > key_row[x - out.x0])) return;
         key_row[x - out.x0] = key;
         if (write_id) out.id[out.at(x, y)] = int32_t(index);
-      }
+      });
     }
   }
 }
 
-inline xsimd::batch_bool<float> covered(Batch e, bool tie) {
-  return tie ? (e >= Batch(0.0f)) : (e > Batch(0.0f));
-}
-
 void raster_tile_simd(const Setup& s, const Tile& tile, Target& out, bool write_id) {
-  alignas(32) static constexpr float kLaneCentres[8] = {0.5f, 1.5f, 2.5f, 3.5f, 4.5f, 5.5f, 6.5f, 7.5f};
-  const Batch lane_centres = Batch::load_aligned(kLaneCentres);
   for (uint32_t index : s.bins[size_t(tile.index)]) {
     const ScreenTri& t = s.tris[index];
-    const int x0 = std::max(t.x0, tile.x0) & ~7, x1 = std::min(t.x1, tile.x1);
+    const int x0 = std::max(t.x0, tile.x0), x1 = std::min(t.x1, tile.x1);
     const int y0 = std::max(t.y0, tile.y0), y1 = std::min(t.y1, tile.y1);
-    // Lanes outside the triangle's bounds are masked so the SIMD path tests exactly the
-    // pixels the scalar one does.
-    const Batch bound_lo(float(t.x0)), bound_hi(float(t.x1));
-    const Batch ax0(t.ax[0]), ax1(t.ax[1]), ax2(t.ax[2]);
-    const Batch dy0(t.dy[0]), dy1(t.dy[1]), dy2(t.dy[2]);
-    const Batch c0(t.c[0]), c1(t.c[1]), c2(t.c[2]);
     // Ids travel as float bit patterns: xsimd 8.1 has no mask cast between float and int.
     const Batch id = xsimd::bitwise_cast<Batch>(IntBatch(int32_t(index)));
     for (int y = y0; y < y1; ++y) {
-      const float py = float(y) + 0.5f;
-      const Batch r0((py - t.ay[0]) * t.dx[0]), r1((py - t.ay[1]) * t.dx[1]), r2((py - t.ay[2]) * t.dx[2]);
       float* key_row = out.key + out.at(out.x0, y);
-      for (int x = x0; x < x1; x += 8) {
-        const Batch px = Batch(float(x)) + lane_centres;
-        const Batch e0 = (px - ax0) * dy0 - r0;
-        const Batch e1 = (px - ax1) * dy1 - r1;
-        const Batch e2 = (px - ax2) * dy2 - r2;
-        auto mask = covered(e0, t.tie[0]) & covered(e1, t.tie[1]) & covered(e2, t.tie[2]) & (px > bound_lo) &
-                    (px < bound_hi);
-        if (!xsimd::any(mask)) continue;
-        const Batch key = e0 * c0 + e1 * c1 + e2 * c2;
+      const auto r = raster::row_terms(t, float(y) + 0.5f);
+      raster::for_covered_lanes(t, r, x0, x1, [&](int x, Batch key, raster::Mask mask) {
         const Batch old = Batch::load_aligned(key_row + (x - out.x0));
         mask = mask & (key > old);
-        if (!xsimd::any(mask)) continue;
+        if (!xsimd::any(mask)) return;
         xsimd::select(mask, key, old).store_aligned(key_row + (x - out.x0));
-        if (write_id) {
-          // _mm256_load_ps/_store_ps access memory through may_alias types.
-          float* id_row = reinterpret_cast<float*>(out.id + out.at(x, y));
-          xsimd::select(mask, id, Batch::load_aligned(id_row)).store_aligned(id_row);
-        }
-      }
+        if (!write_id) return;
+        // _mm256_load_ps/_store_ps access memory through may_alias types.
+        float* id_row = reinterpret_cast<float*>(out.id + out.at(x, y));
+        xsimd::select(mask, id, Batch::load_aligned(id_row)).store_aligned(id_row);
+      });
     }
   }
 }

@@ -16,7 +16,7 @@
 // sample_offset(), and within ~1e-5 of the normalised filter.
 //
 // Use in the render loop (sample s of pixel (x, y), see render/render.cpp):
-//   const Vec2 o = settings.filter.sample_offset(sampler.get_2d(sample_dim::kFilm));
+//   const Vec2 o = filter.sample_offset(sampler.get_2d(sample_dim::kFilm));
 //   const Vec2 lens = camera.has_aperture() ? sampler.get_2d(sample_dim::kLens) : Vec2{0.5f, 0.5f};
 //   const Ray ray = camera.generate_ray({x + 0.5f + o.x, y + 0.5f + o.y}, lens);
 //   film.add(x, y, ...);  // weight 1: the sample belongs to pixel (x, y) only
@@ -32,7 +32,7 @@
 #include <vector>
 
 #include "core/vec.h"
-#include "scene/scene_desc.h"
+#include "settings/pixel_filter_desc.h"
 
 namespace caligo {
 

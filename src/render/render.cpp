@@ -12,18 +12,13 @@
 #include "core/sampler.h"
 #include "integrators/path_tracer.h"
 #include "render/film.h"
+#include "render/pixel_filter.h"
 
 namespace caligo {
 
-RenderSettings default_settings(const SceneDesc& desc) {
-  RenderSettings s;
+RenderSettings render_settings(const SceneDesc& desc) {
+  RenderSettings s = desc.render;
   s.resolution = desc.camera.resolution;
-  s.spp = desc.render.spp;
-  s.path.limits = desc.render.limits;
-  s.seed = desc.render.seed;
-  s.filter = PixelFilter(desc.render.filter);
-  s.crop = desc.render.crop;
-  s.aovs = desc.render.aovs ? AovSet::from_bits(*desc.render.aovs) : AovSet::defaults();
   return s;
 }
 
@@ -50,8 +45,8 @@ struct SampleSpan {
 // is set, so every pixel holds a prefix of its samples; returns the paths traced.
 template <typename SpanOf>
 PathCounters render_tile(const Scene& scene, const Camera& camera, const RenderSettings& settings,
-                         const Tile& tile, Film& film, PathScratch& scratch, const SpanOf& span_of,
-                         const std::atomic<bool>* stop, uint64_t& paths) {
+                         const PixelFilter& filter, const Tile& tile, Film& film, PathScratch& scratch,
+                         const SpanOf& span_of, const std::atomic<bool>* stop, uint64_t& paths) {
   scratch.march_settings = settings.march;
   PathCounters counters;
   const bool lens = camera.has_aperture();
@@ -63,7 +58,7 @@ PathCounters render_tile(const Scene& scene, const Camera& camera, const RenderS
         const Sampler sampler(settings.seed, {x, y}, uint32_t(s));
         // Filter importance sampling: the sample lands where the pixel's filter puts it and
         // counts with weight 1 for this pixel only (render/pixel_filter.h).
-        const Vec2 offset = settings.filter.sample_offset(sampler.get_2d(sample_dim::kFilm));
+        const Vec2 offset = filter.sample_offset(sampler.get_2d(sample_dim::kFilm));
         const Vec2 lens_u = lens ? sampler.get_2d(sample_dim::kLens) : Vec2{0.5f, 0.5f};
         const Ray ray = camera.generate_ray({float(x) + 0.5f + offset.x, float(y) + 0.5f + offset.y}, lens_u);
         const PathSample sample = trace_path(scene, ray, sampler, settings.path, counters, scratch);
@@ -85,6 +80,7 @@ RenderStats run_pass(Film& film, const Scene& scene, const RenderSettings& setti
     thread_limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                          size_t(settings.threads));
   const Camera camera = scene.camera(settings.resolution);
+  const PixelFilter filter(settings.filter);
   const PixelBounds bounds = settings.crop.pixels(settings.resolution);
   const auto tiles = bounds.empty() ? std::vector<Tile>{} : crop_tiles(bounds, settings.tile_size);
   std::atomic<uint64_t> rays{0}, march_steps{0}, paths{0};
@@ -96,7 +92,7 @@ RenderStats run_pass(Film& film, const Scene& scene, const RenderSettings& setti
     parallel_for_tiles(tiles, [&](const Tile& tile) {
       uint64_t tile_paths = 0;
       const PathCounters c =
-          render_tile(scene, camera, settings, tile, film, scratch.local(), span_of, stop, tile_paths);
+          render_tile(scene, camera, settings, filter, tile, film, scratch.local(), span_of, stop, tile_paths);
       rays.fetch_add(c.rays, std::memory_order_relaxed);
       march_steps.fetch_add(c.camera_march_steps, std::memory_order_relaxed);
       paths.fetch_add(tile_paths, std::memory_order_relaxed);

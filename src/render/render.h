@@ -7,7 +7,7 @@
 #include "image/image.h"
 #include "render/film.h"
 #include "render/progress.h"
-#include "render/render_settings.h"
+#include "settings/render_settings.h"
 #include "scene/scene.h"
 
 namespace caligo {
@@ -56,7 +56,7 @@ RenderStats render_up_to(Film& film, const Scene& scene, const RenderSettings& s
                          const std::atomic<bool>* stop = nullptr,
                          Progress::Style progress = Progress::Style::kQuiet);
 
-// Settings from the scene's render defaults and camera resolution.
-RenderSettings default_settings(const SceneDesc& desc);
+// The scene file's render settings at the camera's resolution.
+RenderSettings render_settings(const SceneDesc& desc);
 
 }  // namespace caligo

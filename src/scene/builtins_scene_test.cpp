@@ -87,7 +87,7 @@ TEST(NestedDielectricBuiltins, UnderwaterCameraStacks) {
     EXPECT_EQ(water.priority, kPriorityNormal);
     EXPECT_FLOAT_EQ(water.ior, 1.33f);
     EXPECT_EQ(interior_name(s, water), "pool");
-    EXPECT_TRUE(s.render.priority_shadows);
+    EXPECT_TRUE(s.render.path.priority_shadows);
     EXPECT_LT(s.camera.position.y, 0.0f);
     const auto scene = Scene::build(s);
     const MediumStack& stack = scene->camera_stack();
@@ -164,7 +164,7 @@ TEST(CameraBuiltins, SlabPixelsSeeOneThicknessEach) {
       const Ray ray = camera.generate_ray({float(x) + 0.5f, float(y) + 0.5f});
       float depth = 0.0f;
       for (const VolumePrimitive& v : s.volumes)
-        if (auto t = volume_hull_interval(v.shape, ray)) depth += (t->second - t->first) * v.shader.sigma_a.g;
+        if (auto t = volume_hull_interval(v.shape, ray)) depth += (t->t1 - t->t0) * v.shader.sigma_a.g;
       const bool row_in = y >= 8 && y < 24;
       const int box = x >= 4 && x < 28 ? 0 : (x >= 36 && x < 60 ? 1 : (x >= 68 && x < 92 ? 2 : -1));
       const float expected = row_in && box >= 0 ? thickness[box] : 0.0f;

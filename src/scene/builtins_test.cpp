@@ -52,7 +52,7 @@ TEST(Builtins, FurnaceIsAClosedEmittingSphereAroundTheCamera) {
   EXPECT_TRUE(wall.two_sided_emission);
   EXPECT_TRUE(scene.lights.empty());
   EXPECT_EQ(scene.camera.resolution, (Vec2i{32, 32}));
-  EXPECT_GE(scene.render.limits.max_bounces, 1000);
+  EXPECT_GE(scene.render.path.limits.max_bounces, 1000);
 }
 
 TEST(Builtins, PointInSphereHasTheLightAtTheCentre) {
@@ -92,8 +92,7 @@ TEST(Builtins, HoldoutHasHeldOutShapesInAndAroundTheFog) {
   for (const Light& l : scene.lights)
     if (const auto* env = std::get_if<EnvironmentLight>(&l)) invisible_sky = !env->visible;
   EXPECT_TRUE(invisible_sky);
-  ASSERT_TRUE(scene.render.aovs.has_value());
-  const AovSet aovs = AovSet::from_bits(*scene.render.aovs);
+  const AovSet aovs = scene.render.aovs;
   EXPECT_TRUE(aovs.has(Aov::kAlpha));
   for (int k = 0; k < kLightKindCount; ++k) EXPECT_TRUE(aovs.has(light_aov(LightKind(k)))) << k;
 }
@@ -113,7 +112,7 @@ TEST(Builtins, DefaultRoomIsClosedAroundTheCamera) {
   ASSERT_EQ(scene.volumes.size(), 1u);
   EXPECT_TRUE(std::holds_alternative<BoxVolumeShape>(scene.volumes[0].shape));
   EXPECT_EQ(scene.render.spp, 64);
-  EXPECT_EQ(scene.render.limits.max_bounces, 8);
+  EXPECT_EQ(scene.render.path.limits.max_bounces, 8);
 }
 
 TEST(Builtins, LightsShowcaseHasEveryFileLightType) {

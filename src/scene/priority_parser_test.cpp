@@ -70,7 +70,7 @@ TEST(PriorityParser, MaterialsBoundMedia) {
   ASSERT_EQ(s.media.size(), 3u);
   EXPECT_EQ(s.media[0].name, "water");
   EXPECT_EQ(s.media[0].shader.sigma_a, RGB(0.3f, 0.05f, 0.04f));
-  EXPECT_TRUE(s.render.priority_shadows);
+  EXPECT_TRUE(s.render.path.priority_shadows);
 
   const Material& glass = material(s, "glass");
   EXPECT_EQ(glass.priority, kPriorityHigh);
@@ -126,7 +126,7 @@ TEST(PriorityParser, MaterialsWithoutTheNewKeysAreUnchanged) {
   EXPECT_EQ(glass.priority, kPriorityOff);
   EXPECT_EQ(glass.interior, -1);
   EXPECT_FLOAT_EQ(glass.ior, 1.5f);
-  EXPECT_FALSE(s.render.priority_shadows);
+  EXPECT_FALSE(s.render.path.priority_shadows);
   j["materials"]["plain"] = {{"type", "dielectric"}};
   j["materials"]["portal"] = {{"type", "null"}};
   const SceneDesc t = parse(j);

@@ -166,7 +166,8 @@ int Scene::add_geometry(uint32_t geom_id, GeometryInfo info) {
   const bool priority = m.priority != kPriorityOff;
   has_priority_objects_ = has_priority_objects_ || priority;
   surfaces_.set_casts_shadows(geom_id, priority || !null);
-  shadow_deferred_.push_back(priority && (null || desc_.render.priority_shadows) ? 1 : 0);
+  shadow_deferred_[0].push_back(priority && null ? 1 : 0);
+  shadow_deferred_[1].push_back(priority ? 1 : 0);
   return int(geom_id);
 }
 

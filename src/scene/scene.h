@@ -62,9 +62,12 @@ class Scene {
   std::optional<MediumEntry> medium_entry(uint32_t geom_id) const;
   // True when some surface has a priority: paths then carry a medium stack.
   bool has_priority_objects() const { return has_priority_objects_; }
-  // Per geometry: 1 when shadow rays defer its hits to the stack (priority null boundaries, and
-  // priority dielectrics with RenderDefaults::priority_shadows) instead of being blocked.
-  const std::vector<uint8_t>& shadow_deferred() const { return shadow_deferred_; }
+  // Per geometry: 1 when shadow rays defer its hits to the stack instead of being blocked:
+  // priority null boundaries always, priority dielectrics too when `priority_shadows`
+  // (PathSettings::priority_shadows).
+  const std::vector<uint8_t>& shadow_deferred(bool priority_shadows) const {
+    return shadow_deferred_[priority_shadows ? 1 : 0];
+  }
   // The media around the camera at build time: one probe ray from the camera straight up
   // (+Y) through every surface; an object whose first crossing along it leaves it (the probe
   // runs along that face's geometric normal) contains the camera. Works for open surfaces such as a
@@ -105,7 +108,7 @@ class Scene {
   std::vector<int> infinite_lights_;
   std::array<LightSampler, 3> light_samplers_;  // indexed by LightSamplerKind
   std::vector<int> interior_slot_;  // per SceneDesc medium: its slot in volumes_' media, or -1
-  std::vector<uint8_t> shadow_deferred_;
+  std::array<std::vector<uint8_t>, 2> shadow_deferred_;  // without, with priority_shadows
   bool has_priority_objects_ = false;
   MediumStack camera_stack_;
 };

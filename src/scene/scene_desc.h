@@ -13,7 +13,8 @@
 #include "core/error.h"
 #include "core/transform.h"
 #include "core/vec.h"
-#include "settings/path_settings.h"
+#include "settings/realtime_settings.h"
+#include "settings/render_settings.h"
 #include "lights/light.h"
 #include "materials/material.h"
 #include "volumes/volume.h"
@@ -70,57 +71,6 @@ struct LightOptions {
   Interpolation interpolation = Interpolation::linear;
 };
 
-// Defaults of `caligo realtime` (each is also a command-line option).
-struct RealtimeDefaults {
-  int scale = 4;              // accumulation at 1/scale resolution: 1, 2 (half) or 4 (quarter)
-  int tile_size = 8;          // interleaved-sampling tile side (tile_size^2 offsets)
-  int samples = 16;           // march steps per pixel per light
-  int gather_radius = 7;      // bilateral gather taps each side (2r + 1 per pass)
-  float gather_depth_falloff = 1000.0f;  // weight exp(-falloff * |relative depth difference|)
-  bool temporal = true;       // temporal reprojection
-  float temporal_blend = 0.1f;  // weight of the current frame in the history blend
-  float multiple_scattering_floor = 0.0f;  // faked multiple scattering: min shadow term
-  bool equiangular_steps = false;          // "steps": "equiangular" (point and spot lights)
-  float fps = 30.0f;          // frame i is at time i / fps
-  int frames = 60;
-};
-
-// A pixel reconstruction filter as the scene file gives it; render/pixel_filter.h builds and
-// samples it. Radius in pixels (the support is [-radius, radius]^2; Cycles' "filter width"
-// is 2 x radius); sigma (gaussian only) in pixels.
-enum class PixelFilterType { box, gaussian, blackman_harris };
-inline constexpr std::array<EnumName<PixelFilterType>, 4> kPixelFilterNames{
-    {{PixelFilterType::box, "box"},
-     {PixelFilterType::gaussian, "gaussian"},
-     {PixelFilterType::blackman_harris, "blackman_harris"},
-     {PixelFilterType::blackman_harris, "blackman-harris"}}};
-struct PixelFilterDesc {
-  PixelFilterType type = PixelFilterType::box;
-  float radius = 0.5f;
-  float sigma = 0.5f;
-  // The radius a type gets when none is given: box 0.5 (the whole pixel, today's jitter),
-  // gaussian 1.5 (pbrt-v4's default, with sigma 0.5), Blackman-Harris 0.75 (Cycles' default
-  // filter width of 1.5 pixels).
-  static float default_radius(PixelFilterType type) {
-    return type == PixelFilterType::box ? 0.5f : (type == PixelFilterType::gaussian ? 1.5f : 0.75f);
-  }
-};
-
-struct RenderDefaults {
-  int spp = 16;
-  PathLimits limits;  // "max_bounces" (alias "max_depth") and "max_volume_bounces"
-  uint64_t seed = 0;
-  // Shadow rays pass through dielectrics of priority other than Off, attenuated by the media
-  // the priority rules put them in (approximate caustics; lights inside glass or water).
-  // Off: those dielectrics block shadow rays like any other. Null medium boundaries never block.
-  bool priority_shadows = false;
-  PixelFilterDesc filter;  // "filter": how samples spread over pixels (render/pixel_filter.h)
-  CropWindow crop;         // "crop": the part of the image rendered (core/crop_window.h)
-  // "aovs": the outputs besides the beauty, as AovSet::bits() (settings/aov.h, which this header
-  // does not include); none: AovSet::defaults().
-  std::optional<uint32_t> aovs;
-};
-
 // A named entry of the scene's "media" table: what volume primitives are filled with
 // (VolumePrimitive::medium) and what surfaces enclose (Material::interior).
 struct NamedMedium {
@@ -164,8 +114,10 @@ struct ShapeDesc {
 struct SceneDesc {
   std::string file;  // the scene file's name as given (or "builtin:NAME")
   CameraDesc camera;
-  RenderDefaults render;
-  RealtimeDefaults realtime;
+  // The file's "render" object; resolution is the camera's (render_settings(SceneDesc)).
+  RenderSettings render;
+  // The file's "realtime" object, the defaults of `caligo realtime`; resolution is the camera's.
+  RealtimeSettings realtime;
   std::vector<Material> materials;
   std::vector<ShapeDesc> shapes;
   std::vector<Light> lights;  // sphere and quad lights also become visible geometry

@@ -175,7 +175,7 @@ CropWindow read_crop(const JsonCursor& c) {
 }
 
 // "aovs": the names --aov takes (settings/aov.h), one per element; the beauty is always written.
-uint32_t read_aovs(const JsonCursor& c) {
+AovSet read_aovs(const JsonCursor& c) {
   AovSet set;
   for (const JsonCursor& e : c.elements("an array of output names")) {
     const std::string name = e.string();
@@ -193,25 +193,25 @@ uint32_t read_aovs(const JsonCursor& c) {
       e.fail(message + "; valid names: " + list);
     }
   }
-  return set.bits();
+  return set;
 }
 
-RenderDefaults parse_render(const JsonCursor& c) {
+RenderSettings parse_render(const JsonCursor& c) {
   ObjectReader r(c, "the render settings");
   r.allow({"spp", "max_bounces", "max_depth", "max_volume_bounces", "seed", "priority_shadows", "filter", "crop",
            "aovs"});
-  RenderDefaults render;
+  RenderSettings render;
   render.spp = int(r.integer_or("spp", render.spp, Range::closed(1, kMaxSpp)));
   // "max_depth" is the former name of "max_bounces" (PathLimits), kept as an alias.
   const auto old_name = r.optional("max_depth");
   if (old_name && r.has("max_bounces"))
     old_name->fail("\"max_depth\" is an alias of \"max_bounces\" in " + r.what() + "; give one of them, not both");
   const auto bounces = old_name ? old_name : r.optional("max_bounces");
-  if (bounces) render.limits.max_bounces = int(bounces->integer(Range::closed(0, kMaxBounces)));
-  render.limits.max_volume_bounces =
-      int(r.integer_or("max_volume_bounces", render.limits.max_volume_bounces, Range::closed(0, kMaxBounces)));
+  if (bounces) render.path.limits.max_bounces = int(bounces->integer(Range::closed(0, kMaxBounces)));
+  render.path.limits.max_volume_bounces =
+      int(r.integer_or("max_volume_bounces", render.path.limits.max_volume_bounces, Range::closed(0, kMaxBounces)));
   if (auto seed = r.optional("seed")) render.seed = seed->unsigned_integer();
-  render.priority_shadows = r.boolean_or("priority_shadows", render.priority_shadows);
+  render.path.priority_shadows = r.boolean_or("priority_shadows", render.path.priority_shadows);
   if (auto f = r.optional("filter")) render.filter = read_pixel_filter(*f);
   if (auto crop = r.optional("crop")) render.crop = read_crop(*crop);
   if (auto aovs = r.optional("aovs")) render.aovs = read_aovs(*aovs);
@@ -219,24 +219,24 @@ RenderDefaults parse_render(const JsonCursor& c) {
   return render;
 }
 
-RealtimeDefaults parse_realtime(const JsonCursor& c) {
+RealtimeSettings parse_realtime(const JsonCursor& c) {
   ObjectReader r(c, "the realtime settings");
   r.allow({"scale", "tile_size", "samples", "gather_radius", "gather_depth_falloff", "temporal",
            "temporal_blend", "multiple_scattering_floor", "steps", "fps", "frames"});
-  RealtimeDefaults d;
+  RealtimeSettings d;
   if (r.has("scale")) {
     const std::string scale = r.choice("scale", {"full", "half", "quarter"});
     d.scale = scale == "full" ? 1 : (scale == "half" ? 2 : 4);
   }
-  d.tile_size = int(r.integer_or("tile_size", d.tile_size, Range::closed(1, 32)));
-  d.samples = int(r.integer_or("samples", d.samples, Range::closed(1, 1024)));
+  d.accumulation.tile_size = int(r.integer_or("tile_size", d.accumulation.tile_size, Range::closed(1, 32)));
+  d.accumulation.samples = int(r.integer_or("samples", d.accumulation.samples, Range::closed(1, 1024)));
   d.gather_radius = int(r.integer_or("gather_radius", d.gather_radius, Range::closed(0, 16)));
   d.gather_depth_falloff = r.number_or("gather_depth_falloff", d.gather_depth_falloff, Range::positive());
   d.temporal = r.boolean_or("temporal", d.temporal);
   d.temporal_blend = r.number_or("temporal_blend", d.temporal_blend, Range::above_up_to(0, 1));
-  d.multiple_scattering_floor =
-      r.number_or("multiple_scattering_floor", d.multiple_scattering_floor, Range::closed(0, 1));
-  if (r.has("steps")) d.equiangular_steps = r.choice("steps", {"uniform", "equiangular"}) == "equiangular";
+  d.accumulation.multiple_scattering_floor =
+      r.number_or("multiple_scattering_floor", d.accumulation.multiple_scattering_floor, Range::closed(0, 1));
+  if (r.has("steps")) d.accumulation.equiangular = r.choice("steps", {"uniform", "equiangular"}) == "equiangular";
   d.fps = r.number_or("fps", d.fps, Range::positive());
   d.frames = int(r.integer_or("frames", d.frames, Range::closed(1, kMaxFrames)));
   r.finish();

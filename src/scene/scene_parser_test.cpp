@@ -80,7 +80,7 @@ TEST_F(EverythingTest, CameraAndRenderSettings) {
   EXPECT_FLOAT_EQ(scene.camera.fov_degrees, 50.0f);
   EXPECT_EQ(scene.camera.resolution, (Vec2i{320, 200}));
   EXPECT_EQ(scene.render.spp, 128);
-  EXPECT_EQ(scene.render.limits.max_bounces, 12);
+  EXPECT_EQ(scene.render.path.limits.max_bounces, 12);
   EXPECT_EQ(scene.render.seed, 18446744073709551615ull);
 }
 
@@ -185,8 +185,8 @@ TEST_F(EverythingTest, DistantLights) {
 TEST(SceneParser, MaxBounces) {
   const SceneDesc scene = parse_scene_text(
       R"({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]}, "render": {"max_bounces": 3}})", "b.json", "");
-  EXPECT_EQ(scene.render.limits.max_bounces, 3);
-  EXPECT_EQ(scene.render.limits.max_volume_bounces, 128);
+  EXPECT_EQ(scene.render.path.limits.max_bounces, 3);
+  EXPECT_EQ(scene.render.path.limits.max_volume_bounces, 128);
 }
 
 // "holdout" marks a shape as a matte; it is off unless given.
@@ -215,8 +215,8 @@ TEST(SceneParser, RenderAovs) {
                             "a.json", "")
         .render.aovs;
   };
-  const auto set = [](AovSet a) { return std::optional<uint32_t>(a.bits()); };
-  EXPECT_EQ(aovs_of("{}"), std::nullopt);  // the renderer's default, AovSet::defaults()
+  const auto set = [](AovSet a) { return a; };
+  EXPECT_EQ(aovs_of("{}"), AovSet::defaults());
   EXPECT_EQ(aovs_of(R"({"aovs": []})"), set(AovSet{}));
   EXPECT_EQ(aovs_of(R"({"aovs": ["alpha", "volume.direct", "beauty"]})"),
             set(AovSet{}.with(Aov::kAlpha).with(Aov::kVolumeDirect)));
@@ -234,7 +234,7 @@ TEST(SceneParser, DefaultsForOptionalParts) {
   EXPECT_FLOAT_EQ(scene.camera.fov_degrees, 40.0f);
   EXPECT_EQ(scene.camera.resolution, (Vec2i{640, 480}));
   EXPECT_EQ(scene.render.spp, 16);
-  EXPECT_EQ(scene.render.limits.max_bounces, 8);
+  EXPECT_EQ(scene.render.path.limits.max_bounces, 8);
   EXPECT_TRUE(scene.materials.empty());
   EXPECT_TRUE(scene.shapes.empty());
   EXPECT_TRUE(scene.lights.empty());  // allowed: the image is black
@@ -687,7 +687,7 @@ TEST(SceneParser, MediaAndVolumes) {
     ]
   })json",
                                            "vol.json", "");
-  EXPECT_EQ(scene.render.limits.max_volume_bounces, 1024);
+  EXPECT_EQ(scene.render.path.limits.max_volume_bounces, 1024);
   ASSERT_EQ(scene.volumes.size(), 3u);
   const VolumeShader& fog = scene.volumes[0].shader;
   EXPECT_EQ(fog.sigma_s, RGB(0.5f, 0.4f, 0.3f));

@@ -1,8 +1,8 @@
 // How the volumetric path tracer traces a path: its limits and the choices of its estimators,
 // as plain data below every pipeline (settings/: what a scene file and a command line set).
-// One value of these is embedded in RenderSettings (render/render_settings.h) and passed to
-// trace_path unchanged; PathLimits alone is also what a scene file's "render" object gives
-// (RenderDefaults, scene/scene_desc.h) and what the reference ladder obeys (ReferenceOptions,
+// One value of these is embedded in RenderSettings (settings/render_settings.h) and passed to
+// trace_path unchanged; a scene file's "render" object sets its limits and priority_shadows.
+// PathLimits alone is also what the reference ladder obeys (ReferenceOptions,
 // integrators/reference.h), so every pipeline counts a path's events the same way.
 #pragma once
 
@@ -58,6 +58,11 @@ inline constexpr std::array<EnumName<SecondarySegments>, 3> kSecondarySegmentsNa
 
 struct PathSettings {
   PathLimits limits;
+  // Shadow rays pass through dielectrics of priority other than Off, attenuated by the media
+  // the priority rules put them in (approximate caustics; lights inside glass or water).
+  // Off: those dielectrics block shadow rays like any other. Null medium boundaries never
+  // block. Scene key render.priority_shadows.
+  bool priority_shadows = false;
   int russian_roulette_depth = 3;  // roulette starts after this many events (surface and volume)
   int max_null_crossings = 256;    // guards against endless chains of null surfaces
   DistanceSampling distance_sampling = DistanceSampling::kMis;

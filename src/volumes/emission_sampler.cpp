@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/ray_solids.h"
 #include "grids/grid_blocks.h"
 #include "grids/grid_dda.h"
 #include "grids/grid_traversal.h"
@@ -217,8 +218,10 @@ float EmissionSampler::direction_pdf(Vec3 x, Vec3 w) const {
     // Affine maps keep the ray parameter: t is still the world distance along unit w.
     const Vec3 o = f.lattice_to_world.inverse_point(x), d = f.lattice_to_world.inverse_vector(w);
     if (!is_finite(o) || !is_finite(d) || length_squared(d) == 0.0f) continue;
-    float t0 = 0.0f, t1 = kInfinity;
-    if (!clip_to_box(o, d, Vec3(0.0f), Vec3(float(f.dims[0]), float(f.dims[1]), float(f.dims[2])), t0, t1)) continue;
+    const auto range = ray_box(o, d, Vec3(0.0f), Vec3(float(f.dims[0]), float(f.dims[1]), float(f.dims[2])), 0.0f,
+                               kInfinity);
+    if (!range || !(range->t0 < range->t1)) continue;
+    const float t0 = range->t0, t1 = range->t1;
     const int n[3] = {f.dims[0], f.dims[1], f.dims[2]};
     for_each_lattice_cell(o, d, t0, t1, n, [&](const int* c, float ta, float tb) {
       const float q = f.density[flat_cell(f, c)];

@@ -172,12 +172,12 @@ int MeshVolume::crossings(const Ray& ray, std::vector<SurfaceHit>& hits) const {
 }
 
 void MeshVolume::intervals(const Ray& ray, std::vector<SurfaceHit>& hits,
-                           std::vector<std::pair<float, float>>& out) const {
+                           std::vector<RayRange>& out) const {
   crossings(ray, hits);
   for (size_t i = 0; i + 1 < hits.size(); i += 2) {
     const float t0 = std::max(hits[i].t, ray.tmin);
     const float t1 = std::min(hits[i + 1].t, ray.tmax);
-    if (t0 < t1) out.emplace_back(t0, t1);
+    if (t0 < t1) out.push_back({t0, t1});
   }
 }
 

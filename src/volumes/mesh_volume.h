@@ -43,7 +43,7 @@ class MeshVolume {
   // each non-empty. `hits` is per-thread scratch (no allocation once it has grown). The
   // direction need not be unit length; t is the ray's parameter.
   void intervals(const Ray& ray, std::vector<SurfaceHit>& hits,
-                 std::vector<std::pair<float, float>>& out) const;
+                 std::vector<RayRange>& out) const;
 
   // How many Embree queries intervals() makes for `ray`: 1, or more when the ray passes
   // through an edge or vertex and is perturbed (for tests and diagnostics).

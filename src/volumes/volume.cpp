@@ -3,62 +3,49 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/ray_solids.h"
 #include "media/blackbody.h"
 #include "volumes/mesh_volume.h"
 
 namespace caligo {
 namespace {
 
-using Stretch = std::pair<float, float>;
-
-std::optional<Stretch> clip(const Ray& ray, float t0, float t1) {
+std::optional<RayRange> clip(const Ray& ray, float t0, float t1) {
   t0 = std::max(t0, ray.tmin);
   t1 = std::min(t1, ray.tmax);
   if (!(t0 < t1)) return std::nullopt;
-  return Stretch{t0, t1};
+  return RayRange{t0, t1};
 }
 
 // Slab test in object space; t is the same parameter in both spaces (affine map).
-std::optional<Stretch> box_interval(const Transform& object_to_world, Vec3 lo, Vec3 hi, const Ray& ray) {
-  const Vec3 o = object_to_world.inverse_point(ray.origin);
-  const Vec3 d = object_to_world.inverse_vector(ray.direction);
-  float t0 = -kInfinity, t1 = kInfinity;
-  for (int a = 0; a < 3; ++a) {
-    const float inv = 1.0f / d[a];
-    float tn = (lo[a] - o[a]) * inv, tf = (hi[a] - o[a]) * inv;
-    if (std::isnan(tn) || std::isnan(tf)) {  // parallel to the slab and on its plane
-      if (o[a] < lo[a] || o[a] > hi[a]) return std::nullopt;
-      continue;
-    }
-    if (tn > tf) std::swap(tn, tf);
-    t0 = std::max(t0, tn);
-    t1 = std::min(t1, tf);
-  }
-  return clip(ray, t0, t1);
+std::optional<RayRange> box_interval(const Transform& object_to_world, Vec3 lo, Vec3 hi, const Ray& ray) {
+  const auto range = ray_box(object_to_world.inverse_point(ray.origin), object_to_world.inverse_vector(ray.direction),
+                             lo, hi, -kInfinity, kInfinity);
+  return range ? clip(ray, range->t0, range->t1) : std::nullopt;
 }
 
 struct HullInterval {
   const Ray& ray;
-  std::optional<Stretch> operator()(const SphereVolumeShape& s) const {
+  std::optional<RayRange> operator()(const SphereVolumeShape& s) const {
     const auto roots = intersect_sphere(s.sphere, ray);
     if (!roots) return std::nullopt;
-    return clip(ray, roots->t_near, roots->t_far);
+    return clip(ray, roots->t0, roots->t1);
   }
-  std::optional<Stretch> operator()(const BoxVolumeShape& b) const {
+  std::optional<RayRange> operator()(const BoxVolumeShape& b) const {
     return box_interval(b.object_to_world, b.lo, b.hi, ray);
   }
-  std::optional<Stretch> operator()(const MeshVolumeShape& m) const {
+  std::optional<RayRange> operator()(const MeshVolumeShape& m) const {
     const Bounds3 b = m.mesh->bounds();
     return box_interval(Transform(), b.lo, b.hi, ray);
   }
   // A ray escaping the scene inside a medium ends at a finite 1e30: sigma * t stays finite
   // (0 for a channel the medium does not attenuate, where sigma * inf would be NaN) and the
   // transmittance there is exactly 0 or 1, as at infinity.
-  std::optional<Stretch> operator()(const UnboundedVolumeShape&) const { return clip(ray, -kInfinity, 1.0e30f); }
+  std::optional<RayRange> operator()(const UnboundedVolumeShape&) const { return clip(ray, -kInfinity, 1.0e30f); }
 };
 
 // The stretches of the ray inside the shape, into context.mesh_intervals (reused scratch).
-struct InsideStretches {
+struct InsideRayRangees {
   const Ray& ray;
   VolumeContext& context;
   void operator()(const SphereVolumeShape& s) const { one(HullInterval{ray}(s)); }
@@ -68,7 +55,7 @@ struct InsideStretches {
     m.mesh->intervals(ray, context.mesh_hits, context.mesh_intervals);
   }
   void operator()(const UnboundedVolumeShape& u) const { one(HullInterval{ray}(u)); }
-  void one(std::optional<Stretch> s) const {
+  void one(std::optional<RayRange> s) const {
     context.mesh_intervals.clear();
     if (s) context.mesh_intervals.push_back(*s);
   }
@@ -123,7 +110,7 @@ struct FieldIntervals {
   const VolumePrimitive& primitive;
   uint32_t id;
   const Ray& ray;
-  Stretch stretch;
+  RayRange stretch;
   VolumeContext& context;
   RGB sigma_unit;    // sigma_t per unit field density (density and noise peak included)
   bool noise_free;
@@ -139,21 +126,21 @@ struct FieldIntervals {
   }
 
   void operator()(const ConstantDensity&) const {
-    context.intervals.push_back({stretch.first, stretch.second, id, sigma_unit, noise_free, control_unit()});
+    context.intervals.push_back({stretch.t0, stretch.t1, id, sigma_unit, noise_free, control_unit()});
   }
   void operator()(const RadialFalloffDensity&) const {
-    context.intervals.push_back({stretch.first, stretch.second, id, sigma_unit, false});
+    context.intervals.push_back({stretch.t0, stretch.t1, id, sigma_unit, false});
   }
   void operator()(const GridDensity& g) const {
     if (!context.skip_empty_blocks) {
       context.intervals.push_back(
-          {stretch.first, stretch.second, id, sigma_unit * g.grid->max_density(), false});
+          {stretch.t0, stretch.t1, id, sigma_unit * g.grid->max_density(), false});
       return;
     }
     const Ray local{g.grid_to_world.inverse_point(ray.origin), g.grid_to_world.inverse_vector(ray.direction),
                     ray.tmin, ray.tmax};
     context.grid_intervals.clear();
-    g.grid->intervals(local, stretch.first, stretch.second, context.grid_intervals);
+    g.grid->intervals(local, stretch.t0, stretch.t1, context.grid_intervals);
     const RGB control = control_unit();
     for (const GridInterval& gi : context.grid_intervals)
       context.intervals.push_back({gi.t0, gi.t1, id, sigma_unit * gi.density_max,
@@ -216,16 +203,16 @@ float noise_peak(const VolumeShader& s) { return s.noise ? noise_density_max(*s.
 
 }  // namespace
 
-std::optional<std::pair<float, float>> volume_hull_interval(const VolumeShape& shape, const Ray& ray) {
+std::optional<RayRange> volume_hull_interval(const VolumeShape& shape, const Ray& ray) {
   return std::visit(HullInterval{ray}, shape);
 }
 
 void append_intervals(const VolumePrimitive& primitive, uint32_t id, const Ray& ray, VolumeContext& context) {
-  std::visit(InsideStretches{ray, context}, primitive.shape);
+  std::visit(InsideRayRangees{ray, context}, primitive.shape);
   if (context.mesh_intervals.empty()) return;
   const VolumeShader& s = primitive.shader;
   const RGB sigma_unit = (s.sigma_a + s.sigma_s + RGB(s.holdout)) * (s.density * noise_peak(s));
-  for (const Stretch& stretch : context.mesh_intervals)
+  for (const RayRange& stretch : context.mesh_intervals)
     std::visit(FieldIntervals{primitive, id, ray, stretch, context, sigma_unit, !s.noise}, s.field);
 }
 

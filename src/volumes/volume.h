@@ -11,6 +11,7 @@
 #include <variant>
 
 #include "core/ray.h"
+#include "core/ray_range.h"
 #include "core/transform.h"
 #include "geometry/shapes.h"
 #include "grids/volume_grid.h"
@@ -94,7 +95,7 @@ struct VolumePrimitive {
 
 // The ray's parametric overlap with the shape's convex hull (the mesh's bounding box for a
 // mesh), clipped to [ray.tmin, ray.tmax]: where the primitive may have medium.
-std::optional<std::pair<float, float>> volume_hull_interval(const VolumeShape& shape, const Ray& ray);
+std::optional<RayRange> volume_hull_interval(const VolumeShape& shape, const Ray& ray);
 // Appends the primitive's majorant intervals along the ray to context.intervals.
 void append_intervals(const VolumePrimitive& primitive, uint32_t id, const Ray& ray, VolumeContext& context);
 Bounds3 volume_bounds(const VolumeShape& shape);

@@ -25,7 +25,7 @@ struct VolumeContext {
   std::vector<uint32_t> candidates;       // primitives whose bounds the ray crosses
   std::vector<GridInterval> grid_intervals;
   std::vector<SurfaceHit> mesh_hits;
-  std::vector<std::pair<float, float>> mesh_intervals;
+  std::vector<RayRange> mesh_intervals;
   std::unique_ptr<GridAccessorCache> grids;
 
   // Grid traversal switches, on in rendering; benchmarks turn them off to measure what they save.

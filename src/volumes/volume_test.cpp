@@ -15,19 +15,19 @@ TEST(VolumeInterval, SphereFromOutsideAndInside) {
   const VolumeShape s = SphereVolumeShape{Sphere::make({0, 0, 5}, 1.0f, {})};
   auto i = volume_hull_interval(s, {{0, 0, 0}, {0, 0, 1}});
   ASSERT_TRUE(i);
-  EXPECT_NEAR(i->first, 4.0f, 1e-5f);
-  EXPECT_NEAR(i->second, 6.0f, 1e-5f);
+  EXPECT_NEAR(i->t0, 4.0f, 1e-5f);
+  EXPECT_NEAR(i->t1, 6.0f, 1e-5f);
   // The camera inside: the interval starts at the ray's origin.
   i = volume_hull_interval(s, {{0, 0, 5}, {0, 0, 1}});
   ASSERT_TRUE(i);
-  EXPECT_FLOAT_EQ(i->first, 0.0f);
-  EXPECT_NEAR(i->second, 1.0f, 1e-5f);
+  EXPECT_FLOAT_EQ(i->t0, 0.0f);
+  EXPECT_NEAR(i->t1, 1.0f, 1e-5f);
   // Pruned by a surface hit before the volume: nothing.
   EXPECT_FALSE(volume_hull_interval(s, {{0, 0, 0}, {0, 0, 1}, 0.0f, 3.0f}));
   // Pruned inside: clipped.
   i = volume_hull_interval(s, {{0, 0, 0}, {0, 0, 1}, 0.0f, 4.5f});
   ASSERT_TRUE(i);
-  EXPECT_FLOAT_EQ(i->second, 4.5f);
+  EXPECT_FLOAT_EQ(i->t1, 4.5f);
 }
 
 TEST(VolumeInterval, TransformedBox) {
@@ -35,12 +35,12 @@ TEST(VolumeInterval, TransformedBox) {
       Transform::translate({0, 0, 10}) * Transform::rotate(kPi / 4, {0, 0, 1}), {-1, -1, -1}, {1, 1, 1}};
   const auto i = volume_hull_interval(box, {{0, 0, 0}, {0, 0, 1}});
   ASSERT_TRUE(i);
-  EXPECT_NEAR(i->first, 9.0f, 1e-5f);
-  EXPECT_NEAR(i->second, 11.0f, 1e-5f);
+  EXPECT_NEAR(i->t0, 9.0f, 1e-5f);
+  EXPECT_NEAR(i->t1, 11.0f, 1e-5f);
   // Rotated 45 degrees about z: along x the box reaches sqrt(2).
   const auto across = volume_hull_interval(box, {{-5, 0, 10}, {1, 0, 0}});
   ASSERT_TRUE(across);
-  EXPECT_NEAR(across->second - across->first, 2.0f * std::sqrt(2.0f), 1e-4f);
+  EXPECT_NEAR(across->t1 - across->t0, 2.0f * std::sqrt(2.0f), 1e-4f);
   EXPECT_FALSE(volume_hull_interval(box, {{-5, 1.5f, 10}, {1, 0, 0}}));
 }
 
@@ -100,7 +100,7 @@ TEST(VolumeScene, BvhAndLinearScanAgree) {
     std::vector<VolumeInterval> expected;
     for (uint32_t i = 0; i < many.size(); ++i)
       if (const auto range = volume_hull_interval(many[i].shape, ray))
-        expected.push_back({range->first, range->second, i});
+        expected.push_back({range->t0, range->t1, i});
     ASSERT_EQ(found.size(), expected.size()) << "ray " << r;
     for (size_t k = 0; k < found.size(); ++k) {
       EXPECT_EQ(found[k].primitive, expected[k].primitive);

@@ -1,28 +1,30 @@
-// Everything that says how to render (as opposed to what): passed by value, never global.
+// Everything that says how the path tracer renders (as opposed to what): plain data, passed by
+// value, never global. A scene file's "render" object fills one (SceneDesc::render) and the
+// render command's options override it.
 #pragma once
 
 #include <cstdint>
 
 #include "core/crop_window.h"
 #include "core/vec.h"
-#include "settings/path_settings.h"
-#include "raymarch/march.h"
 #include "settings/aov.h"
-#include "render/pixel_filter.h"
+#include "settings/march_settings.h"
+#include "settings/path_settings.h"
+#include "settings/pixel_filter_desc.h"
 
 namespace caligo {
 
 struct RenderSettings {
   Vec2i resolution{640, 480};
   int spp = 16;
-  PathSettings path;  // passed to trace_path as it is (settings/path_settings.h)
+  PathSettings path;  // passed to trace_path as it is; the scene file sets its limits and priority_shadows
   uint64_t seed = 0;
   int threads = 0;  // 0: all hardware threads
   int tile_size = 16;
   MarchSettings march;  // step rules of the decoupled ray marcher
-  // Where each sample lands in its pixel: sample_offset() of the kFilm sample, weight 1
-  // (render/pixel_filter.h shows the loop). Default: box of radius 0.5, the uniform jitter.
-  PixelFilter filter;
+  // Where each sample lands in its pixel: render/pixel_filter.h builds the filter from this and
+  // shows the loop (the kFilm sample, weight 1). Default: box of radius 0.5, the uniform jitter.
+  PixelFilterDesc filter;
   // The pixels rendered: crop.pixels(resolution); the image keeps the full resolution.
   CropWindow crop;
   // The outputs the film holds and the image gets (settings/aov.h; --aov).

@@ -1,0 +1,48 @@
+// How the real-time single-scattering pipeline (realtime/pipeline.h) renders a frame: plain
+// data. A scene file's "realtime" object fills one (SceneDesc::realtime) and `caligo realtime`'s
+// options override it.
+#pragma once
+
+#include <cstdint>
+
+#include "core/vec.h"
+
+namespace caligo {
+
+// The per-light ray march of the accumulation pass (realtime/passes.h).
+struct AccumulationSettings {
+  int samples = 16;                        // march steps per pixel per light
+  int tile_size = 8;                       // interleaved sampling tile side; 1 = no interleaving (midpoints)
+  uint32_t frame_seed = 0;                 // randomises the offsets' order per tile and per frame
+  float multiple_scattering_floor = 0.0f;  // shadow term never below this (faked multiple scattering)
+  // Point and spot lights: steps uniform in the angle seen from the light (equiangular,
+  // Kulla & Fajardo 2012) instead of the seed's uniform steps in distance. Resolves the
+  // 1/d^2 peak of rays passing near a light; costs a tangent per step. Scene key "steps":
+  // "equiangular".
+  bool equiangular = false;
+  bool simd = true;
+};
+
+// How the depth and surface buffers are made: rasterised triangles (the game's way) or Embree
+// rays (kept for comparison).
+enum class SceneBufferMethod { raster, embree };
+
+struct RealtimeSettings {
+  Vec2i resolution{640, 480};
+  int scale = 4;  // accumulation at resolution / scale: 1, 2 (half) or 4 (quarter)
+  AccumulationSettings accumulation;
+  int gather_radius = 7;  // bilateral gather taps each side (2r + 1 per pass)
+  // The gather of the lights a LightScatterer takes: their analytic result has no sampling
+  // noise to blur, only low-resolution edges, so Wyman & Ramsey's 3x3 bilateral filter.
+  int scatter_gather_radius = 1;
+  float gather_depth_falloff = 1000.0f;  // weight exp(-falloff * |relative depth difference|)
+  bool temporal = true;                  // temporal reprojection
+  float temporal_blend = 0.1f;           // weight of the current frame in the history blend
+  bool simd = true;
+  SceneBufferMethod scene_buffers = SceneBufferMethod::raster;
+  // The animation `caligo realtime` renders: frame i is at time i / fps.
+  float fps = 30.0f;
+  int frames = 60;
+};
+
+}  // namespace caligo
