@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "realtime/pipeline.h"
+#include "scene/scene.h"
 #include "scene/scene_parser.h"
 
 #ifndef CALIGO_SCENES_DIR
@@ -48,7 +49,7 @@ void run_frames(benchmark::State& state, int lights, bool simd) {
   settings.resolution = {1920, 1080};
   settings.scale = 4;
   settings.simd = simd;
-  RealtimePipeline pipeline(desc, settings);
+  RealtimePipeline pipeline(Scene::build(desc), settings);
   for (int warm = 0; warm < 2; ++warm) pipeline.render(0.0f, uint32_t(warm));
   std::vector<double> acc, gather, up, temporal, volumetric, total;
   uint32_t frame = 2;

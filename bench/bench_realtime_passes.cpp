@@ -84,7 +84,7 @@ std::vector<FrameLight> seven_lights() {
   lights.push_back(b);
   lights.push_back(DirectionalLight{normalize(Vec3(0.3f, -1.0f, -0.4f)), RGB(0.8f)});
   std::vector<FrameLight> out;
-  for (Light& l : lights) out.push_back(FrameLight{l, LightOptions{}, nullptr});
+  for (Light& l : lights) out.push_back(FrameLight{*shaded_light(l), LightOptions{}, nullptr});
   return out;
 }
 

@@ -98,7 +98,7 @@ BENCHMARK(BM_RealtimeDepthRaster)->Unit(benchmark::kMillisecond)->UseRealTime();
 // Arg: light index (0 point = 6-face cube, 1 spot, 2 directional), each 1024^2 per face.
 void BM_RealtimeShadowMap(benchmark::State& state) {
   const RasterBench& b = bench_scene();
-  const Light& light = b.scene->lights()[size_t(state.range(0))];
+  const ShadedLight light = *shaded_light(b.scene->lights()[size_t(state.range(0))]);
   for (auto _ : state)
     benchmark::DoNotOptimize(render_shadow_map(b.raster, light, 1024, b.scene->surfaces().bounds()));
 }
@@ -111,9 +111,9 @@ void BM_RealtimeShadeSurfaces(benchmark::State& state) {
   std::vector<std::optional<ShadowMap>> maps;
   std::vector<FrameLight> lights;
   for (const Light& l : b.scene->lights())
-    maps.push_back(render_shadow_map(b.raster, l, 1024, b.scene->surfaces().bounds()));
+    maps.push_back(render_shadow_map(b.raster, *shaded_light(l), 1024, b.scene->surfaces().bounds()));
   for (size_t i = 0; i < maps.size(); ++i)
-    lights.push_back({b.scene->lights()[i], {}, maps[i] ? &*maps[i] : nullptr});
+    lights.push_back({*shaded_light(b.scene->lights()[i]), {}, maps[i] ? &*maps[i] : nullptr, i});
   for (auto _ : state) benchmark::DoNotOptimize(shade_surfaces(g, b.view, *b.scene, lights));
 }
 BENCHMARK(BM_RealtimeShadeSurfaces)->Unit(benchmark::kMillisecond)->UseRealTime();

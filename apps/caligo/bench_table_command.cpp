@@ -504,7 +504,7 @@ int run_bench_table(const BenchTableOptions& o) {
         s.resolution = {o.resolution, o.resolution};
         s.scale = scale;
         s.temporal = false;
-        return std::make_unique<RealtimePipeline>(d, s);
+        return std::make_unique<RealtimePipeline>(Scene::build(d), s);
       };
       const auto pipeline = make_pipeline(desc);
       const auto spot_pipeline = spot_desc ? make_pipeline(*spot_desc) : nullptr;

@@ -331,7 +331,7 @@ int run_realtime(const RealtimeOptions& o) {
   const OutputKind kind = output_kind(o.output);
   check_realtime_options(o, desc, kind);
 
-  RealtimePipeline pipeline(desc, settings);
+  RealtimePipeline pipeline(Scene::build(desc), settings);
   const VolumetricMethod method = *parse_volumetric_method(o.method);
   HybridScatterer* scatterer = nullptr;  // owned by the pipeline
   if (method != VolumetricMethod::kMarch) {

@@ -31,9 +31,8 @@ struct Ranges {
   Mask hit, unsure;
 };
 
-// All of [0, tmax] (for every lane whose tmax is not negative) and nothing.
+// All of [0, tmax] (for every lane whose tmax is not negative).
 inline Ranges whole(const Rays& r) { return {Batch(0.0f), r.tmax, Batch(0.0f) <= r.tmax, Mask(false)}; }
-inline Ranges none(const Rays& r) { return {Batch(0.0f), r.tmax, Mask(false), Mask(false)}; }
 
 // ray_ball.
 Ranges ray_ball(const Rays& r, Vec3 centre, float radius);

@@ -45,7 +45,7 @@ Rendered render(const SceneDesc& desc, VolumetricMethod method, int march_sample
   s.scale = 2;
   s.temporal = false;
   s.accumulation.samples = march_samples;
-  RealtimePipeline pipeline(desc, s);
+  RealtimePipeline pipeline(Scene::build(desc), s);
   HybridScatterer* scatterer = nullptr;
   if (method != VolumetricMethod::kMarch) {
     auto owned = std::make_unique<HybridScatterer>(pipeline.scene(), method);

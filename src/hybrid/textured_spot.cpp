@@ -86,7 +86,7 @@ ScatterResult scatter_textured_spot(const View& view, const Plane& opaque_depth,
   if (!shadow) volumes = nullptr;  // nothing casts a shadow: every step is lit
   Emitter emitter{light, light.gobo};
   if (light.gobo.image && settings.blur_level > 0) emitter.gobo.image = blurred_gobo(*light.gobo.image, settings.blur_level);
-  const Light as_light{light};
+  const ShadedLight as_light{light};
   const float max_distance = std::max(settings.max_distance, 0.0f);
   const float jitter = std::clamp(settings.jitter, 0.0f, 1.0f);
   const float lit_rate = std::clamp(settings.lit_rate, 0.0f, 1.0f);

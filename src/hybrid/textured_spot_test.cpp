@@ -65,7 +65,7 @@ float ray_end(const Scene& s, const Ray& ray, int x, int y, float max_distance =
 // agreement with delta_arrival along whole rays OnlyRaysInsideTheConeAreMarched checks).
 std::optional<RayRange> cone_span(const Scene& s, const SpotLight& spot, int x, int y) {
   const Ray ray = s.view.ray({float(x) + 0.5f, float(y) + 0.5f});
-  return light_volume_interval(Light{spot}, ray.origin, ray.direction, 0.0f, ray_end(s, ray, x, y));
+  return light_volume_interval(ShadedLight{spot}, ray.origin, ray.direction, 0.0f, ray_end(s, ray, x, y));
 }
 
 // The single-scattering integral with the path tracer's light model (delta_arrival includes
@@ -295,7 +295,7 @@ SpotLight gradient_spot() {
 TEST(TexturedSpot, ShadowedSpotMatchesBruteForceMarch) {
   const Scene s = make_scene({testing::box_mesh({-0.6f, 3.0f, -0.6f}, {0.4f, 3.4f, 0.4f})});
   const SpotLight spot = gradient_spot();
-  const auto map = render_shadow_map(s.raster, Light{spot}, 512, s.raster.bounds());
+  const auto map = render_shadow_map(s.raster, ShadedLight{spot}, 512, s.raster.bounds());
   ASSERT_TRUE(map);
   const auto& table = AirlightTable::shared();
   TexturedSpotSettings settings;
@@ -324,7 +324,7 @@ TEST(TexturedSpot, ShadowVolumeSegmentsMatchBruteForceMarch) {
   const TriangleMesh box = testing::box_mesh({-0.6f, 3.0f, -0.6f}, {0.4f, 3.4f, 0.4f});
   const Scene s = make_scene({box});
   const SpotLight spot = gradient_spot();
-  const auto map = render_shadow_map(s.raster, Light{spot}, 512, s.raster.bounds());
+  const auto map = render_shadow_map(s.raster, ShadedLight{spot}, 512, s.raster.bounds());
   ASSERT_TRUE(map);
   const ShadowVolume volume = build_shadow_volume(MeshEdges(box), spot.position, 40.0f);
   const ShadowVolumeBuffers buffers = rasterize_shadow_volumes({&volume, 1}, s.view, s.depth);

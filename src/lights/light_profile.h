@@ -37,5 +37,9 @@ std::optional<DeltaArrival> delta_arrival(const PointLight& light, Vec3 receiver
 std::optional<DeltaArrival> delta_arrival(const SpotLight& light, Vec3 receiver);
 // std::nullopt outside the box.
 std::optional<DeltaArrival> delta_arrival(const BoxLight& light, Vec3 receiver);
+// Parallel light from everywhere: its irradiance along -direction, at infinite distance.
+inline std::optional<DeltaArrival> delta_arrival(const DirectionalLight& light, Vec3) {
+  return DeltaArrival{light.irradiance, -light.direction, kInfinity};
+}
 
 }  // namespace caligo

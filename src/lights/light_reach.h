@@ -24,8 +24,29 @@
 
 namespace caligo {
 
-// The part of [tmin, tmax] of origin + t dir (dir unit) that `light` can reach (table above).
-std::optional<RayRange> light_reach(const Light& light, Vec3 origin, Vec3 dir, float tmin, float tmax);
+// The part of [tmin, tmax] of origin + t dir (dir unit) that a light can reach (table above):
+// a visitor, so that callers holding a narrower variant of lights (the real-time passes'
+// ShadedLight) visit it too.
+struct LightReach {
+  Vec3 origin, dir;
+  float tmin, tmax;
+  std::optional<RayRange> operator()(const PointLight& l) const;
+  std::optional<RayRange> operator()(const SpotLight& l) const;
+  std::optional<RayRange> operator()(const BoxLight& l) const;
+  std::optional<RayRange> operator()(const QuadLight& l) const;
+  std::optional<RayRange> operator()(const TriangleLight& l) const;
+  std::optional<RayRange> operator()(const SphereLight& l) const;
+  std::optional<RayRange> operator()(const DirectionalLight& l) const;
+  std::optional<RayRange> operator()(const EnvironmentLight& l) const;
+
+ private:
+  std::optional<RayRange> all() const;
+  std::optional<RayRange> within(Vec3 centre, float range) const;
+};
+
+inline std::optional<RayRange> light_reach(const Light& light, Vec3 origin, Vec3 dir, float tmin, float tmax) {
+  return std::visit(LightReach{origin, dir, tmin, tmax}, light);
+}
 
 // The box a box light fills: right = cross(direction, up), |local x| <= half_width,
 // |local y| <= half_height, 0 <= local z <= range along `direction` from `position`.

@@ -19,21 +19,6 @@
 namespace caligo {
 namespace {
 
-// Delta arrival of the light types the passes march; directional lights are parallel.
-struct Arrival {
-  Vec3 receiver;
-  std::optional<DeltaArrival> operator()(const PointLight& l) const { return delta_arrival(l, receiver); }
-  std::optional<DeltaArrival> operator()(const SpotLight& l) const { return delta_arrival(l, receiver); }
-  std::optional<DeltaArrival> operator()(const BoxLight& l) const { return delta_arrival(l, receiver); }
-  std::optional<DeltaArrival> operator()(const DirectionalLight& l) const {
-    return DeltaArrival{l.irradiance, -l.direction, kInfinity};
-  }
-  std::optional<DeltaArrival> operator()(const SphereLight&) const { return std::nullopt; }
-  std::optional<DeltaArrival> operator()(const QuadLight&) const { return std::nullopt; }
-  std::optional<DeltaArrival> operator()(const TriangleLight&) const { return std::nullopt; }
-  std::optional<DeltaArrival> operator()(const EnvironmentLight&) const { return std::nullopt; }
-};
-
 // Camera optical depth from the start of the ray to t: every primitive's overlap with [0, t].
 RGB camera_optical_depth(const VolumeScene& volumes, const PixelMarch& march, float t) {
   const Ray ray{march.origin, march.dir, 0.0f, kInfinity};
@@ -53,7 +38,7 @@ struct PixelSpans {
   RayRange span[kLanes];
 };
 
-bool light_spans(const LightVolumeLanes& lanes, const Light& light, const AccumulationRays& rays, int x0,
+bool light_spans(const LightVolumeLanes& lanes, const ShadedLight& light, const AccumulationRays& rays, int x0,
                  int y, int n, PixelSpans& out) {
   using Batch = LightVolumeLanes::Batch;
   alignas(32) float v[7][kLanes];
@@ -102,17 +87,13 @@ float media_extent(const VolumeScene& volumes) {
   return b.empty() ? 0.0f : length(b.diagonal()) * 1.01f + 1e-3f;
 }
 
-const Vec3* equiangular_focus(const Light& light) {
+const Vec3* equiangular_focus(const ShadedLight& light) {
   // Exhaustive, so that a new light type has to say whether its steps crowd towards a point.
   struct Focus {
     const Vec3* operator()(const PointLight& l) const { return &l.position; }
     const Vec3* operator()(const SpotLight& l) const { return &l.position; }
     const Vec3* operator()(const BoxLight&) const { return nullptr; }  // parallel light: no 1/d^2
     const Vec3* operator()(const DirectionalLight&) const { return nullptr; }
-    const Vec3* operator()(const SphereLight&) const { return nullptr; }  // not marched in real time
-    const Vec3* operator()(const QuadLight&) const { return nullptr; }
-    const Vec3* operator()(const TriangleLight&) const { return nullptr; }
-    const Vec3* operator()(const EnvironmentLight&) const { return nullptr; }
   };
   return std::visit(Focus{}, light);
 }
@@ -155,7 +136,7 @@ RGB march_scalar(const FrameLight& light, const VolumeScene& volumes, const Pixe
     float weight;
     const float t = march_sample(march, float(k), weight);
     const Vec3 p = march.origin + march.dir * t;
-    const auto arrival = std::visit(Arrival{p}, light.light);
+    const auto arrival = std::visit([&](const auto& l) { return delta_arrival(l, p); }, light.light);
     if (!arrival) continue;
     // sigma_s x phase summed over the primitives here: overlapping media add their
     // coefficients and mix their phase functions in proportion to sigma_s.

@@ -50,7 +50,7 @@ bool setup_pixel_march(RayRange span, const AccumulationRays::PixelRay& ray,
                        std::span<const VolumeInterval> intervals, const AccumulationSettings& settings,
                        PixelMarch& march, const Vec3* focus = nullptr);
 // The point equiangular placement aims at: point lights and spot apexes; null otherwise.
-const Vec3* equiangular_focus(const Light& light);
+const Vec3* equiangular_focus(const ShadedLight& light);
 
 // Distance beyond which no medium lies from any point inside one (directional lights'
 // transmittance segments end there).

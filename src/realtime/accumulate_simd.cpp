@@ -107,7 +107,7 @@ Batch noise_density_batch(const NoiseModulation& noise, const Batch& px, const B
 
 namespace {
 
-enum class LaneLightKind { point, spot, box, directional, unsupported };
+enum class LaneLightKind { point, spot, box, directional };
 
 Batch range_window(const Batch& dist, float range, float inv_range) {
   if (!std::isfinite(range)) return Batch(1.0f);
@@ -128,7 +128,7 @@ Batch smoothstep(float e0, float e1, const Batch& x) {
 
 struct SimdMarcher::Data {
   const FrameLight* light = nullptr;
-  LaneLightKind kind = LaneLightKind::unsupported;
+  LaneLightKind kind = LaneLightKind::point;
   Vec3 position, direction, up, right;
   float cos_inner = 1.0f, cos_outer = 0.0f, range = kInfinity, inv_range = 0.0f;
   float half_width = 0.0f, half_height = 0.0f;
@@ -152,7 +152,7 @@ struct SimdMarcher::Data {
 
 namespace {
 
-// Fills the light part of Data; kind stays unsupported for lights the SIMD path does not handle.
+// Fills the light part of Data.
 struct DescribeLight {
   SimdMarcher::Data& d;
   static float inv(float range) { return std::isfinite(range) ? 1.0f / range : 0.0f; }
@@ -193,10 +193,6 @@ struct DescribeLight {
     d.direction = l.direction;
     d.color = l.irradiance;
   }
-  void operator()(const SphereLight&) const { d.kind = LaneLightKind::unsupported; }
-  void operator()(const QuadLight&) const { d.kind = LaneLightKind::unsupported; }
-  void operator()(const TriangleLight&) const { d.kind = LaneLightKind::unsupported; }
-  void operator()(const EnvironmentLight&) const { d.kind = LaneLightKind::unsupported; }
 };
 
 }  // namespace
@@ -239,7 +235,6 @@ SimdMarcher::Data::LaneArrival SimdMarcher::Data::arrival(const BatchVec& p) con
       break;
     }
     case LaneLightKind::directional:
-    case LaneLightKind::unsupported:
       a.wi = {Batch(-direction.x), Batch(-direction.y), Batch(-direction.z)};
       a.dist = Batch(kInfinity);
       scale = Batch(1.0f);
@@ -259,7 +254,7 @@ SimdMarcher::SimdMarcher(const FrameLight& light, const VolumeScene& volumes, fl
   d.floor = multiple_scattering_floor;
   d.far = far;
   std::visit(DescribeLight{d}, light.light);
-  supported_ = d.kind != LaneLightKind::unsupported;
+  supported_ = true;
   d.prims.resize(volumes.primitives().size());
   for (size_t i = 0; i < d.prims.size(); ++i) {
     supported_ = supported_ && lanes::describe_primitive(volumes.primitives()[i], d.prims[i]);

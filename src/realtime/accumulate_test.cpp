@@ -31,7 +31,7 @@ VolumePrimitive fog_sphere(Vec3 c, float r, RGB sigma_s, PhaseFunction phase) {
   return p;
 }
 
-FrameLight frame_light(Light l) { return FrameLight{std::move(l), LightOptions{}, nullptr}; }
+FrameLight frame_light(const Light& l) { return FrameLight{*shaded_light(l), LightOptions{}, nullptr}; }
 
 ColorPlanes run(const FrameLight& light, const VolumeScene& volumes, const View& view, const Plane& depth,
                 AccumulationSettings s) {

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "realtime/pipeline.h"
+#include "scene/scene.h"
 #include "realtime/reference_compare.h"
 #include "render/render.h"
 #include "settings/aov.h"
@@ -79,7 +80,7 @@ void expect_agreement(const std::string& light) {
   s.accumulation.samples = 256;
   s.gather_radius = 0;
   s.temporal = false;
-  RealtimePipeline pipeline(desc, s);
+  RealtimePipeline pipeline(Scene::build(desc), s);
   const Image realtime = box_downsample(to_image(pipeline.render(0.0f, 0).color), kSupersample);
 
   const auto scene = Scene::build(desc);

@@ -4,24 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include "core/overloaded.h"
-#include "lights/light_reach.h"
 
 namespace caligo {
-
-std::optional<RayRange> light_volume_interval(const Light& light, Vec3 origin, Vec3 dir, float tmin,
-                                              float tmax) {
-  const bool marched = std::visit(Overloaded{[](const PointLight&) { return true; },
-                                             [](const SpotLight&) { return true; },
-                                             [](const BoxLight&) { return true; },
-                                             [](const DirectionalLight&) { return true; },
-                                             [](const SphereLight&) { return false; },
-                                             [](const QuadLight&) { return false; },
-                                             [](const TriangleLight&) { return false; },
-                                             [](const EnvironmentLight&) { return false; }},
-                                  light);
-  return marched ? light_reach(light, origin, dir, tmin, tmax) : std::nullopt;
-}
 
 namespace {
 
@@ -53,15 +37,11 @@ struct VolumeCorners {
         l.direction * (0.5f * l.range));
   }
   void operator()(const DirectionalLight&) const {}
-  void operator()(const SphereLight&) const {}
-  void operator()(const QuadLight&) const {}
-  void operator()(const TriangleLight&) const {}
-  void operator()(const EnvironmentLight&) const {}
 };
 
 }  // namespace
 
-PixelRect light_screen_bounds(const Light& light, const View& view) {
+PixelRect light_screen_bounds(const ShadedLight& light, const View& view) {
   const PixelRect all{0, 0, view.resolution.x, view.resolution.y};
   std::vector<Vec3> corners;
   std::visit(VolumeCorners{corners}, light);

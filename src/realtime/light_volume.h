@@ -12,16 +12,17 @@
 
 #include "core/ray_range.h"
 #include "core/vec.h"
-#include "lights/light.h"
+#include "lights/light_reach.h"
+#include "realtime/frame_light.h"
 #include "realtime/view.h"
 
 namespace caligo {
 
-// Where on the ray `light` can light the medium: lights/light_reach.h's range for the lights
-// the real-time passes march (point, spot, box, directional), std::nullopt for the others
-// (area and environment lights).
-std::optional<RayRange> light_volume_interval(const Light& light, Vec3 origin, Vec3 dir, float tmin,
-                                              float tmax);
+// Where on the ray `light` can light the medium: lights/light_reach.h's range.
+inline std::optional<RayRange> light_volume_interval(const ShadedLight& light, Vec3 origin, Vec3 dir, float tmin,
+                                                     float tmax) {
+  return std::visit(LightReach{origin, dir, tmin, tmax}, light);
+}
 
 // Pixels [x0, x1) x [y0, y1) of `view` whose rays can meet the light's volume: the
 // projected bounding corners of the volume (the seed rasterises the light geometry for the
@@ -30,6 +31,6 @@ std::optional<RayRange> light_volume_interval(const Light& light, Vec3 origin, V
 struct PixelRect {
   int x0, y0, x1, y1;
 };
-PixelRect light_screen_bounds(const Light& light, const View& view);
+PixelRect light_screen_bounds(const ShadedLight& light, const View& view);
 
 }  // namespace caligo

@@ -7,8 +7,8 @@
 
 namespace caligo {
 
-// The solid of each light type light_volume_interval handles, as light_reach bounds it.
-LightVolumeLanes::LightVolumeLanes(const Light& light) {
+// The solid of each shaded light, as light_reach bounds it.
+LightVolumeLanes::LightVolumeLanes(const ShadedLight& light) {
   const auto range = [](Vec3 centre, float r) -> std::optional<Ball> {
     return std::isfinite(r) ? std::optional<Ball>(Ball{centre, r}) : std::nullopt;
   };
@@ -24,17 +24,12 @@ LightVolumeLanes::LightVolumeLanes(const Light& light) {
                    return Cone{l.position, l.direction, l.cos_outer * l.cos_outer, ball};
                  },
                  [](const BoxLight& l) -> decltype(solid_) { return light_box(l); },
-                 [](const DirectionalLight&) -> decltype(solid_) { return Whole{}; },
-                 [](const SphereLight&) -> decltype(solid_) { return None{}; },
-                 [](const QuadLight&) -> decltype(solid_) { return None{}; },
-                 [](const TriangleLight&) -> decltype(solid_) { return None{}; },
-                 [](const EnvironmentLight&) -> decltype(solid_) { return None{}; }},
+                 [](const DirectionalLight&) -> decltype(solid_) { return Whole{}; }},
       light);
 }
 
 LightVolumeLanes::Result LightVolumeLanes::intervals(const lanes::Rays& rays) const {
-  return std::visit(Overloaded{[&](const None&) { return lanes::none(rays); },
-                               [&](const Whole&) { return lanes::whole(rays); },
+  return std::visit(Overloaded{[&](const Whole&) { return lanes::whole(rays); },
                                [&](const Ball& b) { return lanes::ray_ball(rays, b.centre, b.radius); },
                                [&](const Cone& c) {
                                  const Result cone = lanes::ray_cone(rays, c.apex, c.axis, c.cos2);

@@ -6,7 +6,7 @@
 #include <variant>
 
 #include "core/ray_solids_lanes.h"
-#include "lights/light.h"
+#include "realtime/frame_light.h"
 
 namespace caligo {
 
@@ -16,13 +16,12 @@ class LightVolumeLanes {
   using Mask = lanes::Mask;
   using Result = lanes::Ranges;  // t0, t1 within [0, tmax] where hit; unsure: ask the scalar test
 
-  explicit LightVolumeLanes(const Light& light);
+  explicit LightVolumeLanes(const ShadedLight& light);
 
   // Rays origin + t dir (dir unit), t in [0, tmax], one per lane.
   Result intervals(const lanes::Rays& rays) const;
 
  private:
-  struct None {};   // lights the real-time passes do not march
   struct Whole {};  // directional lights, infinite ranges
   struct Ball {
     Vec3 centre;
@@ -33,7 +32,7 @@ class LightVolumeLanes {
     float cos2;
     std::optional<Ball> range;  // cut by the range sphere when finite
   };
-  std::variant<None, Whole, Ball, Cone, OrientedBox> solid_;
+  std::variant<Whole, Ball, Cone, OrientedBox> solid_;
 };
 
 }  // namespace caligo

@@ -33,10 +33,6 @@ struct PlacementKey {
   std::vector<float> operator()(const DirectionalLight& l) const {
     return {3, l.direction.x, l.direction.y, l.direction.z};
   }
-  std::vector<float> operator()(const SphereLight&) const { return {4}; }
-  std::vector<float> operator()(const QuadLight&) const { return {5}; }
-  std::vector<float> operator()(const EnvironmentLight&) const { return {6}; }
-  std::vector<float> operator()(const TriangleLight&) const { return {7}; }
 };
 
 }  // namespace
@@ -53,41 +49,40 @@ RealtimeSettings realtime_settings(const SceneDesc& desc) {
   return s;
 }
 
-RealtimePipeline::RealtimePipeline(const SceneDesc& desc, const RealtimeSettings& settings)
-    : desc_(desc), settings_(settings) {
+RealtimePipeline::RealtimePipeline(std::shared_ptr<const Scene> scene, const RealtimeSettings& settings)
+    : settings_(settings), scene_(std::move(scene)) {
+  const SceneDesc& desc = scene_->desc();
   // Thin-lens and orthographic cameras are path-traced only (the passes assume one eye point).
-  const Camera camera(desc_.camera, settings_.resolution);
+  const Camera camera(desc.camera, settings_.resolution);
   if (camera.projection() != CameraProjection::perspective)
-    throw InputError({desc_.file, "/camera/projection"},
+    throw InputError({desc.file, "/camera/projection"},
                      "the real-time pipeline renders only perspective cameras, got an orthographic one; "
                      "use `caligo render`");
   if (camera.has_aperture())
-    throw InputError({desc_.file, "/camera"}, "the real-time pipeline renders only pinhole cameras, got a thin "
-                                              "lens (\"aperture_radius\" or \"fstop\"); use `caligo render`");
-  // Geometry never moves: the scene (surfaces, materials) and its triangles are built once.
-  scene_ = Scene::build(desc_.at_time(0.0f));
+    throw InputError({desc.file, "/camera"}, "the real-time pipeline renders only pinhole cameras, got a thin "
+                                             "lens (\"aperture_radius\" or \"fstop\"); use `caligo render`");
+  // Geometry never moves: its triangles are set up once.
   raster_ = std::make_unique<RasterScene>(RasterScene::build(*scene_));
   gbuffer_ = std::make_unique<GBuffer>();
-  shadows_.resize(desc_.lights.size());
+  shadows_.resize(desc.lights.size());
 }
 
 RealtimePipeline::~RealtimePipeline() = default;
 
-void RealtimePipeline::update_shadow_maps(const std::vector<Light>& lights, RealtimeFrame& frame) {
+void RealtimePipeline::update_shadow_maps(const std::vector<FrameLight>& lights, RealtimeFrame& frame) {
   const Bounds3 bounds = scene_->surfaces().bounds();
   frame.shadow_maps_rendered = 0;
-  for (size_t i = 0; i < lights.size(); ++i) {
-    const LightOptions& options = desc_.options(i);
-    CachedShadow& cache = shadows_[i];
-    if (!options.shadow) {
+  for (const FrameLight& light : lights) {
+    CachedShadow& cache = shadows_[light.index];
+    if (!light.options.shadow) {
       cache.map.reset();
       continue;
     }
-    std::vector<float> key = std::visit(PlacementKey{}, lights[i]);
-    if (cache.size == options.shadow_map_size && cache.key == key && !cache.key.empty()) continue;
-    cache.map = render_shadow_map(*raster_, lights[i], options.shadow_map_size, bounds);
+    std::vector<float> key = std::visit(PlacementKey{}, light.light);
+    if (cache.size == light.options.shadow_map_size && cache.key == key && !cache.key.empty()) continue;
+    cache.map = render_shadow_map(*raster_, light.light, light.options.shadow_map_size, bounds);
     cache.key = std::move(key);
-    cache.size = options.shadow_map_size;
+    cache.size = light.options.shadow_map_size;
     ++frame.shadow_maps_rendered;
   }
 }
@@ -123,7 +118,7 @@ void RealtimePipeline::accumulate_lights(const std::vector<FrameLight>& lights, 
   AccumulationSettings acc = settings_.accumulation;
   acc.frame_seed = frame_index;
   acc.simd = settings_.simd;
-  times.per_light.assign(lights.size(), 0.0);
+  times.per_light.assign(scene_->desc().lights.size(), 0.0);
   bool rays_built = false;
   if (scatterer_) {
     if (scatter_accum_.width() != low_res.x || scatter_accum_.height() != low_res.y)
@@ -135,7 +130,8 @@ void RealtimePipeline::accumulate_lights(const std::vector<FrameLight>& lights, 
     if (!lights[i].options.volumetric) continue;
     const auto light_start = Clock::now();
     const double rays_before = times.rays;
-    if (scatterer_ && scatterer_->scatter(i, lights[i], volumes, next.low_view, next.low_depth, scatter_accum_)) {
+    if (scatterer_ &&
+        scatterer_->scatter(lights[i].index, lights[i], volumes, next.low_view, next.low_depth, scatter_accum_)) {
       *scattered = true;
     } else {
       *marched = true;
@@ -146,7 +142,8 @@ void RealtimePipeline::accumulate_lights(const std::vector<FrameLight>& lights, 
       }
       accumulate_light(lights[i], volumes, accumulation_rays_, acc, accum);
     }
-    times.per_light[i] = micros_since(light_start) - (times.rays - rays_before);  // rays reported apart
+    // rays reported apart
+    times.per_light[lights[i].index] = micros_since(light_start) - (times.rays - rays_before);
   }
 }
 
@@ -197,24 +194,29 @@ void RealtimePipeline::composite(RealtimeFrame& next) {
 
 const RealtimeFrame& RealtimePipeline::render(float time, uint32_t frame_index) {
   const auto frame_start = Clock::now();
-  const SceneDesc now = desc_.at_time(time);
+  const SceneDesc& desc = scene_->desc();
   std::swap(frame_, previous_);
   RealtimeFrame& next = frame_;
   PassTimes& times = next.times;
   times = {};
-  const Camera camera(now.camera, settings_.resolution);
+  const Camera camera(desc.camera_at(time), settings_.resolution);
   next.view = View::from_camera(camera, settings_.resolution);
   const int scale = settings_.scale;
   const Vec2i low_res{(settings_.resolution.x + scale - 1) / scale, (settings_.resolution.y + scale - 1) / scale};
   next.low_view = View::from_camera(camera, low_res);
 
   timed(times.depth, [&] { draw_scene_buffers(next); });
-  timed(times.shadows, [&] { update_shadow_maps(now.lights, next); });
+  // The lights the passes shade, posed at `time`; their shadow maps follow.
   std::vector<FrameLight> lights;
-  for (size_t i = 0; i < now.lights.size(); ++i)
-    lights.push_back({now.lights[i], desc_.options(i), shadows_[i].map ? &*shadows_[i].map : nullptr});
-  // Media move with the wind: their frame-time description drives the in-scattering.
-  const VolumeScene volumes(now.volumes);
+  const std::vector<Light> posed = desc.lights_at(time);
+  for (size_t i = 0; i < posed.size(); ++i)
+    if (auto shaded = shaded_light(posed[i])) lights.push_back({std::move(*shaded), desc.options(i), nullptr, i});
+  timed(times.shadows, [&] { update_shadow_maps(lights, next); });
+  for (FrameLight& l : lights) l.shadow = shadows_[l.index].map ? &*shadows_[l.index].map : nullptr;
+  // Media in the wind are rebuilt at the frame's time; still ones are the scene's own.
+  std::optional<VolumeScene> moved;
+  if (desc.media_move()) moved.emplace(desc.volumes_at(time));
+  const VolumeScene& volumes = moved ? *moved : scene_->volumes();
   ColorPlanes accum;
   bool marched = false, scattered = false;
   timed(times.accumulation,

@@ -69,7 +69,9 @@ struct RealtimeFrame {
 
 class RealtimePipeline {
  public:
-  RealtimePipeline(const SceneDesc& desc, const RealtimeSettings& settings);
+  // The pipeline shares the built scene (surfaces, materials, still media) with whoever else
+  // renders it; each frame poses only what moves (camera, lights, media in the wind).
+  RealtimePipeline(std::shared_ptr<const Scene> scene, const RealtimeSettings& settings);
   ~RealtimePipeline();
   RealtimePipeline(const RealtimePipeline&) = delete;
   RealtimePipeline& operator=(const RealtimePipeline&) = delete;
@@ -86,7 +88,7 @@ class RealtimePipeline {
  private:
   struct CachedShadow;
 
-  void update_shadow_maps(const std::vector<Light>& lights, RealtimeFrame& frame);
+  void update_shadow_maps(const std::vector<FrameLight>& lights, RealtimeFrame& frame);
   // The frame's stages, in order (render() times each).
   void draw_scene_buffers(RealtimeFrame& next);
   // Accumulation per light: the marched lights into `accum`, the scatterer's into
@@ -99,9 +101,8 @@ class RealtimePipeline {
   void upsample(RealtimeFrame& next);
   void composite(RealtimeFrame& next);
 
-  SceneDesc desc_;
   RealtimeSettings settings_;
-  std::unique_ptr<Scene> scene_;
+  std::shared_ptr<const Scene> scene_;
   std::unique_ptr<RasterScene> raster_;
   std::vector<CachedShadow> shadows_;
   AccumulationRays accumulation_rays_;  // per-frame camera side of accumulation, storage reused

@@ -1,6 +1,7 @@
 // The frame loop as a whole: buffer sizes that do not divide by the scale, every light type
 // at once, history across frames.
 #include "realtime/pipeline.h"
+#include "scene/scene.h"
 
 #include <gtest/gtest.h>
 
@@ -42,7 +43,7 @@ TEST(RealtimePipeline, SizesThatDoNotDivideByTheScaleGiveFiniteFrames) {
       RealtimeSettings s = realtime_settings(desc);
       s.resolution = res;
       s.scale = scale;
-      RealtimePipeline pipeline(desc, s);
+      RealtimePipeline pipeline(Scene::build(desc), s);
       for (uint32_t frame = 0; frame < 3; ++frame) {
         const RealtimeFrame& f = pipeline.render(0.1f * float(frame), frame);
         ASSERT_EQ(f.color.width(), res.x);
@@ -71,7 +72,7 @@ TEST(RealtimePipeline, RefusesOrthographicAndThinLensCameras) {
       desc.camera.fstop = 2.8f;
     }
     try {
-      RealtimePipeline pipeline(desc, realtime_settings(desc));
+      RealtimePipeline pipeline(Scene::build(desc), realtime_settings(desc));
       ADD_FAILURE() << "no error for " << pointer;
     } catch (const InputError& e) {
       EXPECT_EQ(e.where().json_path, pointer);
@@ -87,7 +88,7 @@ TEST(RealtimePipeline, NonVolumetricLightsLightOnlySurfaces) {
   desc.light_options.resize(1);
   desc.light_options[0].volumetric = false;
   RealtimeSettings s = realtime_settings(desc);
-  RealtimePipeline pipeline(desc, s);
+  RealtimePipeline pipeline(Scene::build(desc), s);
   const RealtimeFrame& f = pipeline.render(0.0f, 0);
   double volumetric = 0, surfaces = 0;
   for (size_t i = 0; i < f.volumetric.r.data.size(); ++i) volumetric += f.volumetric.r.data[i];

@@ -74,10 +74,6 @@ struct Render {
     if (bounds.empty()) return std::nullopt;
     return single_face(scene, fit_directional_face(bounds, l.direction, size));
   }
-  std::optional<ShadowMap> operator()(const SphereLight&) const { return std::nullopt; }
-  std::optional<ShadowMap> operator()(const QuadLight&) const { return std::nullopt; }
-  std::optional<ShadowMap> operator()(const TriangleLight&) const { return std::nullopt; }
-  std::optional<ShadowMap> operator()(const EnvironmentLight&) const { return std::nullopt; }
 };
 
 // The same arithmetic, in the same order, as shadow_visibility in shadow_map_simd.h.
@@ -138,7 +134,7 @@ float ShadowMap::visibility(Vec3 p) const {
   return q.z <= stored + (bias + texel_bias * q.texel) ? 1.0f : 0.0f;
 }
 
-std::optional<ShadowMap> render_shadow_map(const RasterScene& scene, const Light& light, int size,
+std::optional<ShadowMap> render_shadow_map(const RasterScene& scene, const ShadedLight& light, int size,
                                            const Bounds3& scene_bounds) {
   return std::visit(Render{scene, size, scene_bounds}, light);
 }

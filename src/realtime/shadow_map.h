@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "core/bounds.h"
-#include "lights/light.h"
+#include "realtime/frame_light.h"
 #include "realtime/plane.h"
 #include "realtime/view.h"
 
@@ -44,8 +44,8 @@ struct ShadowMap {
   bool is_cube() const { return faces.size() == 6; }
 };
 
-// std::nullopt for lights that have no shadow map (sphere, quad, triangle, environment).
-std::optional<ShadowMap> render_shadow_map(const RasterScene& scene, const Light& light, int size,
+// std::nullopt when there is nothing to shadow (a directional light over an empty scene).
+std::optional<ShadowMap> render_shadow_map(const RasterScene& scene, const ShadedLight& light, int size,
                                            const Bounds3& scene_bounds);
 
 }  // namespace caligo

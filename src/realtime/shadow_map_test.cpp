@@ -42,7 +42,7 @@ struct Counts {
 
 // Uniform points in the scene's box above the floor (some inside the box and sphere).
 Counts compare_with_embree(const Fixture& f, const Light& light, int size) {
-  const auto map = render_shadow_map(f.raster, light, size, f.bounds);
+  const auto map = render_shadow_map(f.raster, *shaded_light(light), size, f.bounds);
   EXPECT_TRUE(map.has_value());
   Counts c;
   if (!map) return c;
@@ -117,9 +117,13 @@ TEST(ShadowMap, DirectionalAgreesWithEmbree) {
   expect_agreement(l, "directional");
 }
 
-TEST(ShadowMap, AreaLightsHaveNone) {
-  const Fixture f;
-  EXPECT_FALSE(render_shadow_map(f.raster, SphereLight{{0, 3, 0}, 0.2f, RGB(1.0f)}, 64, f.bounds));
+// Area and environment lights are left to the path tracer: the passes never see them.
+TEST(ShadowMap, AreaLightsAreNotShaded) {
+  EXPECT_FALSE(shaded_light(SphereLight{{0, 3, 0}, 0.2f, RGB(1.0f)}));
+  EXPECT_FALSE(shaded_light(QuadLight{{0, 3, 0}, {1, 0, 0}, {0, 0, 1}, RGB(1.0f), false}));
+  EXPECT_FALSE(shaded_light(TriangleLight{{0, 3, 0}, {1, 3, 0}, {0, 3, 1}, RGB(1.0f), false}));
+  EXPECT_FALSE(shaded_light(EnvironmentLight{RGB(1.0f)}));
+  EXPECT_TRUE(shaded_light(PointLight{{0, 3, 0}, RGB(1.0f)}));
 }
 
 // A wide spot (outer angle > 75 degrees) gets a cube and still agrees.

@@ -28,31 +28,13 @@ struct Incident {
   Vec3 light_point;  // where the light's path starts (for the media between)
 };
 
-std::optional<Incident> from_arrival(const std::optional<DeltaArrival>& a, Vec3 p) {
+// The light at p from `light` (lights/light_profile.h, the path tracer's light exactly); the
+// light point of a parallel light is `far` away, beyond every surface and volume.
+std::optional<Incident> incident_at(const ShadedLight& light, Vec3 p, float far) {
+  const auto a = std::visit([&](const auto& l) { return delta_arrival(l, p); }, light);
   if (!a) return std::nullopt;
-  return Incident{a->radiance, a->wi, p + a->wi * a->distance};
+  return Incident{a->radiance, a->wi, p + a->wi * std::min(a->distance, far)};
 }
-
-struct IncidentAt {
-  Vec3 p;
-  float far;  // a distance that leaves every surface and volume (directional lights)
-
-  std::optional<Incident> operator()(const PointLight& l) const {
-    return from_arrival(delta_arrival(l, p), p);
-  }
-  std::optional<Incident> operator()(const SpotLight& l) const {
-    return from_arrival(delta_arrival(l, p), p);
-  }
-  std::optional<Incident> operator()(const BoxLight& l) const { return from_arrival(delta_arrival(l, p), p); }
-  std::optional<Incident> operator()(const DirectionalLight& l) const {
-    return Incident{l.irradiance, -l.direction, p - l.direction * far};
-  }
-  // Area and environment lights are left to the path tracer.
-  std::optional<Incident> operator()(const SphereLight&) const { return std::nullopt; }
-  std::optional<Incident> operator()(const QuadLight&) const { return std::nullopt; }
-  std::optional<Incident> operator()(const TriangleLight&) const { return std::nullopt; }
-  std::optional<Incident> operator()(const EnvironmentLight&) const { return std::nullopt; }
-};
 
 bool sphere_overlaps(Vec3 c, float r, const Bounds3& b) {
   if (!std::isfinite(r)) return true;
@@ -83,10 +65,6 @@ struct Reaches {
   }
   bool operator()(const BoxLight& l) const { return overlaps(box_light_bounds(l), tile); }
   bool operator()(const DirectionalLight&) const { return true; }
-  bool operator()(const SphereLight&) const { return false; }
-  bool operator()(const QuadLight&) const { return false; }
-  bool operator()(const TriangleLight&) const { return false; }
-  bool operator()(const EnvironmentLight&) const { return false; }
 };
 
 }  // namespace
@@ -114,7 +92,7 @@ RGB transmittance(const VolumeScene& volumes, Vec3 a, Vec3 b) {
 }
 
 RGB light_term(const ShadeContext& c, const FrameLight& fl, Vec3 p, Vec3 n, RGB f) {
-  const auto in = std::visit(IncidentAt{p, c.far}, fl.light);
+  const auto in = incident_at(fl.light, p, c.far);
   if (!in) return RGB(0.0f);
   const float cos_theta = dot(n, in->wi);
   if (!(cos_theta > 0.0f)) return RGB(0.0f);

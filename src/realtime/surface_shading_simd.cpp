@@ -78,10 +78,6 @@ struct Prepare {
     return p;
   }
   LightPrep operator()(const DirectionalLight&) const { return {}; }
-  LightPrep operator()(const SphereLight&) const { return {}; }
-  LightPrep operator()(const QuadLight&) const { return {}; }
-  LightPrep operator()(const TriangleLight&) const { return {}; }
-  LightPrep operator()(const EnvironmentLight&) const { return {}; }
 };
 
 struct Arrival {
@@ -90,8 +86,6 @@ struct Arrival {
   B distance;
   Mask mask;  // where the light arrives
 };
-
-Arrival none() { return {B(0.0f), B(0.0f), B(0.0f), {B(0.0f), B(0.0f), B(0.0f)}, B(0.0f), Mask(false)}; }
 
 // light_profile.cpp's delta_arrival over batches.
 struct ArrivalAt {
@@ -152,11 +146,6 @@ struct ArrivalAt {
     const V3 wi{B(-l.direction.x), B(-l.direction.y), B(-l.direction.z)};
     return {B(l.irradiance.r), B(l.irradiance.g), B(l.irradiance.b), wi, B(far), Mask(true)};
   }
-  // Area and environment lights are never active (tile culling drops them).
-  Arrival operator()(const SphereLight&) const { return none(); }
-  Arrival operator()(const QuadLight&) const { return none(); }
-  Arrival operator()(const TriangleLight&) const { return none(); }
-  Arrival operator()(const EnvironmentLight&) const { return none(); }
 };
 
 // Shadow visibility at p offset by one texel along n (the scalar path's normal offset).
@@ -342,11 +331,6 @@ struct LightEnds {
     const Vec3 v = -l.direction * far;
     return {from.lo + v, from.hi + v};
   }
-  // Never active (tile culling drops them); an unbounded box keeps every primitive tested.
-  Bounds3 operator()(const SphereLight&) const { return swept(Vec3(kInfinity)); }
-  Bounds3 operator()(const QuadLight&) const { return swept(Vec3(kInfinity)); }
-  Bounds3 operator()(const TriangleLight&) const { return swept(Vec3(kInfinity)); }
-  Bounds3 operator()(const EnvironmentLight&) const { return swept(Vec3(kInfinity)); }
 };
 
 void add_light(const ShadeContext& c, const SimdFrame& f, const FrameLight& fl, const LightPrep& prep,

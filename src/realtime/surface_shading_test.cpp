@@ -47,7 +47,7 @@ RGB analytic(Vec3 p, Vec3 eye, float sigma) {
 
 void expect_analytic(const Scene& scene, const GBuffer& g, const View& view, const ShadowMap* shadow,
                      float sigma) {
-  const std::vector<FrameLight> lights{{scene.lights()[0], {}, shadow}};
+  const std::vector<FrameLight> lights{{*shaded_light(scene.lights()[0]), {}, shadow}};
   const ColorPlanes c = shade_surfaces(g, view, scene, lights);
   int checked = 0;
   for (int y = 0; y < view.resolution.y; y += 3)
@@ -69,7 +69,7 @@ TEST(SurfaceShading, DiffusePlaneUnderPointLight) {
   const auto scene = Scene::build(lit_plane());
   const RasterScene raster = RasterScene::build(*scene);
   const View view = View::from_camera(scene->camera({96, 72}), {96, 72});
-  const auto shadow = render_shadow_map(raster, scene->lights()[0], 256, scene->surfaces().bounds());
+  const auto shadow = render_shadow_map(raster, *shaded_light(scene->lights()[0]), 256, scene->surfaces().bounds());
   ASSERT_TRUE(shadow);
   for (const GBuffer& g : {rasterize_gbuffer(raster, view), trace_gbuffer(*scene, view)}) {
     expect_analytic(*scene, g, view, nullptr, 0.0f);
@@ -121,9 +121,9 @@ void expect_simd_matches_scalar(const SceneDesc& desc) {
   const GBuffer g = rasterize_gbuffer(raster, view);
   std::vector<std::optional<ShadowMap>> maps;
   std::vector<FrameLight> lights;
-  for (const Light& l : scene->lights()) maps.push_back(render_shadow_map(raster, l, 512, raster.bounds()));
+  for (const Light& l : scene->lights()) maps.push_back(render_shadow_map(raster, *shaded_light(l), 512, raster.bounds()));
   for (size_t i = 0; i < maps.size(); ++i)
-    lights.push_back({scene->lights()[i], {}, maps[i] ? &*maps[i] : nullptr});
+    lights.push_back({*shaded_light(scene->lights()[i]), {}, maps[i] ? &*maps[i] : nullptr, i});
   const ColorPlanes simd = shade_surfaces(g, view, *scene, lights, true);
   const ColorPlanes scalar = shade_surfaces(g, view, *scene, lights, false);
   int differ = 0, lit = 0;
@@ -260,7 +260,7 @@ TEST(SurfaceShading, ReusedBufferIsOverwritten) {
   const auto scene = Scene::build(desc);
   const View view = View::from_camera(scene->camera({203, 141}), {203, 141});
   const GBuffer g = rasterize_gbuffer(RasterScene::build(*scene), view);
-  const std::vector<FrameLight> lights{{scene->lights()[0], {}, nullptr}};
+  const std::vector<FrameLight> lights{{*shaded_light(scene->lights()[0]), {}, nullptr}};
   for (bool simd : {true, false}) {
     const ColorPlanes fresh = shade_surfaces(g, view, *scene, lights, simd);
     ColorPlanes reused(203, 141);

@@ -113,33 +113,55 @@ Vec3 interpolate_keys(const std::vector<float>& t, const std::vector<Vec3>& p, I
          key_velocity(t, p, i + 1) * (h * h11);
 }
 
-SceneDesc SceneDesc::at_time(float time) const {
-  SceneDesc out = *this;
-  if (!camera.path.empty()) {
-    std::vector<float> times;
-    std::vector<Vec3> positions, targets;
-    for (const CameraKey& k : camera.path) {
-      times.push_back(k.time);
-      positions.push_back(k.position);
-      targets.push_back(k.look_at);
-    }
-    out.camera.position = interpolate_keys(times, positions, camera.path_interpolation, time);
-    out.camera.look_at = interpolate_keys(times, targets, camera.path_interpolation, time);
-    out.camera.path.clear();
+CameraDesc SceneDesc::camera_at(float time) const {
+  CameraDesc out = camera;
+  if (camera.path.empty()) return out;
+  std::vector<float> times;
+  std::vector<Vec3> positions, targets;
+  for (const CameraKey& k : camera.path) {
+    times.push_back(k.time);
+    positions.push_back(k.position);
+    targets.push_back(k.look_at);
   }
-  for (size_t i = 0; i < out.lights.size(); ++i) {
+  out.position = interpolate_keys(times, positions, camera.path_interpolation, time);
+  out.look_at = interpolate_keys(times, targets, camera.path_interpolation, time);
+  out.path.clear();
+  return out;
+}
+
+std::vector<Light> SceneDesc::lights_at(float time) const {
+  std::vector<Light> out = lights;
+  for (size_t i = 0; i < out.size(); ++i) {
     const LightOptions& o = options(i);
     const auto position = sample(channel(o.animation, &LightKey::position), o.interpolation, time);
-    const auto direction =
-        sample_direction(channel(o.animation, &LightKey::direction), o.interpolation, time);
-    std::visit(PoseLight{position, direction, time}, out.lights[i]);
+    const auto direction = sample_direction(channel(o.animation, &LightKey::direction), o.interpolation, time);
+    std::visit(PoseLight{position, direction, time}, out[i]);
   }
-  for (LightOptions& o : out.light_options) o.animation.clear();
-  for (VolumePrimitive& v : out.volumes) {
+  return out;
+}
+
+std::vector<VolumePrimitive> SceneDesc::volumes_at(float time) const {
+  std::vector<VolumePrimitive> out = volumes;
+  for (VolumePrimitive& v : out) {
     if (!v.shader.noise) continue;
     v.shader.noise->offset += v.shader.noise->wind * time;
     v.shader.noise->wind = Vec3();
   }
+  return out;
+}
+
+bool SceneDesc::media_move() const {
+  return std::any_of(volumes.begin(), volumes.end(), [](const VolumePrimitive& v) {
+    return v.shader.noise && !(v.shader.noise->wind == Vec3());
+  });
+}
+
+SceneDesc SceneDesc::at_time(float time) const {
+  SceneDesc out = *this;
+  out.camera = camera_at(time);
+  out.lights = lights_at(time);
+  for (LightOptions& o : out.light_options) o.animation.clear();
+  out.volumes = volumes_at(time);
   return out;
 }
 

@@ -134,6 +134,13 @@ struct SceneDesc {
   // The scene at `time` seconds: camera on its path, lights at their keyframes, gobos and
   // noise advanced by their velocities. The result is still (no paths, no animation).
   SceneDesc at_time(float time) const;
+  // Its parts, for a renderer that builds the still parts once (the real-time pipeline): the
+  // camera on its path, the lights at their keyframes (gobos advanced), and the volumes with
+  // their noise advanced by the wind; media_move() says whether the volumes change at all.
+  CameraDesc camera_at(float time) const;
+  std::vector<Light> lights_at(float time) const;
+  std::vector<VolumePrimitive> volumes_at(float time) const;
+  bool media_move() const;
   // Seconds covered by camera and light keyframes (0 for a still scene).
   float duration() const;
 };
