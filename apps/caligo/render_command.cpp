@@ -21,7 +21,9 @@
 #include "core/output_transaction.h"
 #include "distributed/frame.h"
 #include "interrupt.h"
+#include "render/progressive.h"
 #include "render/render.h"
+#include "render_outputs.h"
 #include "scene/builtins.h"
 #include "scene/material_priority.h"
 #include "scene/scene_parser.h"
@@ -202,10 +204,6 @@ RenderSettings settings_from(const RenderOptions& o, const SceneDesc& desc) {
   return s;
 }
 
-std::string default_output(const std::string& scene) {
-  return std::filesystem::path(scene).stem().string() + ".exr";
-}
-
 void print_summary(const std::string& scene, const RenderSettings& s, const RenderStats& stats,
                    const std::string& output) {
   std::fprintf(stderr, "caligo: %s %dx%d, %d spp: %s wall, %.3g paths/s, %.3g rays/s, %d threads -> %s\n",
@@ -255,17 +253,8 @@ int list_builtins() {
 
 namespace {
 
-// How a single-process render goes: passes up to a sample count, saving checkpoints between
-// them, until the target, the time limit, the error target or an interrupt.
-struct Progressive {
-  std::optional<double> checkpoint_every;  // seconds (with --checkpoint)
-  std::optional<double> time_limit;        // seconds
-  std::optional<double> target_rmse;
-  bool passes() const { return checkpoint_every || time_limit || target_rmse; }
-};
-
-Progressive progressive_from(const RenderOptions& o) {
-  Progressive p;
+ProgressiveSchedule schedule_from(const RenderOptions& o) {
+  ProgressiveSchedule p;
   const auto duration = [](const std::optional<std::string>& text, const char* flag) -> std::optional<double> {
     if (!text) return std::nullopt;
     const auto seconds = parse_duration(*text);
@@ -284,20 +273,6 @@ Progressive progressive_from(const RenderOptions& o) {
   }
   return p;
 }
-
-// The fewest and the most samples any pixel of the crop window has.
-std::pair<int, int> sample_range(const Film& film, const RenderSettings& s) {
-  const PixelBounds b = s.crop.pixels(s.resolution);
-  uint32_t fewest = UINT32_MAX, most = 0;
-  for (int y = b.min.y; y < b.max.y; ++y)
-    for (int x = b.min.x; x < b.max.x; ++x) {
-      fewest = std::min(fewest, film.sample_count(x, y));
-      most = std::max(most, film.sample_count(x, y));
-    }
-  return b.empty() ? std::pair{0, 0} : std::pair{int(fewest), int(most)};
-}
-
-int samples_done(const Film& film, const RenderSettings& s) { return sample_range(film, s).first; }
 
 // The memory this machine can still give (MemAvailable), or nullopt where it cannot be read.
 std::optional<uint64_t> available_memory() {
@@ -336,6 +311,57 @@ Film load_checkpoint(const std::string& path, uint64_t key, const RenderSettings
 
 }  // namespace
 
+namespace {
+
+// The passes' progress line and the checkpoints between them.
+ProgressiveHooks progress_hooks(const RenderOptions& o, const RenderOutputs& outputs, uint64_t key) {
+  ProgressiveHooks hooks;
+  if (!o.quiet)
+    hooks.on_pass = [](int done, int target, double seconds) {
+      std::fprintf(stderr, "caligo: %d of %d samples per pixel (%s)\n", done, target, format_duration(seconds).c_str());
+    };
+  hooks.save_checkpoint = [&outputs, key](const Film& film) { film.save(outputs.checkpoint(), key); };
+  // A checkpoint that fails (a full disk for a moment) must not end a long render: the film is
+  // still in memory, and the next checkpoint or the end tries again.
+  hooks.on_checkpoint_failed = [](const std::exception& e) {
+    std::fprintf(stderr, "caligo: warning: checkpoint not saved, the render goes on: %s\n",
+                 printable_for_message(e.what()).c_str());
+  };
+  return hooks;
+}
+
+// The interrupted render's outputs are written; says what they are and how to continue.
+int report_interrupt(const RenderOutputs& outputs, int signal, std::pair<int, int> samples, int target) {
+  const std::string exr = quote_for_message(outputs.exr()), ckpt = quote_for_message(outputs.checkpoint());
+  if (outputs.interrupt_leaves_checkpoint())
+    std::fprintf(stderr,
+                 "caligo: interrupted (signal %d) with %d to %d of %d samples per pixel: wrote the partial image %s "
+                 "and the checkpoint %s; continue with --resume %s\n",
+                 signal, samples.first, samples.second, target, exr.c_str(), ckpt.c_str(), ckpt.c_str());
+  else
+    std::fprintf(stderr,
+                 "caligo: interrupted (signal %d) with %d to %d of %d samples per pixel: wrote the partial image %s; "
+                 "no checkpoint (%s cannot be written; give --checkpoint FILE)\n",
+                 signal, samples.first, samples.second, target, exr.c_str(), ckpt.c_str());
+  return kExitInterruptedBase + signal;
+}
+
+// Under mpirun/srun each rank renders its share and rank 0 alone gets the frame (src/distributed/).
+int run_distributed(const RenderOptions& o, const Scene& scene, const RenderSettings& settings,
+                    const RenderOutputs& outputs, uint64_t key, Progress::Style style) {
+  if (o.checkpoint || o.resume || schedule_from(o).passes())
+    throw InputError(kCommandLine, "--checkpoint, --resume, --time-limit and --target-rmse are for single-process "
+                                   "renders, not under mpirun");
+  const std::optional<RenderResult> frame =
+      distributed::render_frame(scene, settings, *distributed::split_from_name(o.mpi_split), style, key);
+  if (!frame) return 0;  // an MPI rank other than 0: rank 0 writes the outputs
+  outputs.write(frame->image, nullptr, key, o.exposure, false);
+  if (!o.quiet) print_summary(o.scene, settings, frame->stats, outputs.exr());
+  return 0;
+}
+
+}  // namespace
+
 int run_render(const RenderOptions& o) {
   if (o.list_builtins) return list_builtins();
   // From here on the first SIGINT/SIGTERM asks for a stop (a checkpoint and a partial image,
@@ -345,153 +371,37 @@ int run_render(const RenderOptions& o) {
   SceneDesc desc = load_scene(o.scene).at_time(o.time);
   for (const std::string& p : o.priorities) apply_priority(p, desc);
   RenderSettings settings = settings_from(o, desc);
-  const Progressive progressive = progressive_from(o);
-  if (progressive.target_rmse) settings.aovs = settings.aovs.with(Aov::kVariance);
+  const ProgressiveSchedule schedule = schedule_from(o);
+  if (schedule.target_rmse) settings.aovs = settings.aovs.with(Aov::kVariance);
   if (!(std::isfinite(o.exposure) && std::abs(o.exposure) <= 64.0f))
     throw InputError(kCommandLine, "--exposure: expected stops in [-64, 64]");
-  if (o.output && o.output->empty()) throw InputError(kCommandLine, "-o: the output path is empty");
-  const std::string exr = o.output ? *o.output : default_output(o.scene);
-  std::filesystem::path png_path = exr;
-  png_path.replace_extension(".png");
-  const std::string png = png_path.string();
-  // Every output is checked before any work: a bad -o fails now, not after the render.
-  if (std::filesystem::path(exr).extension() != ".exr")
-    throw InputError(SourceLocation{exr, ""}, "output must be an .exr file");
-  OutputTransaction outputs;
-  outputs.add(exr, "image");
-  outputs.add(png, "preview");
-  const std::string checkpoint = o.checkpoint ? *o.checkpoint : exr.substr(0, exr.size() - 4) + ".ckpt";
-  if (o.checkpoint) outputs.add(checkpoint, "checkpoint");
-  // The checkpoint an interrupt writes when none was asked for: checked now too, and if it
-  // cannot be written an interrupt saves the partial image alone (and says so).
-  bool interrupt_checkpoint = true;
-  if (!o.checkpoint) {
-    try {
-      OutputTransaction probe = outputs;
-      probe.add(checkpoint, "checkpoint");
-    } catch (const std::exception&) {
-      interrupt_checkpoint = false;
-    }
-  }
+  const RenderOutputs outputs(o);  // every output is checked before any work
   const uint64_t key = checkpoint_key(scene_source(o.scene), settings, o.time, o.priorities);
   check_memory(settings);
   const auto scene = Scene::build(desc);
   const Progress::Style style = o.quiet ? Progress::Style::kQuiet : Progress::Style::kAuto;
-
-  const auto write_outputs = [&](const Image& image, const Film* film, bool with_checkpoint) {
-    std::vector<OutputTransaction::Writer> writers = {
-        [&](const std::string& temp) { write_exr(temp, image); },
-        [&](const std::string& temp) {
-          write_png(temp, image.width(), image.height(), to_srgb8_preview(image, PreviewSettings{o.exposure, true}));
-        }};
-    OutputTransaction tx = outputs;
-    if (with_checkpoint && !o.checkpoint && interrupt_checkpoint) {
-      tx.add(checkpoint, "checkpoint");
-      writers.push_back([&](const std::string& temp) { film->save(temp, key); });
-    } else if (o.checkpoint) {
-      writers.push_back([&](const std::string& temp) { film->save(temp, key); });
-    }
-    tx.commit(writers);
-  };
-
-  // Under mpirun/srun each rank renders its share and rank 0 alone gets the frame (src/distributed/).
-  if (distributed::launcher_world_size()) {
-    if (o.checkpoint || o.resume || progressive.passes())
-      throw InputError(kCommandLine, "--checkpoint, --resume, --time-limit and --target-rmse are for single-process "
-                                     "renders, not under mpirun");
-    const std::optional<RenderResult> frame =
-        distributed::render_frame(*scene, settings, *distributed::split_from_name(o.mpi_split), style, key);
-    if (!frame) return 0;  // an MPI rank other than 0: rank 0 writes the outputs
-    write_outputs(frame->image, nullptr, false);
-    if (!o.quiet) print_summary(o.scene, settings, frame->stats, exr);
-    return 0;
-  }
+  if (distributed::launcher_world_size()) return run_distributed(o, *scene, settings, outputs, key, style);
 
   Film film = o.resume ? load_checkpoint(*o.resume, key, settings) : Film(settings.resolution, settings.aovs);
-  const int target = settings.spp;
-  RenderStats total;
-  const auto start = std::chrono::steady_clock::now();
-  const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-  const auto add = [&](const RenderStats& s) { total += s; };
-  std::string stopped_by;
-  if (!progressive.passes()) {
-    add(render_up_to(film, *scene, settings, target, &interrupt.stop(), style));
-  } else {
-    // Passes of whole sample counts: 1 sample first, then as many as the last pass's time per
-    // sample says fit before the next checkpoint or the time limit.
-    double last_checkpoint = 0.0, seconds_per_sample = 0.0;
-    for (int done = samples_done(film, settings); done < target && !interrupt.stopped();) {
-      int batch = done == 0 || seconds_per_sample <= 0.0 ? 1 : std::max(1, done);
-      if (progressive.checkpoint_every && seconds_per_sample > 0.0)
-        batch = std::min(batch, std::max(1, int(*progressive.checkpoint_every / seconds_per_sample)));
-      if (progressive.time_limit && seconds_per_sample > 0.0) {
-        const int fit = int((*progressive.time_limit - elapsed()) / seconds_per_sample);
-        if (fit < 1) {
-          stopped_by = "the time limit";
-          break;
-        }
-        batch = std::min(batch, fit);
-      }
-      const int next = std::min(target, done + batch);
-      const RenderStats pass = render_up_to(film, *scene, settings, next, &interrupt.stop(), Progress::Style::kQuiet);
-      add(pass);
-      if (interrupt.stopped()) break;
-      seconds_per_sample = pass.seconds / double(next - done);
-      done = next;
-      if (!o.quiet) std::fprintf(stderr, "caligo: %d of %d samples per pixel (%s)\n", done, target, format_duration(elapsed()).c_str());
-      if (progressive.target_rmse) {
-        const auto rmse = film.estimated_rmse();
-        if (rmse && *rmse <= *progressive.target_rmse) {
-          stopped_by = "the target RMSE (estimated " + std::to_string(*rmse) + ")";
-          break;
-        }
-      }
-      if (progressive.time_limit && elapsed() >= *progressive.time_limit) {
-        stopped_by = "the time limit";
-        break;
-      }
-      if (progressive.checkpoint_every && done < target && elapsed() - last_checkpoint >= *progressive.checkpoint_every) {
-        // A checkpoint that fails (a full disk for a moment) must not end a long render: the
-        // film is still in memory, and the next checkpoint or the end tries again.
-        try {
-          film.save(checkpoint, key);
-        } catch (const std::exception& e) {
-          std::fprintf(stderr, "caligo: warning: checkpoint not saved, the render goes on: %s\n",
-                       printable_for_message(e.what()).c_str());
-        }
-        last_checkpoint = elapsed();
-      }
-    }
-  }
-  total.seconds = elapsed();
+  const ProgressiveResult result =
+      render_progressive(film, *scene, settings, schedule, progress_hooks(o, outputs, key), &interrupt.stop(), style);
   const Image image = film.resolve();
-  const auto [fewest_samples, most_samples] = sample_range(film, settings);
-  if (most_samples > target && !o.quiet)
+  const int target = settings.spp;
+  const auto samples = sample_range(film, settings);
+  if (samples.second > target && !o.quiet)
     std::fprintf(stderr, "caligo: the checkpoint already held %d samples per pixel, more than --spp %d: all are kept\n",
-                 most_samples, target);
+                 samples.second, target);
   // A signal after the last sample changes nothing: the render is complete.
-  const bool complete = fewest_samples >= target || !stopped_by.empty();
+  const bool complete = samples.first >= target || !result.stopped_by.empty();
   if (interrupt.stopped() && !complete) {
-    write_outputs(image, &film, true);
-    if (o.checkpoint || interrupt_checkpoint)
-      std::fprintf(stderr,
-                   "caligo: interrupted (signal %d) with %d to %d of %d samples per pixel: wrote the partial image %s "
-                   "and the checkpoint %s; continue with --resume %s\n",
-                   interrupt.signal_number(), fewest_samples, most_samples, target, quote_for_message(exr).c_str(),
-                   quote_for_message(checkpoint).c_str(), quote_for_message(checkpoint).c_str());
-    else
-      std::fprintf(stderr,
-                   "caligo: interrupted (signal %d) with %d to %d of %d samples per pixel: wrote the partial image %s; "
-                   "no checkpoint (%s cannot be written; give --checkpoint FILE)\n",
-                   interrupt.signal_number(), fewest_samples, most_samples, target, quote_for_message(exr).c_str(),
-                   quote_for_message(checkpoint).c_str());
-    return kExitInterruptedBase + interrupt.signal_number();
+    outputs.write(image, &film, key, o.exposure, true);
+    return report_interrupt(outputs, interrupt.signal_number(), samples, target);
   }
-  write_outputs(image, &film, false);
-  if (!stopped_by.empty() && !o.quiet)
-    std::fprintf(stderr, "caligo: stopped by %s at %d of %d samples per pixel\n", stopped_by.c_str(),
-                 samples_done(film, settings), target);
-  if (!o.quiet) print_summary(o.scene, settings, total, exr);
+  outputs.write(image, &film, key, o.exposure, false);
+  if (!result.stopped_by.empty() && !o.quiet)
+    std::fprintf(stderr, "caligo: stopped by %s at %d of %d samples per pixel\n", result.stopped_by.c_str(),
+                 samples.first, target);
+  if (!o.quiet) print_summary(o.scene, settings, result.stats, outputs.exr());
   return 0;
 }
 

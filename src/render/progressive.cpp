@@ -1,0 +1,99 @@
+#include "render/progressive.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+
+namespace caligo {
+namespace {
+
+struct Clock {
+  std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+  double seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+};
+
+bool stopped(const std::atomic<bool>* stop) { return stop && stop->load(std::memory_order_relaxed); }
+
+// The next pass's sample count from `done`: doubling, bounded by the checkpoint interval and
+// by what fits before the time limit (0: nothing fits).
+int next_batch(const ProgressiveSchedule& schedule, int done, double seconds_per_sample, double elapsed) {
+  if (done == 0 || seconds_per_sample <= 0.0) return 1;
+  // In double until the end: a long limit over a fast pass overflows an int (the former
+  // scheduler stopped such renders after their first sample).
+  double batch = std::max(1, done);
+  if (schedule.checkpoint_every) batch = std::min(batch, std::max(1.0, *schedule.checkpoint_every / seconds_per_sample));
+  if (schedule.time_limit) batch = std::min(batch, (*schedule.time_limit - elapsed) / seconds_per_sample);
+  return batch < 1.0 ? 0 : int(batch);
+}
+
+// Why the passes end after this one, or empty when they go on.
+std::string stop_reason(const ProgressiveSchedule& schedule, const Film& film, double elapsed) {
+  if (schedule.target_rmse) {
+    const auto rmse = film.estimated_rmse();
+    if (rmse && *rmse <= *schedule.target_rmse) return "the target RMSE (estimated " + std::to_string(*rmse) + ")";
+  }
+  if (schedule.time_limit && elapsed >= *schedule.time_limit) return "the time limit";
+  return {};
+}
+
+void checkpoint(const ProgressiveHooks& hooks, const Film& film) {
+  if (!hooks.save_checkpoint) return;
+  try {
+    hooks.save_checkpoint(film);
+  } catch (const std::exception& e) {
+    if (hooks.on_checkpoint_failed) hooks.on_checkpoint_failed(e);
+  }
+}
+
+}  // namespace
+
+ProgressiveResult render_progressive(Film& film, const Scene& scene, const RenderSettings& settings,
+                                     const ProgressiveSchedule& schedule, const ProgressiveHooks& hooks,
+                                     const std::atomic<bool>* stop, Progress::Style progress) {
+  const Clock clock;
+  const int target = settings.spp;
+  ProgressiveResult result;
+  if (!schedule.passes()) {
+    result.stats = render_up_to(film, scene, settings, target, stop, progress);
+    result.stats.seconds = clock.seconds();
+    return result;
+  }
+  double last_checkpoint = 0.0, seconds_per_sample = 0.0;
+  for (int done = sample_range(film, settings).first; done < target && !stopped(stop);) {
+    const int batch = next_batch(schedule, done, seconds_per_sample, clock.seconds());
+    if (batch < 1) {
+      result.stopped_by = "the time limit";
+      break;
+    }
+    const int next = std::min(target, done + batch);
+    const RenderStats pass = render_up_to(film, scene, settings, next, stop, Progress::Style::kQuiet);
+    result.stats += pass;
+    if (stopped(stop)) break;
+    seconds_per_sample = pass.seconds / double(next - done);
+    done = next;
+    if (hooks.on_pass) hooks.on_pass(done, target, clock.seconds());
+    result.stopped_by = stop_reason(schedule, film, clock.seconds());
+    if (!result.stopped_by.empty()) break;
+    if (schedule.checkpoint_every && done < target && clock.seconds() - last_checkpoint >= *schedule.checkpoint_every) {
+      checkpoint(hooks, film);
+      last_checkpoint = clock.seconds();
+    }
+  }
+  result.stats.seconds = clock.seconds();
+  return result;
+}
+
+std::pair<int, int> sample_range(const Film& film, const RenderSettings& settings) {
+  const PixelBounds b = settings.crop.pixels(settings.resolution);
+  uint32_t fewest = UINT32_MAX, most = 0;
+  for (int y = b.min.y; y < b.max.y; ++y)
+    for (int x = b.min.x; x < b.max.x; ++x) {
+      fewest = std::min(fewest, film.sample_count(x, y));
+      most = std::max(most, film.sample_count(x, y));
+    }
+  return b.empty() ? std::pair{0, 0} : std::pair{int(fewest), int(most)};
+}
+
+}  // namespace caligo
