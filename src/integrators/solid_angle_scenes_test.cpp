@@ -16,6 +16,7 @@
 
 #include "lights/area_light_sampling.h"
 #include "render/render.h"
+#include "scene/mesh_loader.h"
 #include "scene/builtins.h"
 #include "scene/scene_parser.h"
 
@@ -127,16 +128,25 @@ TEST(SolidAngleScenes, ClippedEquiangularKeepsTheQuadLightsMeanAndLosesVariance)
   compare_clipping("quad in haze, MIS", kQuadInHaze, DistanceSampling::kMis, 4);
 }
 
-// The built-ins of this work: neon's tubes become 3 x 2,048 triangle lights; the stage's
-// Wuson loads; both render finite, non-black images at low resolution.
+// The built-ins of this work: neon's tubes become 3 x 2,048 triangle lights, each with its
+// material's radiance (6 x colour); the stage's Wuson loads with its 3,732 triangles; both
+// render finite, non-black images at low resolution.
 TEST(SolidAngleScenes, NeonAndStageBuildAndRender) {
   for (const char* name : {"neon", "stage"}) {
     SCOPED_TRACE(name);
     const SceneDesc desc = parse_builtin(*find_builtin(name));
     const auto scene = Scene::build(desc);
-    const auto triangles = std::count_if(scene->lights().begin(), scene->lights().end(),
-                                         [](const Light& l) { return std::holds_alternative<TriangleLight>(l); });
-    EXPECT_EQ(triangles, std::string(name) == "neon" ? 3 * 2048 : 0);
+    const bool neon = std::string(name) == "neon";
+    int per_colour[3] = {0, 0, 0};
+    const RGB colours[3] = {RGB(1, 0.15f, 0.6f) * 6.0f, RGB(0.1f, 0.8f, 1) * 6.0f, RGB(1, 0.55f, 0.1f) * 6.0f};
+    for (const Light& l : scene->lights())
+      if (const auto* t = std::get_if<TriangleLight>(&l))
+        for (int c = 0; c < 3; ++c) per_colour[c] += t->radiance == colours[c];
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(per_colour[c], neon ? 2048 : 0) << "colour " << c;
+    if (!neon) {
+      const MeshFileShape& wuson = std::get<MeshFileShape>(desc.shapes[1].geometry);
+      EXPECT_EQ(load_mesh(wuson.path, {}).triangle_count(), 3732u);
+    }
     RenderSettings s = render_settings(desc);
     s.resolution = {16, 9};
     s.spp = 4;

@@ -342,6 +342,60 @@ void SimdMarcher::prefetch(const PixelMarch& m) const {
   }
 }
 
+namespace {
+
+// One batch of samples along the pixel's ray: sigma_s x phase summed over the primitives at
+// the lanes' points (overlapping media add their coefficients and mix their phases in
+// proportion to sigma_s), the camera optical depth to them, and which of the first `slots`
+// primitives hold each lane.
+struct BatchScatter {
+  Batch s_r = Batch(0.0f), s_g = Batch(0.0f), s_b = Batch(0.0f);
+  Batch tau_r = Batch(0.0f), tau_g = Batch(0.0f), tau_b = Batch(0.0f);
+};
+
+BatchScatter scatter_and_camera_depth(const SimdMarcher::Data& d, const PixelMarch& m, const Batch& t,
+                                      const BatchVec& p, const Batch& cos_theta, const Batch* hoisted_phase,
+                                      const Mask& ok, Mask* inside, size_t slots) {
+  BatchScatter out;
+  for (size_t i = 0; i < slots; ++i) inside[i] = Mask(false);
+  for (size_t j = 0; j < m.intervals.size(); ++j) {
+    const VolumeInterval& iv = m.intervals[j];
+    const lanes::Primitive& prim = d.prims[iv.primitive];
+    const Mask in = (t >= iv.t0) & (t <= iv.t1);
+    if (iv.primitive < slots) inside[iv.primitive] = in;
+    const Batch covered = xsimd::min(xsimd::max(t - iv.t0, Batch(0.0f)), Batch(iv.t1 - iv.t0));
+    out.tau_r += covered * prim.sigma_t.r;
+    if (!d.grey) {
+      out.tau_g += covered * prim.sigma_t.g;
+      out.tau_b += covered * prim.sigma_t.b;
+    }
+    if (xsimd::none(in & ok)) continue;
+    Batch w = xsimd::select(
+        in, hoisted_phase ? hoisted_phase[j] : std::visit(lanes::PhaseBatch{cos_theta}, prim.phase), Batch(0.0f));
+    if (prim.noise) w *= lanes::noise_density_batch(*prim.noise, p.x, p.y, p.z);
+    out.s_r += w * prim.sigma_s.r;
+    out.s_g += w * prim.sigma_s.g;
+    out.s_b += w * prim.sigma_s.b;
+  }
+  return out;
+}
+
+// Adds the optical depth towards the light, through every primitive of the scene, to `bs`.
+void add_light_depth(const SimdMarcher::Data& d, const BatchVec& p, const SimdMarcher::Data::LaneArrival& a,
+                     const Mask* inside, size_t slots, const Mask& ok, BatchScatter& bs) {
+  const Batch reach = xsimd::min(a.dist, Batch(d.far));
+  for (size_t i = 0; i < d.prims.size(); ++i) {
+    const Batch len = d.sides[i].overlap(d.prims[i], p, a.wi, reach, i < slots ? inside[i] : Mask(false), ok);
+    bs.tau_r += len * d.prims[i].sigma_t.r;
+    if (!d.grey) {
+      bs.tau_g += len * d.prims[i].sigma_t.g;
+      bs.tau_b += len * d.prims[i].sigma_t.b;
+    }
+  }
+}
+
+}  // namespace
+
 RGB SimdMarcher::march(const PixelMarch& m) const {
   const Data& d = *data_;
   alignas(32) static constexpr float kLaneIndex[8] = {0, 1, 2, 3, 4, 5, 6, 7};
@@ -373,34 +427,10 @@ RGB SimdMarcher::march(const PixelMarch& m) const {
     const Data::LaneArrival a = d.arrival(p);
     Mask ok = (k < float(m.samples)) & ((a.r > 0.0f) | (a.g > 0.0f) | (a.b > 0.0f));
     if (xsimd::none(ok)) continue;
-
-    // Scattering (sigma_s x phase, summed over the primitives here) and camera optical depth.
     const Batch cos_theta = xsimd::min(xsimd::max(lanes::dot(a.wi, m.dir), Batch(-1.0f)), Batch(1.0f));
-    Batch s_r(0.0f), s_g(0.0f), s_b(0.0f);
-    Batch tau_r(0.0f), tau_g(0.0f), tau_b(0.0f);
-    for (size_t i = 0; i < slots; ++i) inside[i] = Mask(false);
-    for (size_t j = 0; j < m.intervals.size(); ++j) {
-      const VolumeInterval& iv = m.intervals[j];
-      const lanes::Primitive& prim = d.prims[iv.primitive];
-      const Mask in = (t >= iv.t0) & (t <= iv.t1);
-      if (iv.primitive < slots) inside[iv.primitive] = in;
-      const Batch covered = xsimd::min(xsimd::max(t - iv.t0, Batch(0.0f)), Batch(iv.t1 - iv.t0));
-      tau_r += covered * prim.sigma_t.r;
-      if (!d.grey) {
-        tau_g += covered * prim.sigma_t.g;
-        tau_b += covered * prim.sigma_t.b;
-      }
-      if (xsimd::none(in & ok)) continue;
-      Batch w = xsimd::select(
-          in, hoist_phase ? phase[j] : std::visit(lanes::PhaseBatch{cos_theta}, prim.phase), Batch(0.0f));
-      if (prim.noise) w *= lanes::noise_density_batch(*prim.noise, p.x, p.y, p.z);
-      s_r += w * prim.sigma_s.r;
-      s_g += w * prim.sigma_s.g;
-      s_b += w * prim.sigma_s.b;
-    }
-    ok = ok & ((s_r > 0.0f) | (s_g > 0.0f) | (s_b > 0.0f));
+    BatchScatter bs = scatter_and_camera_depth(d, m, t, p, cos_theta, hoist_phase ? phase : nullptr, ok, inside, slots);
+    ok = ok & ((bs.s_r > 0.0f) | (bs.s_g > 0.0f) | (bs.s_b > 0.0f));
     if (xsimd::none(ok)) continue;
-
     // The shadow map before the light's optical depth: shadowed lanes need no segment.
     Batch v(1.0f);
     if (map) {
@@ -409,26 +439,14 @@ RGB SimdMarcher::march(const PixelMarch& m) const {
       ok = ok & (v > 0.0f);
       if (xsimd::none(ok)) continue;
     }
-
-    // Optical depth towards the light, through every primitive of the scene.
-    const Batch reach = xsimd::min(a.dist, Batch(d.far));
-    for (size_t i = 0; i < d.prims.size(); ++i) {
-      const Batch len =
-          d.sides[i].overlap(d.prims[i], p, a.wi, reach, i < slots ? inside[i] : Mask(false), ok);
-      tau_r += len * d.prims[i].sigma_t.r;
-      if (!d.grey) {
-        tau_g += len * d.prims[i].sigma_t.g;
-        tau_b += len * d.prims[i].sigma_t.b;
-      }
-    }
-
-    const Batch tr_r = lanes::exp_neg(tau_r);
-    const Batch tr_g = d.grey ? tr_r : lanes::exp_neg(tau_g);
-    const Batch tr_b = d.grey ? tr_r : lanes::exp_neg(tau_b);
+    add_light_depth(d, p, a, inside, slots, ok, bs);
+    const Batch tr_r = lanes::exp_neg(bs.tau_r);
+    const Batch tr_g = d.grey ? tr_r : lanes::exp_neg(bs.tau_g);
+    const Batch tr_b = d.grey ? tr_r : lanes::exp_neg(bs.tau_b);
     const Batch vw = v * weight;
-    sum_r += xsimd::select(ok, s_r * a.r * tr_r * vw, Batch(0.0f));
-    sum_g += xsimd::select(ok, s_g * a.g * tr_g * vw, Batch(0.0f));
-    sum_b += xsimd::select(ok, s_b * a.b * tr_b * vw, Batch(0.0f));
+    sum_r += xsimd::select(ok, bs.s_r * a.r * tr_r * vw, Batch(0.0f));
+    sum_g += xsimd::select(ok, bs.s_g * a.g * tr_g * vw, Batch(0.0f));
+    sum_b += xsimd::select(ok, bs.s_b * a.b * tr_b * vw, Batch(0.0f));
   }
   return RGB(xsimd::hadd(sum_r), xsimd::hadd(sum_g), xsimd::hadd(sum_b));
 }
