@@ -11,7 +11,7 @@
 
 #include "realtime/accumulate_internal.h"
 #include "realtime/accumulate_lanes.h"
-#include "realtime/light_profile_simd.h"
+#include "realtime/light_lanes.h"
 #include "realtime/shadow_map_simd.h"
 
 namespace caligo {
@@ -105,37 +105,9 @@ Batch noise_density_batch(const NoiseModulation& noise, const Batch& px, const B
 
 }  // namespace lanes
 
-namespace {
-
-enum class LaneLightKind { point, spot, box, directional };
-
-Batch range_window(const Batch& dist, float range, float inv_range) {
-  if (!std::isfinite(range)) return Batch(1.0f);
-  const Batch x = dist * inv_range;
-  const Batch x2 = x * x;
-  const Batch w = 1.0f - x2 * x2;
-  return xsimd::select(dist < range, w * w, Batch(0.0f));
-}
-
-// The edge width's reciprocal is taken once per call: a multiply, not a division, per lane.
-Batch smoothstep(float e0, float e1, const Batch& x) {
-  if (e0 == e1) return xsimd::select(x < e0, Batch(0.0f), Batch(1.0f));
-  const Batch t = xsimd::min(xsimd::max((x - e0) * (1.0f / (e1 - e0)), Batch(0.0f)), Batch(1.0f));
-  return t * t * (3.0f - 2.0f * t);
-}
-
-}  // namespace
-
 struct SimdMarcher::Data {
   const FrameLight* light = nullptr;
-  LaneLightKind kind = LaneLightKind::point;
-  Vec3 position, direction, up, right;
-  float cos_inner = 1.0f, cos_outer = 0.0f, range = kInfinity, inv_range = 0.0f;
-  float half_width = 0.0f, half_height = 0.0f;
-  RGB color;
-  std::optional<SpotGoboSampler> spot_gobo;
-  std::optional<GoboSampler> box_gobo;
-  std::optional<IesSampler> ies;
+  std::optional<LightLanes> arrivals;  // the light, prepared for 8-lane arrival
   std::vector<lanes::Primitive> prims;
   std::vector<lanes::LightSide> sides;  // per primitive, for this light
   bool grey = true;                     // every sigma_t grey: one exp per sample instead of three
@@ -150,100 +122,9 @@ struct SimdMarcher::Data {
   LaneArrival arrival(const BatchVec& p) const;
 };
 
-namespace {
-
-// Fills the light part of Data.
-struct DescribeLight {
-  SimdMarcher::Data& d;
-  static float inv(float range) { return std::isfinite(range) ? 1.0f / range : 0.0f; }
-  void operator()(const PointLight& l) const {
-    d.kind = LaneLightKind::point;
-    d.position = l.position;
-    d.range = l.range;
-    d.inv_range = inv(l.range);
-    d.color = l.intensity;
-    if (l.ies.profile) d.ies.emplace(l.ies);
-  }
-  void operator()(const SpotLight& l) const {
-    d.kind = LaneLightKind::spot;
-    d.position = l.position;
-    d.direction = l.direction;
-    d.cos_inner = l.cos_inner;
-    d.cos_outer = l.cos_outer;
-    d.range = l.range;
-    d.inv_range = inv(l.range);
-    d.color = l.intensity;
-    if (l.ies.profile) d.ies.emplace(l.ies);
-    if (l.gobo.image) d.spot_gobo.emplace(l);
-  }
-  void operator()(const BoxLight& l) const {
-    d.kind = LaneLightKind::box;
-    d.position = l.position;
-    d.direction = l.direction;
-    d.up = l.up;
-    d.right = cross(l.direction, l.up);
-    d.half_width = l.half_width;
-    d.half_height = l.half_height;
-    d.range = l.range;
-    d.color = l.irradiance;
-    if (l.gobo.image) d.box_gobo.emplace(l.gobo);
-  }
-  void operator()(const DirectionalLight& l) const {
-    d.kind = LaneLightKind::directional;
-    d.direction = l.direction;
-    d.color = l.irradiance;
-  }
-};
-
-}  // namespace
-
 SimdMarcher::Data::LaneArrival SimdMarcher::Data::arrival(const BatchVec& p) const {
-  LaneArrival a;
-  Batch scale, r(color.r), g(color.g), b(color.b);
-  switch (kind) {
-    case LaneLightKind::point:
-    case LaneLightKind::spot: {
-      const BatchVec d{position.x - p.x, position.y - p.y, position.z - p.z};
-      const Batch dist2 = d.x * d.x + d.y * d.y + d.z * d.z;
-      a.dist = xsimd::sqrt(dist2);
-      const Batch inv = 1.0f / a.dist;
-      a.wi = {d.x * inv, d.y * inv, d.z * inv};
-      scale = range_window(a.dist, range, inv_range) * (inv * inv);
-      const BatchVec out{-a.wi.x, -a.wi.y, -a.wi.z};  // leaving the light
-      if (kind == LaneLightKind::spot) scale *= smoothstep(cos_outer, cos_inner, lanes::dot(out, direction));
-      scale = xsimd::select(dist2 > 0.0f, scale, Batch(0.0f));
-      if (ies && xsimd::any(scale > 0.0f)) scale *= ies->factor(out.x, out.y, out.z);
-      if (spot_gobo && xsimd::any(scale > 0.0f)) {
-        const RgbBatch f = spot_gobo->filter(out.x, out.y, out.z);
-        r *= f.r, g *= f.g, b *= f.b;
-      }
-      break;
-    }
-    case LaneLightKind::box: {
-      const BatchVec l{p.x - position.x, p.y - position.y, p.z - position.z};
-      const Batch along = lanes::dot(l, direction);
-      const Batch x = lanes::dot(l, right), y = lanes::dot(l, up);
-      const Mask inside =
-          (along >= 0.0f) & (along <= range) & (xsimd::abs(x) <= half_width) & (xsimd::abs(y) <= half_height);
-      a.wi = {Batch(-direction.x), Batch(-direction.y), Batch(-direction.z)};
-      a.dist = along;
-      scale = xsimd::select(inside, Batch(1.0f), Batch(0.0f));
-      if (box_gobo && xsimd::any(inside)) {
-        const RgbBatch f = box_gobo->filter(0.5f + 0.5f * x / half_width, 0.5f + 0.5f * y / half_height);
-        r *= f.r, g *= f.g, b *= f.b;
-      }
-      break;
-    }
-    case LaneLightKind::directional:
-      a.wi = {Batch(-direction.x), Batch(-direction.y), Batch(-direction.z)};
-      a.dist = Batch(kInfinity);
-      scale = Batch(1.0f);
-      break;
-  }
-  a.r = scale * r;
-  a.g = scale * g;
-  a.b = scale * b;
-  return a;
+  const LightLanes::Arrival a = arrivals->at(p.x, p.y, p.z);
+  return {{a.wx, a.wy, a.wz}, a.distance, a.r, a.g, a.b};
 }
 
 SimdMarcher::SimdMarcher(const FrameLight& light, const VolumeScene& volumes, float multiple_scattering_floor,
@@ -253,7 +134,7 @@ SimdMarcher::SimdMarcher(const FrameLight& light, const VolumeScene& volumes, fl
   d.light = &light;
   d.floor = multiple_scattering_floor;
   d.far = far;
-  std::visit(DescribeLight{d}, light.light);
+  d.arrivals.emplace(light.light);
   supported_ = true;
   d.prims.resize(volumes.primitives().size());
   for (size_t i = 0; i < d.prims.size(); ++i) {
@@ -262,11 +143,11 @@ SimdMarcher::SimdMarcher(const FrameLight& light, const VolumeScene& volumes, fl
     d.grey = d.grey && st.r == st.g && st.g == st.b;
   }
   if (!supported_) return;
-  const bool parallel = d.kind == LaneLightKind::directional || d.kind == LaneLightKind::box;
+  const bool parallel = d.arrivals->parallel();
   for (size_t i = 0; i < d.prims.size(); ++i) {
-    d.sides.push_back(parallel
-                          ? lanes::LightSide::parallel_light(d.prims[i], -d.direction)
-                          : lanes::LightSide::point_light(d.prims[i], volumes.primitives()[i], d.position));
+    d.sides.push_back(parallel ? lanes::LightSide::parallel_light(d.prims[i], -d.arrivals->direction())
+                               : lanes::LightSide::point_light(d.prims[i], volumes.primitives()[i],
+                                                               d.arrivals->position()));
     d.any_light_inside = d.any_light_inside || d.sides.back().light_inside;
   }
 }
@@ -407,14 +288,13 @@ RGB SimdMarcher::march(const PixelMarch& m) const {
   // Directional and box lights arrive from one direction everywhere, so the scattering
   // angle is the same at every sample of the ray: each primitive's phase once per pixel.
   constexpr size_t kPhaseSlots = 8;
-  const bool parallel = d.kind == LaneLightKind::directional || d.kind == LaneLightKind::box;
-  const bool hoist_phase = parallel && m.intervals.size() <= kPhaseSlots;
+  const bool hoist_phase = d.arrivals->parallel() && m.intervals.size() <= kPhaseSlots;
   Batch phase[kPhaseSlots];
   const ShadowMap* map = d.light->shadow;
   std::optional<ShadowRaySimd> shadow_ray;
   if (map && ShadowRaySimd::applies(*map)) shadow_ray.emplace(*map, m.origin, m.dir);
   if (hoist_phase) {
-    const Vec3 wi = -d.direction;
+    const Vec3 wi = -d.arrivals->direction();
     const Batch cos_theta = xsimd::min(xsimd::max(Batch(dot(wi, m.dir)), Batch(-1.0f)), Batch(1.0f));
     for (size_t j = 0; j < m.intervals.size(); ++j)
       phase[j] = std::visit(lanes::PhaseBatch{cos_theta}, d.prims[m.intervals[j].primitive].phase);

@@ -13,7 +13,7 @@
 
 #include <xsimd/xsimd.hpp>
 
-#include "realtime/light_profile_simd.h"
+#include "realtime/light_lanes.h"
 #include "realtime/media_simd.h"
 #include "realtime/shadow_map_simd.h"
 #include "realtime/surface_shading_internal.h"
@@ -37,49 +37,6 @@ inline V3 madd(const V3& a, const V3& d, B t) { return {a.x + d.x * t, a.y + d.y
 inline Vec3 lane(const V3& v, size_t i) { return {v.x.get(i), v.y.get(i), v.z.get(i)}; }
 inline B gather(const float* base, const I& index) { return B(_mm256_i32gather_ps(base, index, 4)); }
 
-// lights/light_profile.cpp's range_window and math.h's smoothstep, over batches.
-B range_window(B distance, float range) {
-  if (!(range < kInfinity)) return B(1.0f);
-  const B t = distance / B(range);
-  const B x = (t * t) * (t * t);
-  return xsimd::select(distance < B(range), (B(1.0f) - x) * (B(1.0f) - x), B(0.0f));
-}
-B smoothstep(float e0, float e1, B x) {
-  if (e0 == e1) return xsimd::select(x < B(e0), B(0.0f), B(1.0f));
-  const B t = xsimd::clip((x - B(e0)) / B(e1 - e0), B(0.0f), B(1.0f));
-  return t * t * (B(3.0f) - B(2.0f) * t);
-}
-
-// Per light, what the batches need beyond the light itself (light_profile_simd.h's
-// samplers hold the gobo rotation, the light frames and the IES table pointers).
-struct LightPrep {
-  Vec3 right;                                // box lights: cross(direction, up)
-  std::optional<SpotGoboSampler> spot_gobo;  // spot lights with a gobo image
-  std::optional<GoboSampler> box_gobo;       // box lights with a gobo image
-  std::optional<IesSampler> ies;             // point and spot lights with a profile
-};
-
-struct Prepare {
-  LightPrep operator()(const PointLight& l) const {
-    LightPrep p;
-    if (l.ies.profile) p.ies.emplace(l.ies);
-    return p;
-  }
-  LightPrep operator()(const SpotLight& l) const {
-    LightPrep p;
-    if (l.gobo.image) p.spot_gobo.emplace(l);
-    if (l.ies.profile) p.ies.emplace(l.ies);
-    return p;
-  }
-  LightPrep operator()(const BoxLight& l) const {
-    LightPrep p;
-    p.right = cross(l.direction, l.up);
-    if (l.gobo.image) p.box_gobo.emplace(l.gobo);
-    return p;
-  }
-  LightPrep operator()(const DirectionalLight&) const { return {}; }
-};
-
 struct Arrival {
   B r, g, b;  // radiance (already / d^2) or irradiance
   V3 wi;      // towards the light
@@ -87,66 +44,11 @@ struct Arrival {
   Mask mask;  // where the light arrives
 };
 
-// light_profile.cpp's delta_arrival over batches.
-struct ArrivalAt {
-  const V3& p;
-  const LightPrep& prep;
-  float far;
-
-  // Direction, distance, inverse square and range window shared by point and spot lights.
-  Arrival point_like(Vec3 position, float range, B& scale) const {
-    const V3 d = minus(position, p);
-    const B dist2 = dot(d, d);
-    const B dist = xsimd::sqrt(dist2);
-    const B inv = B(1.0f) / dist;
-    scale = range_window(dist, range) / dist2;
-    return {B(0.0f), B(0.0f), B(0.0f), {d.x * inv, d.y * inv, d.z * inv}, dist, dist2 > B(0.0f)};
-  }
-  Arrival operator()(const PointLight& l) const {
-    B scale;
-    Arrival a = point_like(l.position, l.range, scale);
-    if (prep.ies && xsimd::any(a.mask & (scale > B(0.0f))))
-      scale *= prep.ies->factor(B(0.0f) - a.wi.x, B(0.0f) - a.wi.y, B(0.0f) - a.wi.z);
-    a.mask = a.mask & (scale > B(0.0f));
-    a.r = B(l.intensity.r) * scale, a.g = B(l.intensity.g) * scale, a.b = B(l.intensity.b) * scale;
-    return a;
-  }
-  Arrival operator()(const SpotLight& l) const {
-    B scale;
-    Arrival a = point_like(l.position, l.range, scale);
-    const V3 w{B(0.0f) - a.wi.x, B(0.0f) - a.wi.y, B(0.0f) - a.wi.z};  // leaving the light
-    const B z = dot(w, l.direction);
-    scale *= smoothstep(l.cos_outer, l.cos_inner, z);
-    if (prep.ies && xsimd::any(a.mask & (scale > B(0.0f)))) scale *= prep.ies->factor(w.x, w.y, w.z);
-    a.mask = a.mask & (scale > B(0.0f));
-    a.r = B(l.intensity.r) * scale, a.g = B(l.intensity.g) * scale, a.b = B(l.intensity.b) * scale;
-    if (prep.spot_gobo && xsimd::any(a.mask)) {
-      const RgbBatch gobo = prep.spot_gobo->filter(w.x, w.y, w.z);
-      a.r *= gobo.r, a.g *= gobo.g, a.b *= gobo.b;
-    }
-    return a;
-  }
-  Arrival operator()(const BoxLight& l) const {
-    const V3 local = minus(p, l.position);
-    const B along = dot(local, l.direction);
-    const B x = dot(local, prep.right), y = dot(local, l.up);
-    const Mask inside = (along >= B(0.0f)) & (along <= B(l.range)) & (xsimd::abs(x) <= B(l.half_width)) &
-                        (xsimd::abs(y) <= B(l.half_height));
-    const V3 wi{B(-l.direction.x), B(-l.direction.y), B(-l.direction.z)};
-    Arrival a{B(l.irradiance.r), B(l.irradiance.g), B(l.irradiance.b), wi, along, inside};
-    if (prep.box_gobo && xsimd::any(inside)) {
-      // delta_arrival's uv on the emitting face.
-      const RgbBatch gobo = prep.box_gobo->filter(B(0.5f) + B(0.5f) * x / B(l.half_width),
-                                                  B(0.5f) + B(0.5f) * y / B(l.half_height));
-      a.r *= gobo.r, a.g *= gobo.g, a.b *= gobo.b;
-    }
-    return a;
-  }
-  Arrival operator()(const DirectionalLight& l) const {
-    const V3 wi{B(-l.direction.x), B(-l.direction.y), B(-l.direction.z)};
-    return {B(l.irradiance.r), B(l.irradiance.g), B(l.irradiance.b), wi, B(far), Mask(true)};
-  }
-};
+// The light's 8-lane arrival (light_lanes.h); parallel lights' light ends `far` away.
+Arrival arrival_at(const LightLanes& light, const V3& p, float far) {
+  const LightLanes::Arrival a = light.at(p.x, p.y, p.z);
+  return {a.r, a.g, a.b, {a.wx, a.wy, a.wz}, xsimd::min(a.distance, B(far)), a.mask};
+}
 
 // Shadow visibility at p offset by one texel along n (the scalar path's normal offset).
 B shadowed_visibility(const ShadowMap& map, const V3& p, const V3& n) {
@@ -224,7 +126,7 @@ struct SimdFrame {
   explicit SimdFrame(const VolumeScene& volumes) : media(volumes) {}
   // Per material: albedo / pi (0 unless diffuse), emission, and 1 / 0 flags.
   std::vector<float> f[3], emission[3], diffuse, two_sided;
-  std::vector<LightPrep> lights;  // per light of the context
+  std::vector<LightLanes> lights;  // per light of the context
   SegmentMediaBatch media;
 };
 
@@ -242,7 +144,7 @@ SimdFramePtr prepare_simd(const ShadeContext& c) {
     frame->diffuse.push_back(d ? 1.0f : 0.0f);
     frame->two_sided.push_back(m.two_sided_emission ? 1.0f : 0.0f);
   }
-  for (const FrameLight& fl : c.lights) frame->lights.push_back(std::visit(Prepare{}, fl.light));
+  for (const FrameLight& fl : c.lights) frame->lights.emplace_back(fl.light);
   return frame;
 }
 
@@ -333,9 +235,9 @@ struct LightEnds {
   }
 };
 
-void add_light(const ShadeContext& c, const SimdFrame& f, const FrameLight& fl, const LightPrep& prep,
+void add_light(const ShadeContext& c, const SimdFrame& f, const FrameLight& fl, const LightLanes& prep,
                const Overlap* overlaps, Group& q) {
-  const Arrival a = std::visit(ArrivalAt{q.p, prep, c.far}, fl.light);
+  const Arrival a = arrival_at(prep, q.p, c.far);
   const B cos_theta = dot(q.n, a.wi);
   Mask m = q.diffuse & a.mask & (cos_theta > B(0.0f));
   if (!xsimd::any(m)) return;
