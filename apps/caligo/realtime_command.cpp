@@ -139,18 +139,9 @@ void check_output(const std::string& out, OutputKind kind) {
   if (fs::is_directory(out, ec)) throw InputError(SourceLocation{out, ""}, "output is a folder");
 }
 
-const char* light_kind(const Light& light) {
-  struct Kind {
-    const char* operator()(const PointLight&) const { return "point"; }
-    const char* operator()(const SpotLight& l) const { return l.gobo.image ? "spot+gobo" : "spot"; }
-    const char* operator()(const SphereLight&) const { return "sphere"; }
-    const char* operator()(const QuadLight&) const { return "quad"; }
-    const char* operator()(const DirectionalLight&) const { return "directional"; }
-    const char* operator()(const EnvironmentLight&) const { return "environment"; }
-    const char* operator()(const TriangleLight&) const { return "triangle"; }
-    const char* operator()(const BoxLight&) const { return "box"; }
-  };
-  return std::visit(Kind{}, light);
+std::string light_kind(const Light& light) {
+  const auto* spot = std::get_if<SpotLight>(&light);
+  return std::string(light_type_name(light)) + (spot && spot->gobo.image ? "+gobo" : "");
 }
 
 // "march", or what the scatterer used for the light in the last frame.
@@ -172,7 +163,7 @@ void print_table(const SceneDesc& desc, const std::vector<PassTimes>& timed, con
   for (size_t i = 0; i < desc.lights.size(); ++i) {
     if (!desc.options(i).volumetric) continue;
     char name[64];
-    std::snprintf(name, sizeof name, "  light %zu (%s, %s)", i, light_kind(desc.lights[i]),
+    std::snprintf(name, sizeof name, "  light %zu (%s, %s)", i, light_kind(desc.lights[i]).c_str(),
                   light_method(scatterer, i).c_str());
     row(name, [i](const PassTimes& t) { return i < t.per_light.size() ? t.per_light[i] : 0.0; });
   }

@@ -16,22 +16,6 @@ namespace {
 
 using sample_dim::bounce;
 
-// The point equiangular sampling aims at, for lights that have one. Parallel light (box,
-// directional) and the environment have no centre: their in-scattering does not peak near
-// a point, so density sampling serves them.
-struct LightCentre {
-  std::optional<Vec3> operator()(const PointLight& l) const { return l.position; }
-  std::optional<Vec3> operator()(const SpotLight& l) const { return l.position; }
-  std::optional<Vec3> operator()(const SphereLight& l) const { return l.center; }
-  std::optional<Vec3> operator()(const QuadLight& l) const { return l.corner + (l.edge1 + l.edge2) * 0.5f; }
-  std::optional<Vec3> operator()(const TriangleLight& l) const { return (l.p0 + l.p1 + l.p2) / 3.0f; }
-  std::optional<Vec3> operator()(const BoxLight&) const { return std::nullopt; }
-  std::optional<Vec3> operator()(const DirectionalLight&) const { return std::nullopt; }
-  std::optional<Vec3> operator()(const EnvironmentLight&) const { return std::nullopt; }
-};
-
-std::optional<Vec3> light_centre(const Light& light) { return std::visit(LightCentre{}, light); }
-
 // Equiangular sampling over the part of [t0, t1] the light reaches (lights/light_reach.h: a
 // spot's cone, a range sphere, a one-sided area light's front half-space). Its pdf is zero
 // elsewhere, where the integrand is zero too; density sampling still covers all of [t0, t1].

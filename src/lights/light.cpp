@@ -74,8 +74,32 @@ struct Power {
   }
 };
 
+struct LightCentre {
+  std::optional<Vec3> operator()(const PointLight& l) const { return l.position; }
+  std::optional<Vec3> operator()(const SpotLight& l) const { return l.position; }
+  std::optional<Vec3> operator()(const SphereLight& l) const { return l.center; }
+  std::optional<Vec3> operator()(const QuadLight& l) const { return l.corner + (l.edge1 + l.edge2) * 0.5f; }
+  std::optional<Vec3> operator()(const TriangleLight& l) const { return (l.p0 + l.p1 + l.p2) / 3.0f; }
+  std::optional<Vec3> operator()(const BoxLight&) const { return std::nullopt; }
+  std::optional<Vec3> operator()(const DirectionalLight&) const { return std::nullopt; }
+  std::optional<Vec3> operator()(const EnvironmentLight&) const { return std::nullopt; }
+};
+
+struct TypeName {
+  const char* operator()(const PointLight&) const { return "point"; }
+  const char* operator()(const SpotLight&) const { return "spot"; }
+  const char* operator()(const SphereLight&) const { return "sphere"; }
+  const char* operator()(const QuadLight&) const { return "quad"; }
+  const char* operator()(const DirectionalLight&) const { return "directional"; }
+  const char* operator()(const EnvironmentLight&) const { return "environment"; }
+  const char* operator()(const TriangleLight&) const { return "triangle"; }
+  const char* operator()(const BoxLight&) const { return "box"; }
+};
+
 }  // namespace
 
+std::optional<Vec3> light_centre(const Light& light) { return std::visit(LightCentre{}, light); }
+const char* light_type_name(const Light& light) { return std::visit(TypeName{}, light); }
 bool is_delta(const Light& light) { return std::visit(IsDelta{}, light); }
 bool is_infinite(const Light& light) { return std::visit(IsInfinite{}, light); }
 float power(const Light& light) { return std::visit(Power{}, light); }

@@ -16,6 +16,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <variant>
 #include <vector>
 
@@ -145,5 +146,11 @@ bool is_delta(const Light& light);
 bool is_infinite(const Light& light);
 // Total emitted power in W (for choosing lights in proportion to power).
 float power(const Light& light);
+// The point equiangular sampling aims at, for lights that have one. Parallel light (box,
+// directional) and the environment have none: their in-scattering does not peak near a point,
+// so density sampling serves them.
+std::optional<Vec3> light_centre(const Light& light);
+// The type's name as a scene file's "type" gives it ("point", "spot", ...).
+const char* light_type_name(const Light& light);
 
 }  // namespace caligo

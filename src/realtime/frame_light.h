@@ -1,9 +1,9 @@
 // One light as a real-time frame sees it. The real-time passes shade a closed set of their own,
 // ShadedLight: point, spot, box and directional lights; area and environment lights are left
 // to the path tracer. shaded_light() is the one place in realtime/ and hybrid/ that visits the
-// full `Light` variant, so a new light type the passes do not shade needs one line there, and
-// one they shade joins ShadedLight, after which the compiler names every pass that must
-// handle it.
+// full `Light` variant, and it passes the types ShadedLight holds: a new light type the passes
+// do not shade needs nothing here, and one they shade joins ShadedLight, after which the
+// compiler names every pass that must handle it.
 #pragma once
 
 #include <optional>
