@@ -1,6 +1,6 @@
 // Where a ray o + t d is inside the convex solids that bound shapes, volumes and lights: the
-// one place each test is written (core/ray_solids_lanes.h has their 8-lane float versions for
-// the real-time passes). Each returns the part of [tmin, tmax] inside the solid as a RayRange,
+// one place each test is written (core/ray_solids_lanes.h has 8-lane float versions of the
+// ball, cone and oriented box for the real-time passes). Each returns the part of [tmin, tmax] inside the solid as a RayRange,
 // nullopt when empty; `dir` need not be unit unless a function says so. Pure and thread-safe.
 //
 // One policy for rays parallel to a box face: a zero direction component leaves that slab
@@ -41,8 +41,8 @@ QuadraticPieces quadratic_nonnegative(double a, double b, double c);
 std::optional<RayRange> ray_cone(Vec3 origin, Vec3 dir, Vec3 apex, Vec3 axis, float cos_half, float tmin,
                                  float tmax);
 
-// The open half-space dot(p - on_plane, normal) > 0 (its plane included where the ray runs
-// along it inside), in double.
+// The open half-space dot(p - on_plane, normal) > 0, in double: a ray crossing the plane gets
+// the range up to (or from) the crossing, a ray lying in the plane gets nothing.
 std::optional<RayRange> ray_half_space(Vec3 origin, Vec3 dir, Vec3 on_plane, Vec3 normal, float tmin,
                                        float tmax);
 

@@ -8,7 +8,7 @@
 // "Practical Hash-based Owen Scrambling"). Each 1D or 2D request is stratified over the
 // sample indices of its pixel; different dimensions are decorrelated by their hashes.
 //
-// Dimensions are named (see SampleDim) so two uses never collide silently.
+// Dimensions are named (namespace sample_dim) so two uses never collide silently.
 #pragma once
 
 #include <cstdint>

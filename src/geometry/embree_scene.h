@@ -1,5 +1,5 @@
-// The one owning wrapper around Embree 3. Everything Caligo asks of surfaces goes
-// through here: closest hit, occlusion (shadow rays) and all hits along a ray (for
+// The wrapper around Embree 3 for surfaces (geometry/bounds_index.h is the other Embree user,
+// a BVH over boxes). Everything Caligo asks of surfaces goes through here: closest hit, occlusion (shadow rays) and all hits along a ray (for
 // nested media and mesh volumes). Embree types stay in embree_scene.cpp.
 //
 // Input is validated before Embree sees it: Embree silently drops triangles with NaN or

@@ -1,9 +1,11 @@
 // Next-event estimation from the medium along one marched ray segment (Kulla & Fajardo
-// 2012). One light is chosen in proportion to power; distances along the segment come from
+// 2012). One light is chosen for the segment by the scene's light sampler (segment form; the
+// light tree by default); distances along the segment come from
 // equiangular sampling about the light (its centre, for area lights; a point on the light
 // is then sampled by solid angle from the chosen distance) and from density sampling
 // (pdf proportional to sigma_s T from the record). With DistanceSampling::kMis one of the two
-// is chosen at random (equiangular with probability 3/4) and the sample is divided by the
+// is chosen at random (equiangular with the adaptive share s = 0.95 - 0.2 min(tau, 1); 3/4 with
+// kMisFixed) and the sample is divided by the
 // mixture density:
 // one-sample MIS with the balance heuristic, which Veach (1997, 9.2.4) shows is the best
 // weighting in the one-sample model. Equiangular wins near the light, density where the

@@ -5,13 +5,21 @@
 // light irradiance in W m^-2 on a surface facing it, the environment radiance.
 // Scene loading converts powers (W) into these before a light is built.
 //
-// To add a light type: define its struct here, add it to `Light`, and give it an overload
-// in each visitor behind the free functions below (is_delta, is_infinite, power, in
-// light.cpp) and in light_sample.h (sample_light, light_pdf, escaped_radiance, in
-// light_sample.cpp); a delta light also gets a delta_arrival in light_profile.h. Every
-// visitor over `Light` has one overload per member and no `auto` catch-all, so the compiler
-// then names each remaining place that must handle the new type (scene building and
-// animation, the medium's light step, the real-time passes).
+// To add a light type, define its struct here and add it to `Light`; the compiler then names
+// each place that must handle it, because every visitor over `Light` (but shaded_light,
+// below) has one overload per member and no `auto` catch-all. Measured (2026-12, a disk light
+// added to the variant and compiled) for a path-traced light:
+//   lights/light.cpp         is_delta, is_infinite, power, light_centre, light_type_name
+//   lights/light_sample.cpp  sample_light, light_pdf, escaped_radiance (a delta light also
+//                            gets a delta_arrival in light_profile.h)
+//   lights/light_reach.h/.cpp  where it can light a ray (LightReach)
+//   lights/light_tree.cpp    its bounds in the light tree
+//   scene/scene.cpp          the visible geometry of an area light; the scene radius
+//   scene/animation.cpp      how keyframes pose it
+//   scene/light_parser.cpp   its scene-file "type" (not named by the compiler)
+// The real-time passes need nothing: realtime/frame_light.h's shaded_light leaves a type it
+// does not know to the path tracer. To shade it in real time too, add it to ShadedLight; the
+// compiler then names each pass.
 #pragma once
 
 #include <cstdint>

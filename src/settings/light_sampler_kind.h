@@ -7,7 +7,7 @@
 namespace caligo {
 
 enum class LightSamplerKind { kUniform, kPower, kTree };
-// --light-sampler and the checkpoint key.
+// --light-sampler (the checkpoint key stores the enumerator).
 inline constexpr std::array<EnumName<LightSamplerKind>, 3> kLightSamplerNames{
     {{LightSamplerKind::kTree, "tree"}, {LightSamplerKind::kPower, "power"}, {LightSamplerKind::kUniform, "uniform"}}};
 

@@ -66,15 +66,17 @@ struct PathSettings {
   int russian_roulette_depth = 3;  // roulette starts after this many events (surface and volume)
   int max_null_crossings = 256;    // guards against endless chains of null surfaces
   DistanceSampling distance_sampling = DistanceSampling::kMis;
-  // Volume next-event estimation runs with probability min(1, scale * P(scatter in segment)).
+  // Volume next-event estimation along a marched segment runs with probability
+  // min(1, scale * P(scatter in segment)), reweighted; tracked segments always connect.
   float volume_nee_scale = 2.0f;
   // How next-event estimation picks a light (lights/light_sampler.h; Scene::light_sampler). The
   // tree is the default: ~90x less MSE than power at equal time on many-lamps, and the same
   // choice (bit for bit) as power in scenes with one light.
   LightSamplerKind light_sampler = LightSamplerKind::kTree;
-  // true: the path scatters with probability P(scatter in segment) and otherwise passes with
-  // the segment's exact transmittance (absorption by weight). false: analog free-flight
-  // sampling, where a collision that absorbs ends the path (kept for comparisons).
+  // true (absorption by weight): the path scatters with probability S / (S + P), S the
+  // segment's scattering weight and P its end transmittance, and otherwise passes with weight
+  // T (S + P) / P. false: free-flight sampling in proportion to sigma_t T, weighted by the
+  // albedo (the former estimator, kept for comparisons).
   bool absorption_by_weight = true;
   // Deferred next-event estimation (the seed's "optimizations for multiple scattering"): 0 (the
   // default) connects each medium segment to a light as the path goes; K > 0 builds the whole
