@@ -19,6 +19,18 @@ int print_error(const char* what, int code) {
   return code;
 }
 
+// CLI11 would only say "a subcommand is required" for a misspelt one.
+bool report_unknown_command(const CLI::App& app, int argc, char** argv) {
+  if (argc < 2 || argv[1][0] == '-') return false;
+  for (const CLI::App* sub : app.get_subcommands({}))
+    if (sub->check_name(argv[1])) return false;
+  std::fprintf(stderr,
+               "caligo: error: unknown command %s (commands: render, realtime, compare, generate, info, "
+               "bench-table)\n",
+               caligo::quote_for_message(argv[1]).c_str());
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -37,20 +49,7 @@ int main(int argc, char** argv) {
   caligo::add_info_command(app, info);
   caligo::BenchTableOptions bench_table;
   caligo::add_bench_table_command(app, bench_table);
-  // CLI11 would only say "a subcommand is required" for a misspelt one.
-  const auto is_command = [&app](const std::string& name) {
-    for (const CLI::App* sub : app.get_subcommands({}))
-      if (sub->check_name(name)) return true;
-    return false;
-  };
-  if (argc > 1 && argv[1][0] != '-' && !is_command(argv[1])) {
-    std::fprintf(
-        stderr,
-        "caligo: error: unknown command %s (commands: render, realtime, compare, generate, info, "
-        "bench-table)\n",
-        caligo::quote_for_message(argv[1]).c_str());
-    return caligo::kExitInputError;
-  }
+  if (report_unknown_command(app, argc, argv)) return caligo::kExitInputError;
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

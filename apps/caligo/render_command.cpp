@@ -30,15 +30,10 @@
 
 namespace caligo {
 
-void add_render_command(CLI::App& app, RenderOptions& o) {
-  CLI::App* cmd = app.add_subcommand("render", "Render a scene file or a built-in scene to OpenEXR + PNG");
-  cmd->add_option("scene", o.scene, "Scene file (.json) or built-in name (see --list-builtins)");
-  cmd->add_option("-o,--output", o.output, "Output OpenEXR file; a PNG preview is written beside it")
-      ->default_str("<scene name>.exr");
-  cmd->add_option("--spp", o.spp, "Samples per pixel (overrides the scene)");
-  cmd->add_option("--res", o.resolution, "Resolution WxH, e.g. 640x480 (overrides the scene)");
-  cmd->add_option("--threads", o.threads, "Worker threads (default: all cores)");
-  cmd->add_option("--seed", o.seed, "Random seed (overrides the scene)");
+namespace {
+
+// How a path is traced: limits and estimator choices (settings/path_settings.h).
+void add_path_options(CLI::App* cmd, RenderOptions& o) {
   cmd->add_option("--max-bounces,--max-depth", o.max_bounces,
                   "Maximum bounces: each surface bounce and each run of consecutive scattering events in "
                   "media counts one; 1 is direct light only (overrides the scene; --max-depth is an alias)");
@@ -57,6 +52,20 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                   "How next-event estimation picks a light: tree (light tree: importance at the receiver), "
                   "power (in proportion to power, the same everywhere) or uniform")
       ->default_str(light_sampler_name(PathSettings{}.light_sampler));
+}
+
+}  // namespace
+
+void add_render_command(CLI::App& app, RenderOptions& o) {
+  CLI::App* cmd = app.add_subcommand("render", "Render a scene file or a built-in scene to OpenEXR + PNG");
+  cmd->add_option("scene", o.scene, "Scene file (.json) or built-in name (see --list-builtins)");
+  cmd->add_option("-o,--output", o.output, "Output OpenEXR file; a PNG preview is written beside it")
+      ->default_str("<scene name>.exr");
+  cmd->add_option("--spp", o.spp, "Samples per pixel (overrides the scene)");
+  cmd->add_option("--res", o.resolution, "Resolution WxH, e.g. 640x480 (overrides the scene)");
+  cmd->add_option("--threads", o.threads, "Worker threads (default: all cores)");
+  cmd->add_option("--seed", o.seed, "Random seed (overrides the scene)");
+  add_path_options(cmd, o);
   cmd->add_option("--filter", o.filter,
                   "Pixel filter, importance-sampled: box (radius 0.5 px), gaussian (radius 1.5, sigma 0.5) or "
                   "blackman_harris (radius 0.75, Cycles' width 1.5) (overrides the scene's render.filter)");

@@ -72,10 +72,10 @@ int textured_spot_steps(float abs_cos_axis, const TexturedSpotSettings& settings
   return std::clamp(int(std::lround(float(lo) + float(hi - lo) * sin_a)), lo, hi);
 }
 
-ScatterResult scatter_textured_spot(const View& view, const Plane& opaque_depth, const ShadowMap* shadow,
-                                    const AirlightTable& table, const AirlightMedium& medium,
-                                    const SpotLight& light, const TexturedSpotSettings& settings,
-                                    const ShadowVolumeBuffers* volumes) {
+namespace {
+
+// The buffers must be the view's (a caller's bug otherwise, not bad input).
+void check_buffers(const View& view, const Plane& opaque_depth, const ShadowVolumeBuffers* volumes) {
   if (opaque_depth.width != view.resolution.x || opaque_depth.height != view.resolution.y)
     throw std::invalid_argument("textured spot: opaque depth is " + std::to_string(opaque_depth.width) + "x" +
                                 std::to_string(opaque_depth.height) + ", the view " +
@@ -83,6 +83,15 @@ ScatterResult scatter_textured_spot(const View& view, const Plane& opaque_depth,
   if (volumes && (volumes->front.width != opaque_depth.width || volumes->front.height != opaque_depth.height ||
                   volumes->tail_count.size() != opaque_depth.data.size()))
     throw std::invalid_argument("textured spot: shadow-volume buffers do not match the view");
+}
+
+}  // namespace
+
+ScatterResult scatter_textured_spot(const View& view, const Plane& opaque_depth, const ShadowMap* shadow,
+                                    const AirlightTable& table, const AirlightMedium& medium,
+                                    const SpotLight& light, const TexturedSpotSettings& settings,
+                                    const ShadowVolumeBuffers* volumes) {
+  check_buffers(view, opaque_depth, volumes);
   if (!shadow) volumes = nullptr;  // nothing casts a shadow: every step is lit
   Emitter emitter{light, light.gobo};
   if (light.gobo.image && settings.blur_level > 0) emitter.gobo.image = blurred_gobo(*light.gobo.image, settings.blur_level);

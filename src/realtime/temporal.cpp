@@ -115,6 +115,52 @@ struct PerspectiveReprojection {
 
 Batch hdot(Vec3 a, const Batch& x, const Batch& y, const Batch& z) { return a.x * x + a.y * y + a.z * z; }
 
+// Where 8 pixels of the current frame were in the history's view: its pixel coordinates, the
+// depth expected there (z along the old view axis) and which lanes land inside it.
+struct Reprojected {
+  Batch qx, qy, expect;
+  Mask sky, valid;
+};
+
+// The history's colour at the reprojected lanes: bilinear over the taps whose depth matches
+// (sky with sky, surfaces within kDepthTolerance); `valid` drops lanes with no matching tap.
+struct HistoryColour {
+  Batch r, g, b;
+  Mask valid;
+};
+
+HistoryColour sample_history(const Reprojected& q, const ColorPlanes& history, const Plane& history_depth, int hw,
+                             int hh) {
+  const Batch u = q.qx - 0.5f, v = q.qy - 0.5f;
+  const Batch fu = xsimd::floor(u), fv = xsimd::floor(v);
+  const Batch fx = u - fu, fy = v - fv;
+  // Invalid lanes may hold garbage coordinates; clamping keeps their gathers in bounds.
+  const Batch cu = xsimd::min(xsimd::max(fu, Batch(-1.0f)), Batch(float(hw)));
+  const Batch cv = xsimd::min(xsimd::max(fv, Batch(-1.0f)), Batch(float(hh)));
+  const IBatch iu = xsimd::batch_cast<int32_t>(xsimd::select(q.valid, cu, Batch(0.0f)));
+  const IBatch iv = xsimd::batch_cast<int32_t>(xsimd::select(q.valid, cv, Batch(0.0f)));
+  const IBatch zero(0), xmax(hw - 1), ymax(hh - 1);
+  const IBatch xs[2] = {xsimd::min(xsimd::max(iu, zero), xmax), xsimd::min(xsimd::max(iu + 1, zero), xmax)};
+  const IBatch ys[2] = {xsimd::min(xsimd::max(iv, zero), ymax) * hw, xsimd::min(xsimd::max(iv + 1, zero), ymax) * hw};
+  Batch sw(0.0f), sr(0.0f), sg(0.0f), sb(0.0f);
+  for (int j = 0; j < 2; ++j) {
+    for (int i = 0; i < 2; ++i) {
+      const IBatch idx = ys[j] + xs[i];
+      const Batch hd = Batch::gather(history_depth.data.data(), idx);
+      const Mask match = (q.sky & (hd >= kSkyThreshold)) |
+                         (~q.sky & (hd < kSkyThreshold) & (xsimd::abs(hd - q.expect) <= kDepthTolerance * q.expect));
+      const Batch wt = xsimd::select(match, (i ? fx : 1.0f - fx) * (j ? fy : 1.0f - fy), Batch(0.0f));
+      sr += wt * Batch::gather(history.r.data.data(), idx);
+      sg += wt * Batch::gather(history.g.data.data(), idx);
+      sb += wt * Batch::gather(history.b.data.data(), idx);
+      sw += wt;
+    }
+  }
+  const Mask valid = q.valid & (sw > 1e-6f);
+  const Batch inv_w = 1.0f / xsimd::select(valid, sw, Batch(1.0f));
+  return {sr * inv_w, sg * inv_w, sb * inv_w, valid};
+}
+
 void PerspectiveReprojection::row(const ColorPlanes& current, const Plane& depth, const ColorPlanes& history,
                                   const Plane& history_depth, float blend, int y, int x_begin, int x_end,
                                   ColorPlanes& out) const {
@@ -129,63 +175,33 @@ void PerspectiveReprojection::row(const ColorPlanes& current, const Plane& depth
     const Batch dx = base.x + view.right.x * ax, dy = base.y + view.right.y * ax,
                 dz = base.z + view.right.z * ax;
     const Batch d = Batch::load_unaligned(depth.row(y) + x);
-    const Mask sky = d >= kSkyThreshold;
-    const Batch dd = xsimd::select(sky, Batch(0.0f), d);
+    Reprojected q;
+    q.sky = d >= kSkyThreshold;
+    const Batch dd = xsimd::select(q.sky, Batch(0.0f), d);
     // Sky: the direction alone, seen from the old eye.
-    const Batch ex = xsimd::select(sky, Batch(0.0f), Batch(eye_delta.x));
-    const Batch ey = xsimd::select(sky, Batch(0.0f), Batch(eye_delta.y));
-    const Batch ez = xsimd::select(sky, Batch(0.0f), Batch(eye_delta.z));
-    const Batch m = xsimd::select(sky, Batch(1.0f), dd);
+    const Batch ex = xsimd::select(q.sky, Batch(0.0f), Batch(eye_delta.x));
+    const Batch ey = xsimd::select(q.sky, Batch(0.0f), Batch(eye_delta.y));
+    const Batch ez = xsimd::select(q.sky, Batch(0.0f), Batch(eye_delta.z));
+    const Batch m = xsimd::select(q.sky, Batch(1.0f), dd);
     const Batch rx = ex + m * dx, ry = ey + m * dy, rz = ez + m * dz;
-    const Batch z = hdot(hist.forward, rx, ry, rz);
-    const Batch inv_z = 1.0f / z;
-    const Batch qx = (hdot(hist.right, rx, ry, rz) * inv_z * hsx + 1.0f) * (0.5f * float(hw));
-    const Batch qy = (1.0f - hdot(hist.up, rx, ry, rz) * inv_z * hsy) * (0.5f * float(hh));
-    Mask valid = (z > 0.0f) & (qx >= 0.0f) & (qy >= 0.0f) & (qx < float(hw)) & (qy < float(hh));
-    const Batch expect = z;
-
-    const Batch u = qx - 0.5f, v = qy - 0.5f;
-    const Batch fu = xsimd::floor(u), fv = xsimd::floor(v);
-    const Batch fx = u - fu, fy = v - fv;
-    // Invalid lanes may hold garbage coordinates; clamping keeps their gathers in bounds.
-    const Batch cu = xsimd::min(xsimd::max(fu, Batch(-1.0f)), Batch(float(hw)));
-    const Batch cv = xsimd::min(xsimd::max(fv, Batch(-1.0f)), Batch(float(hh)));
-    const IBatch iu = xsimd::batch_cast<int32_t>(xsimd::select(valid, cu, Batch(0.0f)));
-    const IBatch iv = xsimd::batch_cast<int32_t>(xsimd::select(valid, cv, Batch(0.0f)));
-    const IBatch zero(0), xmax(hw - 1), ymax(hh - 1);
-    const IBatch xs[2] = {xsimd::min(xsimd::max(iu, zero), xmax), xsimd::min(xsimd::max(iu + 1, zero), xmax)};
-    const IBatch ys[2] = {xsimd::min(xsimd::max(iv, zero), ymax) * hw,
-                          xsimd::min(xsimd::max(iv + 1, zero), ymax) * hw};
-    Batch sw(0.0f), sr(0.0f), sg(0.0f), sb(0.0f);
-    for (int j = 0; j < 2; ++j) {
-      for (int i = 0; i < 2; ++i) {
-        const IBatch idx = ys[j] + xs[i];
-        const Batch hd = Batch::gather(history_depth.data.data(), idx);
-        const Mask match =
-            (sky & (hd >= kSkyThreshold)) |
-            (~sky & (hd < kSkyThreshold) & (xsimd::abs(hd - expect) <= kDepthTolerance * expect));
-        const Batch wt = xsimd::select(match, (i ? fx : 1.0f - fx) * (j ? fy : 1.0f - fy), Batch(0.0f));
-        sr += wt * Batch::gather(history.r.data.data(), idx);
-        sg += wt * Batch::gather(history.g.data.data(), idx);
-        sb += wt * Batch::gather(history.b.data.data(), idx);
-        sw += wt;
-      }
-    }
-    valid = valid & (sw > 1e-6f);
-    const Batch inv_w = 1.0f / xsimd::select(valid, sw, Batch(1.0f));
-    const Batch hr = sr * inv_w, hg = sg * inv_w, hb = sb * inv_w;
+    q.expect = hdot(hist.forward, rx, ry, rz);
+    const Batch inv_z = 1.0f / q.expect;
+    q.qx = (hdot(hist.right, rx, ry, rz) * inv_z * hsx + 1.0f) * (0.5f * float(hw));
+    q.qy = (1.0f - hdot(hist.up, rx, ry, rz) * inv_z * hsy) * (0.5f * float(hh));
+    q.valid = (q.expect > 0.0f) & (q.qx >= 0.0f) & (q.qy >= 0.0f) & (q.qx < float(hw)) & (q.qy < float(hh));
+    const HistoryColour h = sample_history(q, history, history_depth, hw, hh);
     const Batch cr = Batch::load_unaligned(current.r.row(y) + x);
     const Batch cg = Batch::load_unaligned(current.g.row(y) + x);
     const Batch cb = Batch::load_unaligned(current.b.row(y) + x);
     const Batch lc = 0.2126f * cr + 0.7152f * cg + 0.0722f * cb;
-    const Batch lh = 0.2126f * hr + 0.7152f * hg + 0.0722f * hb;
+    const Batch lh = 0.2126f * h.r + 0.7152f * h.g + 0.0722f * h.b;
     const Batch top = xsimd::max(lc, lh);
     const Batch c = xsimd::select(
         top > 0.0f, xsimd::abs(lc - lh) / xsimd::select(top > 0.0f, top, Batch(1.0f)), Batch(0.0f));
-    const Batch alpha = xsimd::select(valid, blend + (1.0f - blend) * c * c, Batch(1.0f));
-    (xsimd::select(valid, hr + (cr - hr) * alpha, cr)).store_unaligned(out.r.row(y) + x);
-    (xsimd::select(valid, hg + (cg - hg) * alpha, cg)).store_unaligned(out.g.row(y) + x);
-    (xsimd::select(valid, hb + (cb - hb) * alpha, cb)).store_unaligned(out.b.row(y) + x);
+    const Batch alpha = xsimd::select(h.valid, blend + (1.0f - blend) * c * c, Batch(1.0f));
+    (xsimd::select(h.valid, h.r + (cr - h.r) * alpha, cr)).store_unaligned(out.r.row(y) + x);
+    (xsimd::select(h.valid, h.g + (cg - h.g) * alpha, cg)).store_unaligned(out.g.row(y) + x);
+    (xsimd::select(h.valid, h.b + (cb - h.b) * alpha, cb)).store_unaligned(out.b.row(y) + x);
   }
 }
 
