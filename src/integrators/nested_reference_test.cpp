@@ -168,14 +168,15 @@ std::string str(RGB c) {
   return buf;
 }
 
-// The channel averages of the two image means agree within 1% of the ladder's; 1% must be
-// at least 3 combined standard errors (else the sample counts are too small to test 1%).
+// The channel averages of the two image means agree within 4 combined standard errors
+// (measured 2026-12: 0.07 to 1.25 of them on these seven scenes), and 4 standard errors must be
+// at most 1 % of the mean (else the sample counts are too small to see a 1 % bias).
 void expect_agree(const Scene& scene, int production_spp, int ladder_spp, Limits limits, const std::string& what) {
   const MeanEstimate prod = production_mean(scene, production_spp, limits);
   const MeanEstimate ref = ladder_mean(scene, ladder_spp, limits);
   const float a = prod.mean.average(), b = ref.mean.average();
   const float combined = std::hypot(prod.average_std_error, ref.average_std_error);
-  const float tolerance = 0.01f * b;
+  const float tolerance = 4.0f * combined;
   std::printf(
       "  [%s]\n    production %s avg %.5f +- %.5f (%.2f%%) %d spp %.1fs\n"
       "    ladder     %s avg %.5f +- %.5f (%.2f%%) %d spp %.1fs\n"
@@ -188,7 +189,7 @@ void expect_agree(const Scene& scene, int production_spp, int ladder_spp, Limits
     std::printf("    channel %d: %.5f +- %.5f vs %.5f +- %.5f (%+.2f%%)\n", c, double(prod.mean[c]),
                 double(prod.std_error[c]), double(ref.mean[c]), double(ref.std_error[c]),
                 100.0 * (prod.mean[c] - ref.mean[c]) / ref.mean[c]);
-  EXPECT_GE(tolerance, 3.0f * combined) << what << ": too few samples to test 1%";
+  EXPECT_LE(tolerance, 0.01f * b) << what << ": too few samples to see a 1% bias";
   EXPECT_LE(std::abs(a - b), tolerance) << what;
 }
 
