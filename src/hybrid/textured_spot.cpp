@@ -47,6 +47,13 @@ struct Emitter {
     if (!(scale > 0.0f)) return RGB(0.0f);
     return light.intensity * gobo_filter(gobo, spot_gobo_uv(light, w)) * scale;
   }
+
+  // The volumetric term reads the gobo's `blur_level` mip (multiple scattering's stand-in).
+  static Emitter blurred(const SpotLight& light, int blur_level) {
+    Emitter e{light, light.gobo};
+    if (light.gobo.image && blur_level > 0) e.gobo.image = blurred_gobo(*light.gobo.image, blur_level);
+    return e;
+  }
 };
 
 }  // namespace
@@ -93,12 +100,10 @@ ScatterResult scatter_textured_spot(const View& view, const Plane& opaque_depth,
                                     const ShadowVolumeBuffers* volumes) {
   check_buffers(view, opaque_depth, volumes);
   if (!shadow) volumes = nullptr;  // nothing casts a shadow: every step is lit
-  Emitter emitter{light, light.gobo};
-  if (light.gobo.image && settings.blur_level > 0) emitter.gobo.image = blurred_gobo(*light.gobo.image, settings.blur_level);
+  const Emitter emitter = Emitter::blurred(light, settings.blur_level);
   const ShadedLight as_light{light};
   const float max_distance = std::max(settings.max_distance, 0.0f);
-  const float jitter = std::clamp(settings.jitter, 0.0f, 1.0f);
-  const float lit_rate = std::clamp(settings.lit_rate, 0.0f, 1.0f);
+  const float jitter = std::clamp(settings.jitter, 0.0f, 1.0f), lit_rate = std::clamp(settings.lit_rate, 0.0f, 1.0f);
   const bool eye_lit = !volumes || volumes->eye_count == 0;
 
   return scatter_pixels::for_each_pixel(view, [&](int x, int y, int32_t& lookups) {
