@@ -1,11 +1,11 @@
 // One real-time frame, pass by pass (the seed's pipeline, DESIGN.md "A frame in the
 // real-time pipeline"): scene buffers -> shadow maps (cached while a light stands still) ->
-// per-light accumulation at low resolution -> bilateral gather -> temporal reprojection
-// (at low resolution: see docs/techniques.md) -> nearest-depth upsampling -> composite over
-// the simply lit surfaces. Each pass is a pure
-// function (passes.h, scene_buffers.h, shadow_map.h, surface_shading.h); this class only
-// owns what lives across frames (the built scene, cached shadow maps, the history) and
-// times every pass.
+// per-light accumulation at low resolution (or a LightScatterer's analytic pass for the lights
+// it takes) -> bilateral gather -> temporal reprojection (at low resolution: see
+// docs/techniques.md) -> nearest-depth upsampling -> composite over the simply lit surfaces.
+// Each pass is a pure function (passes.h, scene_buffers.h, shadow_map.h, surface_shading.h);
+// this class shares the built scene and owns what lives across frames (its triangles set up
+// for the rasteriser, cached shadow maps, reused buffers, the history) and times every pass.
 #pragma once
 
 #include <memory>
