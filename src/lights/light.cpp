@@ -96,8 +96,71 @@ struct TypeName {
   const char* operator()(const BoxLight&) const { return "box"; }
 };
 
+// Keeps `up` a unit vector perpendicular to `direction` (Gram-Schmidt), falling back to any
+// perpendicular when the new direction is parallel to the old up.
+Vec3 orthogonal_up(Vec3 up, Vec3 direction) {
+  const Vec3 u = up - direction * dot(up, direction);
+  if (length_squared(u) > 1e-8f) return normalize(u);
+  return Frame::from_z(direction).t;
+}
+
+void advance(Gobo& gobo, float time) {
+  gobo.offset = {gobo.offset.x + gobo.scroll.x * time, gobo.offset.y + gobo.scroll.y * time};
+  gobo.rotation += gobo.spin * time;
+  gobo.scroll = {};
+  gobo.spin = 0.0f;
+}
+
+struct PoseLight {
+  std::optional<Vec3> position, direction;
+  float time;
+
+  void operator()(PointLight& l) const {
+    if (position) l.position = *position;
+  }
+  void operator()(SpotLight& l) const {
+    if (position) l.position = *position;
+    if (direction) {
+      l.direction = *direction;
+      l.up = orthogonal_up(l.up, l.direction);
+    }
+    advance(l.gobo, time);
+  }
+  void operator()(BoxLight& l) const {
+    if (position) l.position = *position;
+    if (direction) {
+      l.direction = *direction;
+      l.up = orthogonal_up(l.up, l.direction);
+    }
+    advance(l.gobo, time);
+  }
+  void operator()(DirectionalLight& l) const {
+    if (direction) l.direction = *direction;
+  }
+  void operator()(SphereLight&) const {}
+  void operator()(QuadLight&) const {}
+  void operator()(TriangleLight&) const {}
+  void operator()(EnvironmentLight&) const {}
+};
+
+struct SetSceneRadius {
+  float radius;
+  void operator()(DirectionalLight& l) const { l.scene_radius = radius; }
+  void operator()(EnvironmentLight& l) const { l.scene_radius = radius; }
+  void operator()(PointLight&) const {}
+  void operator()(SpotLight&) const {}
+  void operator()(BoxLight&) const {}
+  void operator()(SphereLight&) const {}
+  void operator()(QuadLight&) const {}
+  void operator()(TriangleLight&) const {}
+};
+
 }  // namespace
 
+void pose_light(Light& light, std::optional<Vec3> position, std::optional<Vec3> direction, float time) {
+  std::visit(PoseLight{position, direction, time}, light);
+}
+void set_scene_radius(Light& light, float radius) { std::visit(SetSceneRadius{radius}, light); }
 std::optional<Vec3> light_centre(const Light& light) { return std::visit(LightCentre{}, light); }
 const char* light_type_name(const Light& light) { return std::visit(TypeName{}, light); }
 bool is_delta(const Light& light) { return std::visit(IsDelta{}, light); }

@@ -9,13 +9,13 @@
 // each place that must handle it, because every visitor over `Light` (but shaded_light,
 // below) has one overload per member and no `auto` catch-all. Measured (2026-12, a disk light
 // added to the variant and compiled) for a path-traced light:
-//   lights/light.cpp         is_delta, is_infinite, power, light_centre, light_type_name
+//   lights/light.cpp         is_delta, is_infinite, power, light_centre, light_type_name,
+//                            pose_light (keyframes), set_scene_radius
 //   lights/light_sample.cpp  sample_light, light_pdf, escaped_radiance (a delta light also
 //                            gets a delta_arrival in light_profile.h)
 //   lights/light_reach.h/.cpp  where it can light a ray (LightReach)
 //   lights/light_tree.cpp    its bounds in the light tree
-//   scene/scene.cpp          the visible geometry of an area light; the scene radius
-//   scene/animation.cpp      how keyframes pose it
+//   scene/scene.cpp          the visible geometry of an area light
 //   scene/light_parser.cpp   its scene-file "type" (not named by the compiler)
 // The real-time passes need nothing: realtime/frame_light.h's shaded_light leaves a type it
 // does not know to the path tracer. To shade it in real time too, add it to ShadedLight; the
@@ -160,5 +160,12 @@ float power(const Light& light);
 std::optional<Vec3> light_centre(const Light& light);
 // The type's name as a scene file's "type" gives it ("point", "spot", ...).
 const char* light_type_name(const Light& light);
+// Poses a light at `time` seconds of its animation: the keyframed position and direction
+// (either may be absent; a new direction keeps `up` perpendicular), and its gobo's scroll and
+// spin folded into offset and rotation. Area lights and the environment do not animate (the
+// scene parser rejects "animation" on them).
+void pose_light(Light& light, std::optional<Vec3> position, std::optional<Vec3> direction, float time);
+// Lights at infinity need the scene's radius for power(); the others ignore it.
+void set_scene_radius(Light& light, float radius);
 
 }  // namespace caligo

@@ -46,56 +46,6 @@ std::optional<Vec3> sample_direction(const Channel& c, Interpolation mode, float
   return normalize(c.values[std::min(i, c.values.size() - 1)]);
 }
 
-// Keeps `up` a unit vector perpendicular to `direction` (Gram-Schmidt), falling back to any
-// perpendicular when the new direction is parallel to the old up.
-Vec3 orthogonal_up(Vec3 up, Vec3 direction) {
-  const Vec3 u = up - direction * dot(up, direction);
-  if (length_squared(u) > 1e-8f) return normalize(u);
-  return Frame::from_z(direction).t;
-}
-
-void advance(Gobo& gobo, float time) {
-  gobo.offset = {gobo.offset.x + gobo.scroll.x * time, gobo.offset.y + gobo.scroll.y * time};
-  gobo.rotation += gobo.spin * time;
-  gobo.scroll = {};
-  gobo.spin = 0.0f;
-}
-
-// Applies the animated position and direction (either may be absent) to one light, and
-// folds the gobo's velocities in. Area lights and the environment do not animate (the
-// parser rejects "animation" on them).
-struct PoseLight {
-  std::optional<Vec3> position, direction;
-  float time;
-
-  void operator()(PointLight& l) const {
-    if (position) l.position = *position;
-  }
-  void operator()(SpotLight& l) const {
-    if (position) l.position = *position;
-    if (direction) {
-      l.direction = *direction;
-      l.up = orthogonal_up(l.up, l.direction);
-    }
-    advance(l.gobo, time);
-  }
-  void operator()(BoxLight& l) const {
-    if (position) l.position = *position;
-    if (direction) {
-      l.direction = *direction;
-      l.up = orthogonal_up(l.up, l.direction);
-    }
-    advance(l.gobo, time);
-  }
-  void operator()(DirectionalLight& l) const {
-    if (direction) l.direction = *direction;
-  }
-  void operator()(SphereLight&) const {}
-  void operator()(QuadLight&) const {}
-  void operator()(TriangleLight&) const {}
-  void operator()(EnvironmentLight&) const {}
-};
-
 }  // namespace
 
 Vec3 interpolate_keys(const std::vector<float>& t, const std::vector<Vec3>& p, Interpolation mode,
@@ -135,7 +85,7 @@ std::vector<Light> SceneDesc::lights_at(float time) const {
     const LightOptions& o = options(i);
     const auto position = sample(channel(o.animation, &LightKey::position), o.interpolation, time);
     const auto direction = sample_direction(channel(o.animation, &LightKey::direction), o.interpolation, time);
-    std::visit(PoseLight{position, direction, time}, out[i]);
+    pose_light(out[i], position, direction, time);
   }
   return out;
 }

@@ -82,18 +82,6 @@ struct VisibleLight {
   std::optional<LightGeometry> operator()(const TriangleLight&) const { return std::nullopt; }
 };
 
-// Lights at infinity need the scene's size for power(); the others ignore it.
-struct SetSceneRadius {
-  float radius;
-  void operator()(DirectionalLight& l) const { l.scene_radius = radius; }
-  void operator()(EnvironmentLight& l) const { l.scene_radius = radius; }
-  void operator()(PointLight&) const {}
-  void operator()(SpotLight&) const {}
-  void operator()(BoxLight&) const {}
-  void operator()(SphereLight&) const {}
-  void operator()(QuadLight&) const {}
-  void operator()(TriangleLight&) const {}
-};
 
 }  // namespace
 
@@ -240,7 +228,7 @@ void Scene::finish_lights() {
   const float radius = b.empty() ? 1.0f : std::max(1e-3f, 0.5f * length(b.diagonal()));
   for (size_t i = 0; i < lights_.size(); ++i) {
     Light& light = lights_[i];
-    std::visit(SetSceneRadius{radius}, light);
+    set_scene_radius(light, radius);
     if (is_infinite(light)) infinite_lights_.push_back(int(i));
   }
   for (LightSamplerKind kind : {LightSamplerKind::kUniform, LightSamplerKind::kPower, LightSamplerKind::kTree})
