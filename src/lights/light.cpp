@@ -118,7 +118,9 @@ struct PoseLight {
   void operator()(PointLight& l) const {
     if (position) l.position = *position;
   }
-  void operator()(SpotLight& l) const {
+  // Spot and box lights: placed, aimed (up kept perpendicular) and their gobo advanced.
+  template <typename Aimed>
+  void aim(Aimed& l) const {
     if (position) l.position = *position;
     if (direction) {
       l.direction = *direction;
@@ -126,14 +128,8 @@ struct PoseLight {
     }
     advance(l.gobo, time);
   }
-  void operator()(BoxLight& l) const {
-    if (position) l.position = *position;
-    if (direction) {
-      l.direction = *direction;
-      l.up = orthogonal_up(l.up, l.direction);
-    }
-    advance(l.gobo, time);
-  }
+  void operator()(SpotLight& l) const { aim(l); }
+  void operator()(BoxLight& l) const { aim(l); }
   void operator()(DirectionalLight& l) const {
     if (direction) l.direction = *direction;
   }
