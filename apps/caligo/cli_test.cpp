@@ -409,7 +409,7 @@ TEST_F(Cli, RealtimeComparesWithTheReference) {
   ASSERT_EQ(std::sscanf(r.out.c_str() + at, "mean error %lf %%, relative RMSE %lf %%", &mean_error, &relative_rmse), 2)
       << r.out;
   EXPECT_LT(std::abs(mean_error), 3.0);
-  EXPECT_GT(relative_rmse, 0.0);
+  EXPECT_GT(relative_rmse, 6.0);  // the frame's own per-pixel error is about 12 %
   EXPECT_LT(relative_rmse, 15.0);
 }
 

@@ -37,7 +37,7 @@ struct RenderOptions {
   bool list_builtins = false;
   bool quiet = false;
   std::string mpi_split = "samples";  // --mpi-split samples|rows: under mpirun (distributed/share.h)
-  // Checkpoints and progressive rendering (render_command.cpp).
+  // Checkpoints and progressive rendering (render/progressive.h, driven by render_command.cpp).
   std::optional<std::string> checkpoint;        // --checkpoint FILE
   std::optional<std::string> checkpoint_every;  // --checkpoint-every 60s
   std::optional<std::string> resume;            // --resume FILE

@@ -2,23 +2,17 @@
 //               [--priority MATERIAL=LEVEL ...] [--light-sampler tree|power|uniform] [--aov LIST]
 #include <CLI/CLI.hpp>
 
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-#include <fstream>
 #include <cstdlib>
+#include <fstream>
 #include <optional>
-#include <filesystem>
 #include <string>
 
+#include "checkpoint.h"
 #include "commands.h"
 #include "core/error.h"
-#include "image/exr_io.h"
-#include "image/png_io.h"
-#include "image/tonemap.h"
-#include "checkpoint.h"
-#include "core/output_transaction.h"
 #include "distributed/frame.h"
 #include "interrupt.h"
 #include "render/progressive.h"
@@ -258,9 +252,7 @@ int list_builtins() {
   return 0;
 }
 
-}  // namespace
 
-namespace {
 
 ProgressiveSchedule schedule_from(const RenderOptions& o) {
   ProgressiveSchedule p;
@@ -318,9 +310,7 @@ Film load_checkpoint(const std::string& path, uint64_t key, const RenderSettings
   return film;
 }
 
-}  // namespace
 
-namespace {
 
 // The passes' progress line and the checkpoints between them.
 ProgressiveHooks progress_hooks(const RenderOptions& o, const RenderOutputs& outputs, uint64_t key) {
@@ -356,9 +346,10 @@ int report_interrupt(const RenderOutputs& outputs, int signal, std::pair<int, in
 }
 
 // Under mpirun/srun each rank renders its share and rank 0 alone gets the frame (src/distributed/).
-int run_distributed(const RenderOptions& o, const Scene& scene, const RenderSettings& settings,
-                    const RenderOutputs& outputs, uint64_t key, Progress::Style style) {
-  if (o.checkpoint || o.resume || schedule_from(o).passes())
+int run_distributed(const RenderOptions& o, const ProgressiveSchedule& schedule, const Scene& scene,
+                    const RenderSettings& settings, const RenderOutputs& outputs, uint64_t key,
+                    Progress::Style style) {
+  if (o.checkpoint || o.resume || schedule.passes())
     throw InputError(kCommandLine, "--checkpoint, --resume, --time-limit and --target-rmse are for single-process "
                                    "renders, not under mpirun");
   const std::optional<RenderResult> frame =
@@ -389,7 +380,7 @@ int run_render(const RenderOptions& o) {
   check_memory(settings);
   const auto scene = Scene::build(desc);
   const Progress::Style style = o.quiet ? Progress::Style::kQuiet : Progress::Style::kAuto;
-  if (distributed::launcher_world_size()) return run_distributed(o, *scene, settings, outputs, key, style);
+  if (distributed::launcher_world_size()) return run_distributed(o, schedule, *scene, settings, outputs, key, style);
 
   Film film = o.resume ? load_checkpoint(*o.resume, key, settings) : Film(settings.resolution, settings.aovs);
   const ProgressiveResult result =

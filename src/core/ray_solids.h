@@ -1,7 +1,9 @@
-// Where a ray o + t d is inside the convex solids that bound shapes, volumes and lights: the
-// one place each test is written (core/ray_solids_lanes.h has 8-lane float versions of the
-// ball, cone and oriented box for the real-time passes). Each returns the part of [tmin, tmax] inside the solid as a RayRange,
-// nullopt when empty; `dir` need not be unit unless a function says so. Pure and thread-safe.
+// Where a ray o + t d is inside the convex solids that bound shapes, volumes and lights, each
+// test written once for the scalar callers (core/ray_solids_lanes.h has 8-lane float versions
+// of the ball, cone and oriented box for the real-time light volumes; the real-time media
+// overlaps in realtime/media_simd.h and accumulate_lanes.h keep their own segment forms).
+// Each returns the part of [tmin, tmax] inside the solid as a RayRange, nullopt when empty;
+// `dir` need not be unit unless a function says so. Pure and thread-safe.
 //
 // One policy for rays parallel to a box face: a zero direction component leaves that slab
 // all (origin inside it, faces included) or nothing.

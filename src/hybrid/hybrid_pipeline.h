@@ -81,10 +81,11 @@ class HybridScatterer : public LightScatterer {
   // rasterised from low_view against `depth`; every visible point lies within light_reach of it.
   ShadowVolumeBuffers shadow_volume_buffers(size_t index, Vec3 light, float light_reach, const View& low_view,
                                             const Plane& depth);
-  // kTextured for a spot light: the textured-spotlight pass (hybrid/textured_spot.h).
+  // The per-channel airlight passes of one light at `position` into `accum`.
   bool scatter_channels(VolumetricMethod method, RGB sigma_s, RGB sigma_t, Vec3 position, RGB weight,
                         const FrameLight& frame_light, const View& low_view, const Plane& depth,
                         const ShadowVolumeBuffers* buffers, ColorPlanes& accum) const;
+  // A spot light: kTextured takes the textured-spotlight pass (hybrid/textured_spot.h).
   bool scatter_spot(size_t index, const SpotLight& spot, const FrameLight& frame_light, const VolumeScene& volumes,
                     const View& low_view, const Plane& low_depth, ColorPlanes& accum);
 

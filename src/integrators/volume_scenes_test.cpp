@@ -87,7 +87,9 @@ TEST(VolumeScenes, DistanceSamplingStrategiesAgree) {
   const auto green = [&](DistanceSampling sampling) {
     const auto scene = Scene::build(desc);
     RenderSettings s = render_settings(desc);
-    s.spp = 256;
+    // 256 samples measured standard errors of 2 % (MIS) to 6 % (density): too coarse for the
+    // former 2 % tolerance; 64 times more.
+    s.spp = 16384;
     s.path.limits.max_volume_bounces = 1;
     s.path.distance_sampling = sampling;
     s.aovs = s.aovs.with(Aov::kVariance);
@@ -109,6 +111,9 @@ TEST(VolumeScenes, DistanceSamplingStrategiesAgree) {
               density, se_density, equiangular, se_equiangular);
   EXPECT_NEAR(density, mis, 4.0 * std::hypot(se_density, se_mis));
   EXPECT_NEAR(equiangular, mis, 4.0 * std::hypot(se_equiangular, se_mis));
+  // Measured 4.8 % and 1.9 % of the mean (2026-12): the test can see a 6 % bias.
+  EXPECT_LT(4.0 * std::hypot(se_density, se_mis), 0.06 * mis);
+  EXPECT_LT(4.0 * std::hypot(se_equiangular, se_mis), 0.06 * mis);
 }
 
 // A surface seen through fog is attenuated by T(t_hit); a null surface in the fog changes nothing.

@@ -32,7 +32,7 @@ RGB camera_optical_depth(const VolumeScene& volumes, const PixelMarch& march, fl
 constexpr int kLanes = int(LightVolumeLanes::Batch::size);
 
 // The light-volume spans of pixels x0 .. x0 + n - 1 of row y (n <= kLanes), tested 8 at a
-// time in float, with light_volume_interval's double answer where float is unsure.
+// time in float, with the scalar light_volume_interval where float is unsure.
 struct PixelSpans {
   bool hit[kLanes];
   RayRange span[kLanes];

@@ -1,7 +1,7 @@
 // The SIMD march of accumulate_light: 8 consecutive samples of one pixel per xsimd batch
-// (AVX2 with -march=x86-64-v3). It re-implements light_profile.h lane-parallel (inverse
-// square, range window, cone smoothstep, box extent; gobos and IES profiles through
-// light_profile_simd.h), the media through accumulate_lanes.h, and shadow maps through
+// (AVX2 with -march=x86-64-v3). The light arrives through light_lanes.h (light_profile.h's
+// delta_arrival lane-parallel: inverse square, range window, cone, box extent, gobos and IES
+// profiles), the media through accumulate_lanes.h, and shadow maps through
 // shadow_map_simd.h (single-face maps through ShadowRaySimd, whose texel coordinates are
 // prepared once per pixel ray). accumulate_test.cpp checks it against march_scalar.
 #include <xsimd/xsimd.hpp>

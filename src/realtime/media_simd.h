@@ -129,8 +129,8 @@ class SegmentMediaBatch {
       const B d[3] = {obx - oax, oby - oay, obz - oaz}, o[3] = {oax, oay, oaz};
       B s0(0.0f), s1(1.0f);
       if (sphere) {
-        // Closest-approach form of the discriminant (as geometry/shapes.cpp's
-        // intersect_sphere): far less cancellation than b^2 - ac for long segments.
+        // Closest-approach form of the discriminant (as core/ray_solids.cpp's
+        // sphere_roots): far less cancellation than b^2 - ac for long segments.
         const B qa = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
         const B qb = o[0] * d[0] + o[1] * d[1] + o[2] * d[2];
         const B inv = B(1.0f) / xsimd::max(qa, B(1e-30f));

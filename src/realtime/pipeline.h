@@ -48,7 +48,9 @@ RealtimeSettings realtime_settings(const SceneDesc& desc);
 struct PassTimes {
   double depth = 0, shadows = 0, rays = 0, accumulation = 0, gather = 0, upsample = 0, temporal = 0, surfaces = 0,
          composite = 0, total = 0;
-  std::vector<double> per_light;  // accumulation of each light (0 for non-volumetric ones)
+  // Accumulation of each of the scene's lights, by scene index (0 for non-volumetric lights
+  // and for lights the passes do not shade).
+  std::vector<double> per_light;
   // accumulation includes `rays`: the camera side shared by all lights (rays, media intervals,
   // interleaved offsets), built once per frame.
   // The budget: accumulation + gather + upsample + temporal.

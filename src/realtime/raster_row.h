@@ -1,6 +1,6 @@
 // One pixel row of a set-up triangle (raster_setup.h): the edge functions at the row's pixel
 // centres, the coverage rule and the depth key, written once for the rasteriser's tiles
-// (raster.cpp) and the shadow-volume bands (hybrid/shadow_volume.cpp). Each caller passes what
+// (raster.cpp) and the shadow-volume bands (hybrid/shadow_volume_raster.cpp). Each caller passes what
 // it does with a covered pixel: a depth test, a crossing count.
 //
 // The scalar and 8-lane walks do the same operations in the same order; the files including

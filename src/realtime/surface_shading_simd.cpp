@@ -1,6 +1,6 @@
 // 8-wide surface shading (xsimd, AVX2): the point, spot, box and directional light models
-// of lights/light_profile.cpp written once more over batches, gobos and IES profiles through
-// light_profile_simd.h, media transmittance through media_simd.h, shadows through
+// through light_lanes.h (the accumulation march's own), media transmittance through
+// media_simd.h, shadows through
 // shadow_map_simd.h. Everything that does
 // not change over a frame (material tables, gobo rotations, light frames, the media in
 // object space) is derived once in prepare_simd. surface_shading_test.cpp compares the
@@ -31,7 +31,6 @@ struct V3 {
 };
 inline B dot(const V3& a, Vec3 b) { return a.x * B(b.x) + a.y * B(b.y) + a.z * B(b.z); }
 inline B dot(const V3& a, const V3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline V3 minus(Vec3 a, const V3& b) { return {B(a.x) - b.x, B(a.y) - b.y, B(a.z) - b.z}; }
 inline V3 minus(const V3& a, Vec3 b) { return {a.x - B(b.x), a.y - B(b.y), a.z - B(b.z)}; }
 inline V3 madd(const V3& a, const V3& d, B t) { return {a.x + d.x * t, a.y + d.y * t, a.z + d.z * t}; }
 inline Vec3 lane(const V3& v, size_t i) { return {v.x.get(i), v.y.get(i), v.z.get(i)}; }

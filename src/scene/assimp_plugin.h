@@ -1,7 +1,7 @@
 // The entry point of caligo_assimp.so, the plugin that keeps assimp (and its own zlib,
 // minizip, poly2tri: ~2 ms and ~4 MB of process start-up) out of every run that reads no PLY or
 // COLLADA mesh (see core/module_loader.h). The plugin only imports (validate, triangulate,
-// weld) and copies assimp's scene into the plain structures below; mesh_loader.cpp checks and
+// weld) and copies assimp's scene into the plain structures below; mesh_assimp.cpp checks and
 // flattens them. Host and plugin are built together, so C++ types cross the boundary;
 // exceptions do not: failures come back as messages.
 #pragma once

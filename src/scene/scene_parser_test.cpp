@@ -215,16 +215,15 @@ TEST(SceneParser, RenderAovs) {
                             "a.json", "")
         .render.aovs;
   };
-  const auto set = [](AovSet a) { return a; };
   EXPECT_EQ(aovs_of("{}"), AovSet::defaults());
-  EXPECT_EQ(aovs_of(R"({"aovs": []})"), set(AovSet{}));
+  EXPECT_EQ(aovs_of(R"({"aovs": []})"), AovSet{});
   EXPECT_EQ(aovs_of(R"({"aovs": ["alpha", "volume.direct", "beauty"]})"),
-            set(AovSet{}.with(Aov::kAlpha).with(Aov::kVolumeDirect)));
-  EXPECT_EQ(aovs_of(R"({"aovs": ["all"]})"), set(AovSet::all()));
+            AovSet{}.with(Aov::kAlpha).with(Aov::kVolumeDirect));
+  EXPECT_EQ(aovs_of(R"({"aovs": ["all"]})"), AovSet::all());
   AovSet lights_and_default = AovSet::defaults();
   for (int k = 0; k < kLightKindCount; ++k) lights_and_default = lights_and_default.with(light_aov(LightKind(k)));
-  EXPECT_EQ(aovs_of(R"({"aovs": ["lights", "default"]})"), set(lights_and_default));
-  EXPECT_EQ(aovs_of(R"({"aovs": ["default"]})"), set(AovSet::defaults()));
+  EXPECT_EQ(aovs_of(R"({"aovs": ["lights", "default"]})"), lights_and_default);
+  EXPECT_EQ(aovs_of(R"({"aovs": ["default"]})"), AovSet::defaults());
 }
 
 TEST(SceneParser, DefaultsForOptionalParts) {

@@ -45,7 +45,7 @@ struct HullInterval {
 };
 
 // The stretches of the ray inside the shape, into context.mesh_intervals (reused scratch).
-struct InsideRayRangees {
+struct InsideRanges {
   const Ray& ray;
   VolumeContext& context;
   void operator()(const SphereVolumeShape& s) const { one(HullInterval{ray}(s)); }
@@ -208,7 +208,7 @@ std::optional<RayRange> volume_hull_interval(const VolumeShape& shape, const Ray
 }
 
 void append_intervals(const VolumePrimitive& primitive, uint32_t id, const Ray& ray, VolumeContext& context) {
-  std::visit(InsideRayRangees{ray, context}, primitive.shape);
+  std::visit(InsideRanges{ray, context}, primitive.shape);
   if (context.mesh_intervals.empty()) return;
   const VolumeShader& s = primitive.shader;
   const RGB sigma_unit = (s.sigma_a + s.sigma_s + RGB(s.holdout)) * (s.density * noise_peak(s));
