@@ -105,8 +105,6 @@ inline const SourceLocation kCommandLine{"command line", ""};
 SceneDesc load_scene(const std::string& name);
 // "WxH" of --res; InputError otherwise.
 Vec2i parse_resolution(const std::string& text);
-// The median of frame timings (0 for none).
-double median(std::vector<double> values);
 
 void add_render_command(CLI::App& app, RenderOptions& options);
 void add_realtime_command(CLI::App& app, RealtimeOptions& options);

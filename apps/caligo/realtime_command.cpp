@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "core/median.h"
 #include "hybrid/hybrid_pipeline.h"
 #include "image/exr_io.h"
 #include "image/png_io.h"

@@ -1,5 +1,4 @@
-// What the subcommands share: the scene argument, the resolution option and timing medians.
-#include <algorithm>
+// What the subcommands share: the scene argument and the resolution option.
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -33,13 +32,6 @@ SceneDesc load_scene(const std::string& name) {
                      "no such scene file, and no built-in of that name (built-ins: " + names + ")");
   }
   return parse_scene_file(name);
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 }  // namespace caligo

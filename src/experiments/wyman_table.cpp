@@ -10,6 +10,7 @@
 #include <variant>
 
 #include "core/error.h"
+#include "core/median.h"
 #include "geometry/mesh_generate.h"
 #include "image/tonemap.h"
 #include "realtime/pipeline.h"
@@ -32,13 +33,6 @@ TexturedSpotSettings bench_spot_settings(const WymanVariant& v) {
     s.lit_rate = 1.0f;
   }
   return s;
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 // Triangles of the generated occluders (from the generator's own sizing rule, without building
