@@ -200,8 +200,6 @@ RGB surface_emission(const SurfaceInteraction& si, Vec3 wo) {
   return front ? si.material->emission : RGB(0.0f);
 }
 
-}  // namespace
-
 // What the ladder does at a surface, by its material: a visit with one case per BSDF, so a new
 // BSDF does not compile until the ladder handles it (it used to absorb silently).
 enum class SurfaceStep { kCross, kSpecular, kDiffuse, kAbsorb };
@@ -290,6 +288,8 @@ bool ladder_surface(const Scene& scene, const SurfaceHit& hit, PathLimits limits
   p.in_volume_run = false;
   return true;
 }
+
+}  // namespace
 
 RGB reference_delta_tracking(const Scene& scene, const Ray& camera_ray, PathLimits limits, Pcg32& rng) {
   LadderPath p;

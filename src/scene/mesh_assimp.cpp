@@ -1,25 +1,20 @@
-// Stanford PLY and COLLADA through assimp (the caligo_assimp.so plugin), after our own checks of the PLY header and body, read first in a forked child.
+// Stanford PLY and COLLADA through assimp (the caligo_assimp.so plugin), after our own checks of
+// the PLY header and body, read first in a forked child.
 #include "scene/mesh_reader.h"
-
-#include <chrono>
-
-#include "core/module_loader.h"
-#include "grids/crash_probe.h"
-#include "scene/assimp_plugin.h"
 
 #include <algorithm>
 #include <array>
 #include <cctype>
 #include <charconv>
-#include <cmath>
+#include <chrono>
 #include <cstdint>
-#include <cstring>
-#include <limits>
 #include <optional>
-#include <stdexcept>
 #include <string_view>
-#include <unordered_map>
 #include <vector>
+
+#include "core/module_loader.h"
+#include "grids/crash_probe.h"
+#include "scene/assimp_plugin.h"
 
 // ASan (gcc: __SANITIZE_ADDRESS__, clang: __has_feature) reserves terabytes of address space, so
 // a child process under it cannot have its address space capped.

@@ -4,19 +4,13 @@
 // Debian ships the library compiled: include the declarations only (no *_IMPLEMENTATION).
 #include <tiny_gltf.h>
 
-#include <algorithm>
 #include <filesystem>
-#include <array>
-#include <cctype>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
 #include <optional>
 #include <stdexcept>
-#include <string_view>
-#include <unordered_map>
 #include <vector>
 
 #include "scene/mesh_text_scan.h"

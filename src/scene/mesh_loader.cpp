@@ -50,7 +50,7 @@ void check_mesh_limits(const TriangleMesh& mesh) {
          std::to_string(kMaxMeshVertices));
 }
 
-// ---- Clean-up -------------------------------------------------------------------------------
+// ---- Dispatch by format --------------------------------------------------------------------
 
 TriangleMesh read_mesh(const std::string& path, const SourceLocation& where, DegenerateTriangles degenerate) {
   const std::string extension = lowercase_extension(path);
