@@ -5,21 +5,18 @@
 // light irradiance in W m^-2 on a surface facing it, the environment radiance.
 // Scene loading converts powers (W) into these before a light is built.
 //
-// To add a light type, define its struct here and add it to `Light`; the compiler then names
-// each place that must handle it, because every visitor over `Light` (but shaded_light,
-// below) has one overload per member and no `auto` catch-all. Measured (2026-12, a disk light
-// added to the variant and compiled) for a path-traced light:
-//   lights/light.cpp         is_delta, is_infinite, power, light_centre, light_type_name,
-//                            pose_light (keyframes), set_scene_radius
-//   lights/light_sample.cpp  sample_light, light_pdf, escaped_radiance (a delta light also
-//                            gets a delta_arrival in light_profile.h)
-//   lights/light_reach.h/.cpp  where it can light a ray (LightReach)
-//   lights/light_tree.cpp    its bounds in the light tree
-//   scene/scene.cpp          the visible geometry of an area light
-//   scene/light_parser.cpp   its scene-file "type" (not named by the compiler)
-// The real-time passes need nothing: realtime/frame_light.h's shaded_light leaves a type it
-// does not know to the path tracer. To shade it in real time too, add it to ShadedLight; the
-// compiler then names each pass.
+// Every type declares the same members (CALIGO_EMITTER below) and defines all of its
+// behaviour in one file, lights/types/<type>.cpp; the functions over `Light` at the end of
+// this header and in light_sample.h, light_reach.h and light_tree.h only dispatch to them.
+// To add a light type:
+//   lights/light.h                its struct, with CALIGO_EMITTER, in `Light`
+//   lights/types/<type>.cpp       its members (the build finds the file by itself)
+//   scene/light_parser.cpp        its scene-file "type" and fields
+// The compiler names a missing member (the Emitter concept in light.cpp) and the linker a
+// declared one left undefined. The real-time passes need nothing: realtime/frame_light.h's
+// shaded_light leaves a type it does not know to the path tracer. To shade it in real time
+// too, add it to ShadedLight; the compiler then names each pass. Measured 2026-12 with a disk
+// light: these three files, nothing else.
 #pragma once
 
 #include <cstdint>
@@ -30,6 +27,7 @@
 
 #include "core/bounds.h"
 #include "core/math.h"
+#include "core/ray_range.h"
 #include "core/rgb.h"
 #include "core/vec.h"
 
@@ -38,6 +36,41 @@ namespace caligo {
 class GoboImage;   // lights/gobo.h
 class IesProfile;  // lights/ies.h
 class EnvironmentMap;  // lights/environment_map.h
+struct LightSample;    // lights/light_sample.h
+struct LightBounds;    // lights/light_tree.h
+struct LightGeometry;  // below
+
+// Where and when an animation puts a light (SceneDesc's keyframes): a position and a
+// direction where the keyframes give them, and the time its gobo has scrolled and spun for.
+struct LightPose {
+  std::optional<Vec3> position, direction;
+  float time = 0.0f;
+};
+
+// What every light type declares; each member is defined in lights/types/<type>.cpp.
+//   kTypeName  the scene file's "type"
+//   kInfinite  at infinity: reached by rays leaving the scene, powered by the scene's radius
+//   is_delta   no area or solid angle (a BSDF-sampled ray never hits it)
+//   power      emitted watts, only for choosing lights (light_tree.h, light_sampler.h)
+//   centre     the point equiangular sampling aims at, if the light has one
+//   pose       placed at a LightPose (types that do not animate ignore it)
+//   sample, pdf, escaped   next-event estimation and MIS (light_sample.h)
+//   reach      where along a ray it can light anything (light_reach.h)
+//   bounds     its bounds in the light tree; nullopt at infinity (light_tree.h)
+//   surface    the geometry camera and bounce rays hit, for area lights (LightGeometry)
+#define CALIGO_EMITTER(type_name, infinite)                                                          \
+  static constexpr const char* kTypeName = type_name;                                                \
+  static constexpr bool kInfinite = infinite;                                                        \
+  bool is_delta() const;                                                                             \
+  float power() const;                                                                               \
+  std::optional<Vec3> centre() const;                                                                \
+  void pose(const LightPose& at);                                                                    \
+  std::optional<LightSample> sample(Vec3 receiver, Vec2 u) const;                                    \
+  float pdf(Vec3 receiver, Vec3 wi, Vec3 on_light, Vec3 light_normal) const;                         \
+  RGB escaped(Vec3 w) const;                                                                         \
+  std::optional<RayRange> reach(Vec3 origin, Vec3 dir, float tmin, float tmax) const;                \
+  std::optional<LightBounds> bounds() const;                                                         \
+  std::optional<LightGeometry> surface() const
 
 // A projector texture (gobo, cookie) that multiplies a spot or box light's emission by the
 // colour at a texture coordinate. Texture coordinates are rotated by `rotation` about the
@@ -66,6 +99,8 @@ struct PointLight {
   RGB intensity;  // W/sr
   float range = kInfinity;
   IesAttachment ies;
+
+  CALIGO_EMITTER("point", false);
 };
 
 // Smooth falloff between the inner and outer cone (smoothstep in cos theta), as in pbrt-v4.
@@ -80,6 +115,8 @@ struct SpotLight {
   Vec3 up{0.0f, 1.0f, 0.0f};  // unit, perpendicular to direction: the gobo's +v axis
   Gobo gobo;
   IesAttachment ies;
+
+  CALIGO_EMITTER("spot", false);
 };
 
 // The seed's "box light": parallel light filling an oriented box. The emitting face is the
@@ -96,6 +133,8 @@ struct BoxLight {
   float range = 10.0f;
   RGB irradiance;  // W/m^2 on a surface facing the light
   Gobo gobo;
+
+  CALIGO_EMITTER("box", false);
 };
 
 // A spherical emitter, sampled by the cone it subtends (uniform area sampling from inside).
@@ -105,6 +144,8 @@ struct SphereLight {
   float radius = 1.0f;
   RGB radiance;
   bool two_sided = false;
+
+  CALIGO_EMITTER("sphere", false);
 };
 
 // A parallelogram corner + s*edge1 + t*edge2, s,t in [0,1]. Emits on the side of
@@ -113,6 +154,8 @@ struct QuadLight {
   Vec3 corner, edge1, edge2;
   RGB radiance;
   bool two_sided = false;
+
+  CALIGO_EMITTER("quad", false);
 };
 
 // Light from a distant disk (the sun) of the given angular radius; radius 0 is a delta
@@ -122,6 +165,8 @@ struct DirectionalLight {
   RGB irradiance;  // W/m^2 on a surface perpendicular to `direction`
   float cos_angular_radius = 1.0f;
   float scene_radius = 1.0f;  // set by the scene builder, for power()
+
+  CALIGO_EMITTER("directional", true);
 };
 
 // Radiance arriving from every direction not blocked by the scene: `radiance` alone, or
@@ -135,6 +180,8 @@ struct EnvironmentLight {
   std::shared_ptr<const EnvironmentMap> map;  // null: constant
   float cos_rotation = 1.0f, sin_rotation = 0.0f;
   bool visible = true;
+
+  CALIGO_EMITTER("environment", true);
 };
 
 // One emissive triangle (from a shape with an emissive material). Emits on the side of
@@ -143,6 +190,25 @@ struct TriangleLight {
   Vec3 p0, p1, p2;
   RGB radiance;
   bool two_sided = false;
+
+  CALIGO_EMITTER("triangle", false);
+};
+
+// The surface an area light shows to camera and bounce rays: a sphere, or triangles (indices
+// into positions, three per triangle, wound so that cross(p1 - p0, p2 - p0) is the emitting
+// side). The scene gives it a black material emitting `radiance`.
+struct VisibleSphere {
+  Vec3 centre;
+  float radius;
+};
+struct VisibleTriangles {
+  std::vector<Vec3> positions;
+  std::vector<uint32_t> indices;
+};
+struct LightGeometry {
+  RGB radiance;
+  bool two_sided = false;
+  std::variant<VisibleSphere, VisibleTriangles> shape;
 };
 
 using Light = std::variant<PointLight, SpotLight, SphereLight, QuadLight, DirectionalLight, EnvironmentLight,
@@ -164,8 +230,10 @@ const char* light_type_name(const Light& light);
 // (either may be absent; a new direction keeps `up` perpendicular), and its gobo's scroll and
 // spin folded into offset and rotation. Area lights and the environment do not animate (the
 // scene parser rejects "animation" on them).
-void pose_light(Light& light, std::optional<Vec3> position, std::optional<Vec3> direction, float time);
+void pose_light(Light& light, const LightPose& at);
 // Lights at infinity need the scene's radius for power(); the others ignore it.
 void set_scene_radius(Light& light, float radius);
+// The geometry of an area light; nullopt for the others.
+std::optional<LightGeometry> visible_geometry(const Light& light);
 
 }  // namespace caligo

@@ -12,7 +12,7 @@
 //
 // The path tracer restricts equiangular sampling to it (integrators/volume_direct.cpp); the
 // real-time passes march only inside it (realtime/light_volume.h). The solids are
-// core/ray_solids.h's. Pure and thread-safe.
+// core/ray_solids.h's; each type's reach() is in lights/types/. Pure and thread-safe.
 #pragma once
 
 #include <optional>
@@ -24,28 +24,14 @@
 
 namespace caligo {
 
-// The part of [tmin, tmax] of origin + t dir (dir unit) that a light can reach (table above):
-// a visitor, so that callers holding a narrower variant of lights (the real-time passes'
-// ShadedLight) visit it too.
-struct LightReach {
-  Vec3 origin, dir;
-  float tmin, tmax;
-  std::optional<RayRange> operator()(const PointLight& l) const;
-  std::optional<RayRange> operator()(const SpotLight& l) const;
-  std::optional<RayRange> operator()(const BoxLight& l) const;
-  std::optional<RayRange> operator()(const QuadLight& l) const;
-  std::optional<RayRange> operator()(const TriangleLight& l) const;
-  std::optional<RayRange> operator()(const SphereLight& l) const;
-  std::optional<RayRange> operator()(const DirectionalLight& l) const;
-  std::optional<RayRange> operator()(const EnvironmentLight& l) const;
-
- private:
-  std::optional<RayRange> all() const;
-  std::optional<RayRange> within(Vec3 centre, float range) const;
-};
-
-inline std::optional<RayRange> light_reach(const Light& light, Vec3 origin, Vec3 dir, float tmin, float tmax) {
-  return std::visit(LightReach{origin, dir, tmin, tmax}, light);
+// The part of [tmin, tmax] of origin + t dir (dir unit) that a light can reach (table above),
+// for one light type, a Light or a narrower variant of them (the real-time passes' ShadedLight).
+template <typename AnyLight>
+std::optional<RayRange> light_reach(const AnyLight& light, Vec3 origin, Vec3 dir, float tmin, float tmax) {
+  if constexpr (requires { light.reach(origin, dir, tmin, tmax); })
+    return light.reach(origin, dir, tmin, tmax);
+  else
+    return std::visit([&](const auto& l) { return l.reach(origin, dir, tmin, tmax); }, light);
 }
 
 // The box a box light fills: right = cross(direction, up), |local x| <= half_width,

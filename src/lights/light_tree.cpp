@@ -7,8 +7,6 @@
 namespace caligo {
 namespace {
 
-// theta_e = pi/2 is kept as exactly 0 (cos(pi/2) in float is -4e-8).
-constexpr float kCosHemisphere = 0.0f;
 // The cosine factors of the importance are floored here wherever the cone test passes, so a
 // node that may emit towards the receiver never gets importance 0 (wide spot cones have
 // theta_e > pi/2 and would otherwise get a negative cosine).
@@ -17,64 +15,6 @@ constexpr float kMinCosine = 1e-2f;
 constexpr int kMedianDepth = 40;
 constexpr int kMaxDepth = kMedianDepth + 64;
 constexpr int kBins = 12;
-
-LightBounds at_point(Vec3 p, float phi, Vec3 axis, float cos_o, float cos_e) {
-  LightBounds b;
-  b.box.extend(p);
-  b.phi = phi;
-  b.axis = axis;
-  b.cos_theta_o = cos_o;
-  b.cos_theta_e = cos_e;
-  return b;
-}
-
-// A flat emitter with the given corners: one-sided ones emit into the hemisphere about the
-// normal, two-sided ones about either side.
-LightBounds flat(std::initializer_list<Vec3> corners, Vec3 normal, bool two_sided, float phi) {
-  LightBounds b;
-  for (Vec3 c : corners) b.box.extend(c);
-  b.phi = phi;
-  const float len = length(normal);
-  const bool any = two_sided || !(len > 0.0f);
-  b.axis = any ? Vec3(0, 0, 1) : normal / len;
-  b.cos_theta_o = any ? -1.0f : 1.0f;
-  b.cos_theta_e = kCosHemisphere;
-  return b;
-}
-
-struct BoundsOf {
-  std::optional<LightBounds> operator()(const PointLight& l) const {
-    return at_point(l.position, power(l), {0, 0, 1}, -1.0f, kCosHemisphere);
-  }
-  std::optional<LightBounds> operator()(const SpotLight& l) const {
-    return at_point(l.position, power(l), l.direction, 1.0f, l.cos_outer);
-  }
-  std::optional<LightBounds> operator()(const SphereLight& l) const {
-    LightBounds b = at_point(l.center - Vec3(l.radius), power(l), {0, 0, 1}, -1.0f, kCosHemisphere);
-    b.box.extend(l.center + Vec3(l.radius));
-    return b;
-  }
-  std::optional<LightBounds> operator()(const QuadLight& l) const {
-    return flat({l.corner, l.corner + l.edge1, l.corner + l.edge2, l.corner + l.edge1 + l.edge2},
-                cross(l.edge1, l.edge2), l.two_sided, power(l));
-  }
-  std::optional<LightBounds> operator()(const TriangleLight& l) const {
-    return flat({l.p0, l.p1, l.p2}, cross(l.p1 - l.p0, l.p2 - l.p0), l.two_sided, power(l));
-  }
-  // The whole lit box, emitting along `direction`: every point it lights is in front of the face.
-  std::optional<LightBounds> operator()(const BoxLight& l) const {
-    const Vec3 right = cross(l.direction, l.up) * l.half_width, up = l.up * l.half_height;
-    LightBounds b = at_point(l.position, power(l), l.direction, 1.0f, kCosHemisphere);
-    for (float s : {-1.0f, 1.0f})
-      for (float t : {-1.0f, 1.0f}) {
-        b.box.extend(l.position + right * s + up * t);
-        b.box.extend(l.position + right * s + up * t + l.direction * l.range);
-      }
-    return b;
-  }
-  std::optional<LightBounds> operator()(const DirectionalLight&) const { return std::nullopt; }
-  std::optional<LightBounds> operator()(const EnvironmentLight&) const { return std::nullopt; }
-};
 
 float angle_between(Vec3 a, Vec3 b) { return std::acos(std::clamp(dot(a, b), -1.0f, 1.0f)); }
 
@@ -208,7 +148,28 @@ size_t split(Items& items, size_t begin, size_t end, int depth) {
 
 }  // namespace
 
-std::optional<LightBounds> light_bounds(const Light& light) { return std::visit(BoundsOf{}, light); }
+LightBounds bounds_at_point(Vec3 p, float phi, Vec3 axis, float cos_o, float cos_e) {
+  LightBounds b;
+  b.box.extend(p);
+  b.phi = phi;
+  b.axis = axis;
+  b.cos_theta_o = cos_o;
+  b.cos_theta_e = cos_e;
+  return b;
+}
+
+LightBounds bounds_of_flat(std::initializer_list<Vec3> corners, Vec3 normal, bool two_sided, float phi) {
+  LightBounds b;
+  for (Vec3 c : corners) b.box.extend(c);
+  b.phi = phi;
+  const float len = length(normal);
+  const bool any = two_sided || !(len > 0.0f);
+  b.axis = any ? Vec3(0, 0, 1) : normal / len;
+  b.cos_theta_o = any ? -1.0f : 1.0f;
+  b.cos_theta_e = kCosHemisphere;
+  return b;
+}
+
 
 LightBounds merge(const LightBounds& a, const LightBounds& b) {
   if (a.box.empty()) return b;

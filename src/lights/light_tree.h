@@ -28,6 +28,7 @@
 #pragma once
 
 #include <cstdint>
+#include <initializer_list>
 #include <optional>
 #include <span>
 #include <vector>
@@ -49,6 +50,13 @@ struct LightBounds {
 
 // The bounds of a finite light; nullopt for lights at infinity.
 std::optional<LightBounds> light_bounds(const Light& light);
+// theta_e = pi/2, kept as exactly 0 (cos(pi/2) in float is -4e-8).
+constexpr float kCosHemisphere = 0.0f;
+// A point (or the first point of a box) emitting phi watts about `axis`.
+LightBounds bounds_at_point(Vec3 p, float phi, Vec3 axis, float cos_o, float cos_e);
+// A flat emitter with the given corners: one-sided ones emit into the hemisphere about the
+// normal, two-sided ones about either side.
+LightBounds bounds_of_flat(std::initializer_list<Vec3> corners, Vec3 normal, bool two_sided, float phi);
 // The smallest bounds holding both (cones merged as in the paper).
 LightBounds merge(const LightBounds& a, const LightBounds& b);
 

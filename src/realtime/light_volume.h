@@ -21,7 +21,7 @@ namespace caligo {
 // Where on the ray `light` can light the medium: lights/light_reach.h's range.
 inline std::optional<RayRange> light_volume_interval(const ShadedLight& light, Vec3 origin, Vec3 dir, float tmin,
                                                      float tmax) {
-  return std::visit(LightReach{origin, dir, tmin, tmax}, light);
+  return light_reach(light, origin, dir, tmin, tmax);
 }
 
 // Pixels [x0, x1) x [y0, y1) of `view` whose rays can meet the light's volume: the

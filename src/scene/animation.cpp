@@ -83,9 +83,8 @@ std::vector<Light> SceneDesc::lights_at(float time) const {
   std::vector<Light> out = lights;
   for (size_t i = 0; i < out.size(); ++i) {
     const LightOptions& o = options(i);
-    const auto position = sample(channel(o.animation, &LightKey::position), o.interpolation, time);
-    const auto direction = sample_direction(channel(o.animation, &LightKey::direction), o.interpolation, time);
-    pose_light(out[i], position, direction, time);
+    pose_light(out[i], {sample(channel(o.animation, &LightKey::position), o.interpolation, time),
+                        sample_direction(channel(o.animation, &LightKey::direction), o.interpolation, time), time});
   }
   return out;
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/overloaded.h"
 #include "geometry/mesh_generate.h"
 #include "geometry/shapes.h"
 #include "scene/mesh_loader.h"
@@ -57,31 +58,6 @@ struct ShapeMesh {
   }
   TriangleMesh operator()(const SphereShape&) const { throw std::logic_error("spheres are not meshed"); }
 };
-
-// The geometry that makes a light visible to camera and BSDF rays. Delta lights (point,
-// spot, box, delta sun) and lights at infinity have none; triangle lights come with their mesh.
-struct LightGeometry {
-  const char* kind;
-  RGB radiance;
-  bool two_sided;
-  std::variant<Sphere, TriangleMesh> shape;
-};
-
-struct VisibleLight {
-  std::optional<LightGeometry> operator()(const SphereLight& s) const {
-    return LightGeometry{"sphere", s.radiance, s.two_sided, Sphere::make(s.center, s.radius, {})};
-  }
-  std::optional<LightGeometry> operator()(const QuadLight& q) const {
-    return LightGeometry{"quad", q.radiance, q.two_sided, rectangle_mesh(q.corner, q.edge1, q.edge2)};
-  }
-  std::optional<LightGeometry> operator()(const PointLight&) const { return std::nullopt; }
-  std::optional<LightGeometry> operator()(const SpotLight&) const { return std::nullopt; }
-  std::optional<LightGeometry> operator()(const BoxLight&) const { return std::nullopt; }
-  std::optional<LightGeometry> operator()(const DirectionalLight&) const { return std::nullopt; }
-  std::optional<LightGeometry> operator()(const EnvironmentLight&) const { return std::nullopt; }
-  std::optional<LightGeometry> operator()(const TriangleLight&) const { return std::nullopt; }
-};
-
 
 }  // namespace
 
@@ -209,18 +185,25 @@ void Scene::add_emitting_mesh(TriangleMesh mesh, int material, const SourceLocat
   }
 }
 
-// Sphere and quad lights are visible: each gets geometry with a black, emitting material.
+// Area lights are visible (lights/types/*.cpp's surface()): each gets its geometry with a
+// black, emitting material. Triangle lights come with their shape's mesh instead.
 void Scene::add_light_geometry(int index) {
-  const auto visible = std::visit(VisibleLight{}, lights_[size_t(index)]);
+  const Light& light = lights_[size_t(index)];
+  auto visible = visible_geometry(light);
   if (!visible) return;
-  materials_.push_back(
-      {light_material_name(visible->kind, index), BlackBsdf{}, visible->radiance, visible->two_sided});
-  const int material = int(materials_.size()) - 1;
-  if (const auto* sphere = std::get_if<Sphere>(&visible->shape)) {
-    add_geometry(surfaces_.add_sphere(*sphere), {material, index});
-  } else {
-    add_geometry(surfaces_.add_mesh(std::get<TriangleMesh>(visible->shape)), {material, index});
-  }
+  materials_.push_back({light_material_name(light_type_name(light), index), BlackBsdf{}, visible->radiance,
+                        visible->two_sided});
+  const GeometryInfo info{int(materials_.size()) - 1, index};
+  std::visit(Overloaded{[&](const VisibleSphere& s) {
+                          add_geometry(surfaces_.add_sphere(Sphere::make(s.centre, s.radius, {})), info);
+                        },
+                        [&](VisibleTriangles& t) {
+                          TriangleMesh mesh;
+                          mesh.positions = std::move(t.positions);
+                          mesh.indices = std::move(t.indices);
+                          add_geometry(surfaces_.add_mesh(mesh), info);
+                        }},
+             visible->shape);
 }
 
 void Scene::finish_lights() {
