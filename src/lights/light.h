@@ -158,6 +158,23 @@ struct QuadLight {
   CALIGO_EMITTER("quad", false);
 };
 
+// A disk of uniform radiance, emitting on the side of `normal` unless two_sided. It is a
+// regular kSides-gon inscribed in the circle, so that the geometry rays hit and the area that
+// is sampled are the same shape; its area is 0.16 % below pi r^2 (scene files that give a
+// power divide by the polygon's area, so the power is exact).
+struct DiskLight {
+  static constexpr int kSides = 64;
+  Vec3 center;
+  Vec3 normal{0.0f, 0.0f, 1.0f};  // unit
+  float radius = 1.0f;
+  RGB radiance;
+  bool two_sided = false;
+
+  float area() const;     // of the polygon
+  Vec3 vertex(int k) const;  // k in [0, kSides], counter-clockwise about `normal`; k = kSides is 0
+  CALIGO_EMITTER("disk", false);
+};
+
 // Light from a distant disk (the sun) of the given angular radius; radius 0 is a delta
 // direction. `direction` is the way the light travels (from the light towards the scene).
 struct DirectionalLight {
@@ -212,7 +229,7 @@ struct LightGeometry {
 };
 
 using Light = std::variant<PointLight, SpotLight, SphereLight, QuadLight, DirectionalLight, EnvironmentLight,
-                           TriangleLight, BoxLight>;
+                           TriangleLight, BoxLight, DiskLight>;
 
 // True for lights with no area or solid angle (a BSDF-sampled ray can never hit them).
 bool is_delta(const Light& light);

@@ -177,6 +177,64 @@ TEST(TriangleLight, LightSamplingAgreesWithHemisphereSampling) {
   EXPECT_NEAR(by_light, by_hemisphere, 0.01 * by_hemisphere);
 }
 
+// Ray against the disk light's polygon: the plane, then the sector's triangle.
+bool hits_disk(const DiskLight& d, Vec3 o, Vec3 w) {
+  const float denom = dot(d.normal, w);
+  if (std::abs(denom) < 1e-12f) return false;
+  const float t = dot(d.normal, d.center - o) / denom;
+  if (t <= 0.0f) return false;
+  const Vec3 q = o + w * t;
+  for (int k = 0; k < DiskLight::kSides; ++k) {
+    const Vec3 a = d.vertex(k) - d.center, b = d.vertex(k + 1) - d.center, x = q - d.center;
+    const float area = dot(cross(a, b), d.normal);
+    const float s = dot(cross(x, b), d.normal) / area, u = dot(cross(a, x), d.normal) / area;
+    if (s >= 0 && u >= 0 && s + u <= 1) return true;
+  }
+  return false;
+}
+
+TEST(DiskLight, LightSamplingAgreesWithHemisphereSampling) {
+  const DiskLight light{{0.3f, 2, -0.2f}, normalize(Vec3(0.2f, -1, 0.1f)), 1.3f, RGB(2.0f)};
+  const Vec3 p(0, 0, 0), n = normalize(Vec3(-0.3f, 1, 0.2f));
+  const double by_light = irradiance_by_light_sampling(light, p, n, 40000);
+  const double by_hemisphere =
+      irradiance_by_hemisphere(n, 400000, [&](Vec3 w) { return hits_disk(light, p, w) ? 2.0 : 0.0; });
+  // The hemisphere estimate's standard error is 0.25 % here; 1 % is 4 of them.
+  EXPECT_NEAR(by_light, by_hemisphere, 0.01 * by_hemisphere);
+  // One-sided: from behind it is dark.
+  EXPECT_FALSE(sample_light(light, {0, 4, 0}, {0.5f, 0.5f}));
+}
+
+TEST(DiskLight, PdfMatchesSamplingAndTheSurfaceIsTheSampledPolygon) {
+  const DiskLight light{{1, 2, 3}, normalize(Vec3(1, 1, -1)), 0.7f, RGB(1.0f), true};
+  const Vec3 receiver(-1, 0, 5);
+  Pcg32 rng(5, 6);
+  for (int i = 0; i < 200; ++i) {
+    const auto s = sample_light(light, receiver, {rng.next_float(), rng.next_float()});
+    ASSERT_TRUE(s);
+    const Vec3 q = receiver + s->wi * s->distance;
+    EXPECT_NEAR(dot(q - light.center, light.normal), 0.0f, 1e-5f);
+    EXPECT_LE(length(q - light.center), light.radius * 1.0001f);
+    EXPECT_NEAR(light_pdf(light, receiver, s->wi, q, light.normal), s->pdf, 1e-4f * s->pdf);
+  }
+  const auto surface = visible_geometry(light);
+  ASSERT_TRUE(surface);
+  const auto& fan = std::get<VisibleTriangles>(surface->shape);
+  ASSERT_EQ(fan.indices.size(), 3u * DiskLight::kSides);
+  double area = 0.0;
+  for (size_t t = 0; t < fan.indices.size(); t += 3) {
+    const Vec3 a = fan.positions[fan.indices[t]], b = fan.positions[fan.indices[t + 1]],
+               c = fan.positions[fan.indices[t + 2]];
+    const Vec3 ng = cross(b - a, c - a);
+    EXPECT_GT(dot(ng, light.normal), 0.0f);  // wound towards the emitting side
+    area += 0.5 * length(ng);
+  }
+  EXPECT_NEAR(area, light.area(), 1e-5 * light.area());
+  // The polygon's area against the circle's: 64 sides leave 0.16 %.
+  EXPECT_NEAR(light.area() / (kPi * sqr(light.radius)), 1.0 - 0.0016, 1e-4);
+  EXPECT_NEAR(power(light), 2.0 * kPi * light.area(), 1e-5 * power(light));
+}
+
 TEST(EnvironmentLight, UniformRadianceGivesPiL) {
   const EnvironmentLight env{RGB(0.7f)};
   EXPECT_NEAR(irradiance_by_light_sampling(env, {}, {0, 1, 0}, 200000), kPi * 0.7, 0.01 * kPi * 0.7);

@@ -341,6 +341,19 @@ ParsedLight read_quad(ObjectReader& r) {
   return {light, read_options(r, std::nullopt, {})};
 }
 
+ParsedLight read_disk(ObjectReader& r) {
+  r.allow({"type", "center", "normal", "radius", "two_sided", "color", "radiance", "power", "volumetric", "shadow",
+           "shadow_map_size"});
+  DiskLight light;
+  light.center = r.vec3("center");
+  light.normal = read_direction(r.required("normal"));
+  light.radius = r.number("radius", size_range());
+  light.two_sided = r.boolean_or("two_sided", false);
+  const float sides = light.two_sided ? 2.0f : 1.0f;
+  light.radiance = read_emission(r, "radiance", 1.0f / (sides * kPi * light.area()));  // P = pi L A per side
+  return {light, read_options(r, std::nullopt, {})};
+}
+
 ParsedLight read_directional(ObjectReader& r) {
   r.allow({"type", "direction", "color", "irradiance", "angular_radius", "volumetric", "shadow",
            "shadow_map_size", "animation"});
@@ -381,7 +394,7 @@ ParsedLight read_environment(ObjectReader& r, LightFileCache& files) {
 ParsedLight parse_light(const JsonCursor& c, LightFileCache& files) {
   ObjectReader r(c, "a light");
   const std::string type =
-      r.choice("type", {"point", "spot", "box", "sphere", "quad", "directional", "environment"});
+      r.choice("type", {"point", "spot", "box", "sphere", "quad", "disk", "directional", "environment"});
   r.set_what("a " + type + " light");
   ParsedLight parsed;
   if (type == "point") {
@@ -394,6 +407,8 @@ ParsedLight parse_light(const JsonCursor& c, LightFileCache& files) {
     parsed = read_sphere_light(r);
   } else if (type == "quad") {
     parsed = read_quad(r);
+  } else if (type == "disk") {
+    parsed = read_disk(r);
   } else if (type == "directional") {
     parsed = read_directional(r);
   } else {

