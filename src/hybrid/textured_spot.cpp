@@ -142,19 +142,17 @@ ScatterResult scatter_textured_spot(const View& view, const Plane& opaque_depth,
     };
     if (!volumes) {
       segment(s0, s1, n, shadow != nullptr);
-      return sum;
-    }
-    if (eye_lit && !volumes->covered(x, y)) {  // no shadow on this ray: the gobo alone
+    } else if (eye_lit && !volumes->covered(x, y)) {  // no shadow on this ray: the gobo alone
       segment(s0, s1, steps(s0, s1, lit_rate), false);
-      return sum;
+    } else {
+      // Before the volumes: lit (eye outside every volume). Between them: the shadow map
+      // decides. Beyond: lit when no volume holds the tail, dark otherwise.
+      const float a = eye_lit ? std::clamp(volumes->front.at(x, y), s0, s1) : s0;
+      const float b = std::clamp(volumes->back.at(x, y), a, s1);
+      segment(s0, a, steps(s0, a, lit_rate), false);
+      segment(a, b, steps(a, b, 1.0f), true);
+      if (volumes->tail(x, y) == 0) segment(b, s1, steps(b, s1, lit_rate), false);
     }
-    // Before the volumes: lit (eye outside every volume). Between them: the shadow map decides.
-    // Beyond: lit when no volume holds the tail, dark otherwise.
-    const float a = eye_lit ? std::clamp(volumes->front.at(x, y), s0, s1) : s0;
-    const float b = std::clamp(volumes->back.at(x, y), a, s1);
-    segment(s0, a, steps(s0, a, lit_rate), false);
-    segment(a, b, steps(a, b, 1.0f), true);
-    if (volumes->tail(x, y) == 0) segment(b, s1, steps(b, s1, lit_rate), false);
     return sum;
   });
 }
