@@ -56,6 +56,7 @@ TEST_F(Survive, TerminatedRendersResumeToTheIdenticalImage) {
   for (int trial = 0; trial < 3; ++trial) {
     const fs::path part = dir_ / ("part" + std::to_string(trial) + ".exr");
     const fs::path checkpoint = dir_ / ("part" + std::to_string(trial) + ".ckpt");
+    const fs::path partial = dir_ / ("part" + std::to_string(trial) + ".partial.exr");
     std::string resume;
     for (int cut = 0; cut <= trial % 2; ++cut) {
       char delay[32];
@@ -71,7 +72,7 @@ TEST_F(Survive, TerminatedRendersResumeToTheIdenticalImage) {
         continue;
       }
       EXPECT_NE(r.err.find("--resume"), std::string::npos) << r.err;
-      ASSERT_TRUE(fs::exists(checkpoint) && fs::exists(part));
+      ASSERT_TRUE(fs::exists(checkpoint) && fs::exists(partial));
       resume = " --resume " + checkpoint.string();
       ++interrupted;
     }

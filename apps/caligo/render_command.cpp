@@ -331,17 +331,18 @@ ProgressiveHooks progress_hooks(const RenderOptions& o, const RenderOutputs& out
 
 // The interrupted render's outputs are written; says what they are and how to continue.
 int report_interrupt(const RenderOutputs& outputs, int signal, std::pair<int, int> samples, int target) {
-  const std::string exr = quote_for_message(outputs.exr()), ckpt = quote_for_message(outputs.checkpoint());
+  const std::string exr = quote_for_message(outputs.partial_exr()), ckpt = quote_for_message(outputs.checkpoint()),
+                    kept = quote_for_message(outputs.exr());
   if (outputs.interrupt_leaves_checkpoint())
     std::fprintf(stderr,
                  "caligo: interrupted (signal %d) with %d to %d of %d samples per pixel: wrote the partial image %s "
-                 "and the checkpoint %s; continue with --resume %s\n",
-                 signal, samples.first, samples.second, target, exr.c_str(), ckpt.c_str(), ckpt.c_str());
+                 "(%s, if it exists, is kept) and the checkpoint %s; continue with --resume %s\n",
+                 signal, samples.first, samples.second, target, exr.c_str(), kept.c_str(), ckpt.c_str(), ckpt.c_str());
   else
     std::fprintf(stderr,
-                 "caligo: interrupted (signal %d) with %d to %d of %d samples per pixel: wrote the partial image %s; "
-                 "no checkpoint (%s cannot be written; give --checkpoint FILE)\n",
-                 signal, samples.first, samples.second, target, exr.c_str(), ckpt.c_str());
+                 "caligo: interrupted (signal %d) with %d to %d of %d samples per pixel: wrote the partial image %s "
+                 "(%s, if it exists, is kept); no checkpoint (%s cannot be written; give --checkpoint FILE)\n",
+                 signal, samples.first, samples.second, target, exr.c_str(), kept.c_str(), ckpt.c_str());
   return kExitInterruptedBase + signal;
 }
 
@@ -355,7 +356,7 @@ int run_distributed(const RenderOptions& o, const ProgressiveSchedule& schedule,
   const std::optional<RenderResult> frame =
       distributed::render_frame(scene, settings, *distributed::split_from_name(o.mpi_split), style, key);
   if (!frame) return 0;  // an MPI rank other than 0: rank 0 writes the outputs
-  outputs.write(frame->image, nullptr, key, o.exposure, false);
+  outputs.write_final(frame->image, nullptr, key, o.exposure);
   if (!o.quiet) print_summary(o.scene, settings, frame->stats, outputs.exr());
   return 0;
 }
@@ -375,7 +376,7 @@ int run_render(const RenderOptions& o) {
   if (schedule.target_rmse) settings.aovs = settings.aovs.with(Aov::kVariance);
   if (!(std::isfinite(o.exposure) && std::abs(o.exposure) <= 64.0f))
     throw InputError(kCommandLine, "--exposure: expected stops in [-64, 64]");
-  const RenderOutputs outputs(o);  // every output is checked before any work
+  const RenderOutputs outputs(o, desc);  // every output is checked before any work
   const uint64_t key = checkpoint_key(scene_source(o.scene), settings, o.time, o.priorities);
   check_memory(settings);
   const auto scene = Scene::build(desc);
@@ -394,10 +395,10 @@ int run_render(const RenderOptions& o) {
   // A signal after the last sample changes nothing: the render is complete.
   const bool complete = samples.first >= target || !result.stopped_by.empty();
   if (interrupt.stopped() && !complete) {
-    outputs.write(image, &film, key, o.exposure, true);
+    outputs.write_interrupted(image, film, key, o.exposure);
     return report_interrupt(outputs, interrupt.signal_number(), samples, target);
   }
-  outputs.write(image, &film, key, o.exposure, false);
+  outputs.write_final(image, &film, key, o.exposure);
   if (!result.stopped_by.empty() && !o.quiet)
     std::fprintf(stderr, "caligo: stopped by %s at %d of %d samples per pixel\n", result.stopped_by.c_str(),
                  samples.first, target);

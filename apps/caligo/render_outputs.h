@@ -1,8 +1,10 @@
-// The files `caligo render` writes, as one plan checked before any work: the beauty EXR, its PNG
-// preview, and the checkpoint, which is the one --checkpoint names, or the one an interrupt
-// writes beside the image when none was asked for (that one is dropped, and the interrupt
-// message says so, when it cannot be written). Each write is one OutputTransaction: all of its
-// files land, or none changes.
+// The files `caligo render` writes, as plans checked before any work: the beauty EXR, its PNG
+// preview and the asked-for checkpoint when the render finishes; the partial image and preview
+// (NAME.partial.exr/.png, so an earlier finished NAME.exr survives) and a checkpoint, the asked-
+// for one or one beside the image, when it is interrupted. No output may be a file the render
+// reads (the scene file, its meshes, grids, images and profiles, the checkpoint resumed; only the
+// checkpoint output may be the resumed one). Each write is one OutputTransaction: all of its
+// files land, or none changes; a final checkpoint that does not fit does not cost the image.
 #pragma once
 
 #include <cstdint>
@@ -15,26 +17,33 @@
 
 namespace caligo {
 
+// Protects every file `desc` was read from (its scene file unless built in, and
+// SceneDesc::files) in `outputs`.
+void protect_scene_inputs(OutputTransaction& outputs, const SceneDesc& desc);
+
 class RenderOutputs {
  public:
-  // Throws InputError for an output that cannot be written (a bad -o is refused now, not after
-  // the render).
-  explicit RenderOutputs(const RenderOptions& o);
+  // Throws InputError for an output that cannot be written or would replace an input (a bad -o
+  // is refused now, not after the render).
+  RenderOutputs(const RenderOptions& o, const SceneDesc& desc);
 
   const std::string& exr() const { return exr_; }
+  const std::string& partial_exr() const { return partial_exr_; }
   const std::string& checkpoint() const { return checkpoint_; }
   // Whether an interrupted render leaves a checkpoint to resume.
   bool interrupt_leaves_checkpoint() const { return asked_checkpoint_ || interrupt_checkpoint_; }
 
-  // The image and its preview, and the checkpoint of `film` when one was asked for, or when
-  // `interrupted` and one can be written. `film` may be null only when no checkpoint is asked.
-  void write(const Image& image, const Film* film, uint64_t key, float exposure, bool interrupted) const;
+  // The finished image, its preview and the asked-for checkpoint of `film`; when only the
+  // checkpoint fails, the image and preview are written and the EnvironmentError says so.
+  void write_final(const Image& image, const Film* film, uint64_t key, float exposure) const;
+  // The partial image and preview, and a checkpoint when one can be written.
+  void write_interrupted(const Image& image, const Film& film, uint64_t key, float exposure) const;
 
  private:
-  std::string exr_, png_, checkpoint_;
+  std::string exr_, png_, partial_exr_, partial_png_, checkpoint_;
   bool asked_checkpoint_ = false;
   bool interrupt_checkpoint_ = false;
-  OutputTransaction outputs_;
+  OutputTransaction final_, interrupted_;
 };
 
 }  // namespace caligo

@@ -1,14 +1,23 @@
 #include "core/atomic_file.h"
 
+#include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <cstdint>
-#include <filesystem>
+#include <cstring>
+#include <stdexcept>
 #include <system_error>
 
+#include "core/error.h"
+
 namespace caligo {
-std::filesystem::path temp_path_beside(const std::filesystem::path& target, const char* tag) {
+
+namespace fs = std::filesystem;
+
+fs::path temp_path_beside(const fs::path& target, const char* tag) {
   static std::atomic<uint64_t> counter{0};
   // Appended piecewise: GCC 12 warns falsely (-Wrestrict) about `"." + std::string`.
   std::string name = ".";
@@ -21,16 +30,56 @@ std::filesystem::path temp_path_beside(const std::filesystem::path& target, cons
   return target.parent_path() / name;
 }
 
-void write_file_atomically(const std::string& path,
-                           const std::function<void(const std::string& temp_path)>& write) {
-  const std::filesystem::path temp = temp_path_beside(std::filesystem::path(path), ".tmp-");
+void flush_to_disk(const fs::path& file, const std::string& what_for) {
+  const int fd = ::open(file.c_str(), O_RDONLY);
+  if (fd < 0 || ::fsync(fd) != 0) {
+    const std::string why = std::strerror(errno);
+    if (fd >= 0) ::close(fd);
+    throw EnvironmentError(what_for + ": cannot flush " + file.string() + " to the disk: " + why);
+  }
+  ::close(fd);
+}
+
+void remove_stale_temporaries(const fs::path& target) {
+  const std::string prefix = "." + target.filename().string() + ".tmp-";
+  const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.compare(0, prefix.size(), prefix) != 0) continue;
+    char* rest = nullptr;
+    const long pid = std::strtol(name.c_str() + prefix.size(), &rest, 10);
+    if (pid <= 0 || rest == nullptr || *rest != '-') continue;
+    // Alive (or someone else's: EPERM) is left alone.
+    if (::kill(pid_t(pid), 0) != 0 && errno == ESRCH) {
+      std::error_code ignored;
+      fs::remove(it->path(), ignored);
+    }
+  }
+}
+
+void write_file_atomically(const std::string& path, const std::function<void(const std::string& temp_path)>& write) {
+  const fs::path temp = temp_path_beside(fs::path(path), ".tmp-");
+  const auto discard = [&] {
+    std::error_code ignored;  // best effort: the original error is the one worth reporting
+    fs::remove(temp, ignored);
+  };
   try {
     write(temp.string());
-    std::filesystem::rename(temp, path);
-  } catch (...) {
-    std::error_code ignored;  // best effort: the original error is the one worth reporting
-    std::filesystem::remove(temp, ignored);
+    flush_to_disk(temp, path);
+    fs::rename(temp, path);
+  } catch (const InputError&) {
+    discard();
     throw;
+  } catch (const std::invalid_argument&) {
+    discard();
+    throw;
+  } catch (const EnvironmentError&) {
+    discard();
+    throw;
+  } catch (const std::exception& e) {
+    discard();
+    throw EnvironmentError(path + ": cannot write (nothing was replaced): " + e.what());
   }
 }
 

@@ -8,16 +8,25 @@
 
 namespace caligo {
 
-// Calls write(temp_path) with a fresh temporary name in the same directory as `path` (so the
-// final rename stays on one file system and is atomic on POSIX), then renames it over `path`.
-// The temporary name ends with path's extension (".out.exr.tmp-<pid>-<n>.exr"), so writers that
-// choose a codec by extension still work. If write or the rename throws, the temporary file is
-// removed and the exception propagates; `path` is then untouched.
-// Thread safety: concurrent calls get distinct temporary names.
 // A fresh name in `target`'s folder: "." + its name + `tag` + pid-counter + its extension
-// (unique within the process through the counter, across processes through the pid).
+// (unique within the process through the counter, across processes through the pid), so that
+// writers choosing a codec by extension still work.
 std::filesystem::path temp_path_beside(const std::filesystem::path& target, const char* tag);
 
+// Flushes a written file to the disk (fsync), so that after a crash or power loss a name that
+// was renamed onto it holds the whole file. Throws EnvironmentError naming `what_for`.
+void flush_to_disk(const std::filesystem::path& file, const std::string& what_for);
+
+// Temporaries that a killed caligo left beside `target` (".NAME.tmp-PID-N.EXT" whose PID is no
+// live process): removed, best effort. Called when an output is planned.
+void remove_stale_temporaries(const std::filesystem::path& target);
+
+// Calls write(temp_path) with a temporary beside `path` (temp_path_beside: same file system,
+// so the rename is atomic on POSIX), flushes it and renames it over `path`. If any step fails
+// the temporary is removed and `path` is untouched: an InputError or std::invalid_argument from
+// `write` propagates as it is, any other failure becomes an EnvironmentError naming `path`
+// ("cannot write ... (nothing was replaced): why"). Concurrent calls get distinct temporaries,
+// so concurrent writers to one path leave one complete file.
 void write_file_atomically(const std::string& path,
                            const std::function<void(const std::string& temp_path)>& write);
 

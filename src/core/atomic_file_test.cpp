@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "core/error.h"
+
 namespace caligo {
 namespace {
 
@@ -99,7 +101,7 @@ TEST_F(AtomicFileTest, ThrowingWriterLeavesExistingFileUnchanged) {
 
 TEST_F(AtomicFileTest, WriterThatCreatesNothingFailsCleanly) {
   const fs::path target = dir_ / "out.txt";
-  EXPECT_THROW(write_file_atomically(target.string(), [](const std::string&) {}), fs::filesystem_error);
+  EXPECT_THROW(write_file_atomically(target.string(), [](const std::string&) {}), EnvironmentError);
   EXPECT_TRUE(entries().empty());
 }
 

@@ -275,7 +275,7 @@ void write_nvdb_file(const std::string& path, const std::vector<SparseFloatGrid>
   try {
     nanovdb::io::writeGrids<nanovdb::HostBuffer, std::vector>(path, handles, nanovdb::io::Codec::NONE);
   } catch (const std::runtime_error& e) {
-    throw InputError({path, ""}, std::string("cannot write the NanoVDB file: ") + e.what());
+    throw std::runtime_error(std::string("cannot write the NanoVDB file: ") + e.what());
   }
 }
 

@@ -40,7 +40,7 @@ void write_vdb_file(const std::string& path, const std::vector<SparseFloatGrid>&
     file.write(vdb_grids);
     file.close();
   } catch (const openvdb::Exception& e) {
-    throw InputError({path, ""}, std::string("cannot write the OpenVDB file: ") + e.what());
+    throw std::runtime_error(std::string("cannot write the OpenVDB file: ") + e.what());
   }
 }
 

@@ -10,12 +10,13 @@
 #include "lights/light.h"
 #include "scene/json_reader.h"
 #include "scene/scene_desc.h"
+#include "scene/shared_readers.h"
 
 namespace caligo {
 
 // Files read while parsing one scene, so lights sharing a gobo or profile share one copy.
 struct LightFileCache {
-  std::string base_dir;
+  SceneFiles& files;
   std::map<std::string, std::shared_ptr<const GoboImage>> gobos;
   std::map<std::string, std::shared_ptr<const IesProfile>> profiles;
   std::map<std::string, std::shared_ptr<const EnvironmentMap>> environment_maps;

@@ -113,6 +113,9 @@ struct ShapeDesc {
 
 struct SceneDesc {
   std::string file;  // the scene file's name as given (or "builtin:NAME")
+  // Every file the scene names (meshes, grids, images, IES profiles), resolved against the
+  // scene file's folder, each once: what no output may replace, and what checkpoints key on.
+  std::vector<std::string> files;
   CameraDesc camera;
   // The file's "render" object; resolution is the camera's (render_settings(SceneDesc)).
   RenderSettings render;

@@ -332,7 +332,7 @@ int find_material(const JsonCursor& c, const std::vector<Material>& materials) {
 
 // ---- shapes ----
 
-MeshFileShape read_mesh(ObjectReader& r, const std::string& base_dir) {
+MeshFileShape read_mesh(ObjectReader& r, SceneFiles& files) {
   const JsonCursor c = r.required("file");
   const std::string file = c.string();
   std::string ext = fs::path(file).extension().string();
@@ -340,10 +340,10 @@ MeshFileShape read_mesh(ObjectReader& r, const std::string& base_dir) {
                  [](unsigned char ch) { return char(std::tolower(ch)); });
   if (ext != ".obj" && ext != ".gltf" && ext != ".glb" && ext != ".ply" && ext != ".dae")
     c.fail("expected a mesh file ending in .obj, .gltf, .glb, .ply or .dae, got " + c.describe());
-  return {resolve_path(file, base_dir), r.boolean_or("skip_degenerate", false)};
+  return {files.resolve(file), r.boolean_or("skip_degenerate", false)};
 }
 
-ShapeGeometry read_geometry(ObjectReader& r, const std::string& type, const std::string& base_dir) {
+ShapeGeometry read_geometry(ObjectReader& r, const std::string& type, SceneFiles& files) {
   if (type == "sphere") {
     r.allow({"type", "center", "radius", "material", "transform", "open", "holdout"});
     const Vec3 center = r.vec3("center");
@@ -373,7 +373,7 @@ ShapeGeometry read_geometry(ObjectReader& r, const std::string& type, const std:
     gr.finish();
     return mesh;
   }
-  return read_mesh(r, base_dir);
+  return read_mesh(r, files);
 }
 
 // The open-surface rule: a surface whose material has a priority bounds a medium, so it must be
@@ -400,14 +400,13 @@ void check_closed(const ObjectReader& r, const ShapeDesc& shape, const Material&
            " edges whose two triangles wind the same way); fix its winding or mark the shape \"open\": true");
 }
 
-ShapeDesc parse_shape(const JsonCursor& c, const std::vector<Material>& materials,
-                      const std::string& base_dir) {
+ShapeDesc parse_shape(const JsonCursor& c, const std::vector<Material>& materials, SceneFiles& files) {
   ObjectReader r(c, "a shape");
   const std::string type = r.choice("type", {"sphere", "box", "rectangle", "mesh"});
   r.set_what("a " + type + " shape");
   ShapeDesc shape;
   shape.where = c.where();
-  shape.geometry = read_geometry(r, type, base_dir);
+  shape.geometry = read_geometry(r, type, files);
   shape.material = find_material(r.required("material"), materials);
   if (auto t = r.optional("transform")) shape.transform = parse_transform(*t);
   const bool open = r.boolean_or("open", false);
@@ -426,6 +425,7 @@ SceneDesc parse_scene_text(const std::string& json_text, const std::string& file
   r.allow({"camera", "render", "realtime", "materials", "shapes", "lights", "media", "volumes"});
   SceneDesc scene;
   scene.file = file_label;
+  SceneFiles files{base_dir, {}};
   scene.camera = parse_camera(r.required("camera"));
   if (auto c = r.optional("render")) scene.render = parse_render(*c);
   if (auto c = r.optional("realtime")) scene.realtime = parse_realtime(*c);
@@ -434,19 +434,20 @@ SceneDesc parse_scene_text(const std::string& json_text, const std::string& file
   if (auto c = r.optional("materials")) scene.materials = parse_materials(*c, scene.media);
   if (auto c = r.optional("shapes"))
     for (const JsonCursor& s : c->elements("an array of shapes"))
-      scene.shapes.push_back(parse_shape(s, scene.materials, base_dir));
+      scene.shapes.push_back(parse_shape(s, scene.materials, files));
   if (auto c = r.optional("lights")) {
-    LightFileCache files{base_dir, {}, {}};
+    LightFileCache cache{files, {}, {}, {}};
     for (const JsonCursor& l : c->elements("an array of lights")) {
-      ParsedLight parsed = parse_light(l, files);
+      ParsedLight parsed = parse_light(l, cache);
       scene.lights.push_back(std::move(parsed.light));
       scene.light_options.push_back(std::move(parsed.options));
     }
   }
   if (auto c = r.optional("volumes"))
     for (const JsonCursor& v : c->elements("an array of volumes"))
-      scene.volumes.push_back(parse_volume(v, scene.media, base_dir));
+      scene.volumes.push_back(parse_volume(v, scene.media, files));
   r.finish();
+  scene.files = std::move(files.named);
   return scene;
 }
 

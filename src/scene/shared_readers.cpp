@@ -1,5 +1,6 @@
 #include "scene/shared_readers.h"
 
+#include <algorithm>
 #include <filesystem>
 
 #include <nlohmann/json.hpp>
@@ -32,6 +33,12 @@ std::string resolve_path(const std::string& file, const std::string& base_dir) {
   std::filesystem::path p(file);
   if (p.is_relative() && !base_dir.empty()) p = std::filesystem::path(base_dir) / p;
   return p.lexically_normal().string();
+}
+
+std::string SceneFiles::resolve(const std::string& file) {
+  std::string path = resolve_path(file, base_dir);
+  if (std::find(named.begin(), named.end(), path) == named.end()) named.push_back(path);
+  return path;
 }
 
 Vec2 read_vec2(const JsonCursor& c, Range range) {

@@ -4,6 +4,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "scene/json_reader.h"
 #include "scene/scene_desc.h"
@@ -22,6 +23,15 @@ void read_parallelogram(ObjectReader& r, Vec3& corner, Vec3& edge1, Vec3& edge2)
 
 // A file name relative to the scene file's directory (left as written when base_dir is empty).
 std::string resolve_path(const std::string& file, const std::string& base_dir);
+
+// The files one scene names: relative names resolve against base_dir, and each resolved path
+// is recorded (SceneDesc::files), so that commands refuse an output that would replace an
+// input and checkpoints are keyed on the inputs too.
+struct SceneFiles {
+  std::string base_dir;
+  std::vector<std::string> named;  // resolved, each once, in the order first named
+  std::string resolve(const std::string& file);
+};
 
 // [u, v]: an array of two numbers within `range`.
 Vec2 read_vec2(const JsonCursor& c, Range range = Range::any());

@@ -129,9 +129,9 @@ VolumeShape parse_volume_shape(ObjectReader& r, const std::string& type, const T
 
 // A closed mesh filled with the medium: loaded, placed and checked for closure now, so a
 // broken mesh is an error at its place in the scene file.
-VolumeShape parse_mesh_volume(ObjectReader& r, const Transform& placement, const std::string& base_dir) {
+VolumeShape parse_mesh_volume(ObjectReader& r, const Transform& placement, SceneFiles& files) {
   const JsonCursor file = r.required("file");
-  const std::string path = resolve_path(file.string(), base_dir);
+  const std::string path = files.resolve(file.string());
   const bool skip = r.boolean_or("skip_degenerate", false);
   TriangleMesh mesh =
       load_mesh(path, file.where(), skip ? DegenerateTriangles::kRemove : DegenerateTriangles::kReject);
@@ -171,14 +171,14 @@ std::shared_ptr<const VolumeGrid> parse_generated_grid(const JsonCursor& c) {
 // A grid volume: the grid from a VDB/NanoVDB file, a raw dense array or the generator, placed
 // by the transform; its shape is the box of its bounds.
 GridDensity parse_grid_field(ObjectReader& r, const std::string& type, const Transform& placement,
-                             const std::string& base_dir) {
+                             SceneFiles& files) {
   GridDensity field{nullptr, placement, parse_filter(r)};
   if (type == "vdb") {
     const auto [which, c] = r.exactly_one("file", "generate");
     if (which == 1) {
       field.grid = parse_generated_grid(c);
     } else {
-      const std::string path = resolve_path(c.string(), base_dir);
+      const std::string path = files.resolve(c.string());
       field.grid = load_grid_file(path, parse_channels(r), c.where());
     }
     return field;
@@ -196,7 +196,7 @@ GridDensity parse_grid_field(ObjectReader& r, const std::string& type, const Tra
   }
   layout.voxel_size = r.number("voxel_size", size_range());
   layout.origin = r.optional_vec3("origin").value_or(Vec3(0.0f));
-  field.grid = load_dense_grid(resolve_path(file.string(), base_dir), layout, file.where());
+  field.grid = load_dense_grid(files.resolve(file.string()), layout, file.where());
   return field;
 }
 
@@ -229,8 +229,7 @@ std::vector<NamedMedium> parse_media(const JsonCursor& c) {
   return media;
 }
 
-VolumePrimitive parse_volume(const JsonCursor& c, const std::vector<NamedMedium>& media,
-                             const std::string& base_dir) {
+VolumePrimitive parse_volume(const JsonCursor& c, const std::vector<NamedMedium>& media, SceneFiles& files) {
   ObjectReader r(c, "a volume");
   const std::string type = r.choice("type", {"sphere", "box", "mesh", "vdb", "dense"});
   r.set_what("a " + type + " volume");
@@ -251,11 +250,11 @@ VolumePrimitive parse_volume(const JsonCursor& c, const std::vector<NamedMedium>
   const VolumeShader& medium = media[size_t(v.medium)].shader;
   v.shader = medium;
   if (type == "mesh") {
-    v.shape = parse_mesh_volume(r, placement, base_dir);
+    v.shape = parse_mesh_volume(r, placement, files);
   } else if (type == "vdb" || type == "dense") {
     if (!std::holds_alternative<ConstantDensity>(medium.field))
       r.fail("a grid volume takes its density from the grid: its medium may not have a falloff");
-    GridDensity field = parse_grid_field(r, type, placement, base_dir);
+    GridDensity field = parse_grid_field(r, type, placement, files);
     const Bounds3 b = field.grid->world_bounds();
     v.shape = BoxVolumeShape{placement, b.lo, b.hi};
     v.shader.field = std::move(field);

@@ -6,6 +6,7 @@
 
 #include "scene/json_reader.h"
 #include "scene/scene_desc.h"
+#include "scene/shared_readers.h"
 #include "volumes/volume.h"
 
 namespace caligo {
@@ -17,8 +18,8 @@ std::vector<NamedMedium> parse_media(const JsonCursor& c);
 int find_medium(const JsonCursor& c, const std::vector<NamedMedium>& media);
 // One element of "volumes": a sphere, box or closed mesh filled with a named medium, or a
 // grid (VDB/NanoVDB file, raw dense array or the generator) giving that medium's density.
-// Files are read now, relative to `base_dir`. Sets VolumePrimitive::medium to the medium's index.
-VolumePrimitive parse_volume(const JsonCursor& c, const std::vector<NamedMedium>& media,
-                             const std::string& base_dir);
+// Files are read now, resolved (and recorded) by `files`. Sets VolumePrimitive::medium to the
+// medium's index.
+VolumePrimitive parse_volume(const JsonCursor& c, const std::vector<NamedMedium>& media, SceneFiles& files);
 
 }  // namespace caligo
