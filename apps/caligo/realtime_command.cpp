@@ -17,10 +17,8 @@
 #include "commands.h"
 #include "core/median.h"
 #include "hybrid/hybrid_pipeline.h"
-#include "image/exr_io.h"
-#include "image/png_io.h"
-#include "image/tonemap.h"
 #include "realtime/pipeline.h"
+#include "realtime_outputs.h"
 #include "realtime/reference_compare.h"
 #include "render/render.h"
 #include "scene/scene.h"
@@ -67,8 +65,6 @@ void add_realtime_command(CLI::App& app, RealtimeOptions& o) {
 
 namespace {
 
-enum class OutputKind { none, folder, gif, single_png, single_exr };
-
 int check_int(std::optional<int> v, int lo, int hi, const char* option, int fallback) {
   if (!v) return fallback;
   if (*v < lo || *v > hi)
@@ -111,33 +107,6 @@ RealtimeSettings settings_from(const RealtimeOptions& o, const SceneDesc& desc) 
   }
   s.simd = !o.scalar;
   return s;
-}
-
-OutputKind output_kind(const std::string& out) {
-  if (out.empty()) return OutputKind::none;
-  const std::string ext = std::filesystem::path(out).extension().string();
-  if (ext == ".gif") return OutputKind::gif;
-  if (ext == ".png") return OutputKind::single_png;
-  if (ext == ".exr") return OutputKind::single_exr;
-  return OutputKind::folder;
-}
-
-// Fails in milliseconds, before rendering, when the output cannot be written.
-void check_output(const std::string& out, OutputKind kind) {
-  namespace fs = std::filesystem;
-  if (kind == OutputKind::none) return;
-  std::error_code ec;
-  if (kind == OutputKind::folder) {
-    if (fs::exists(out, ec) && !fs::is_directory(out, ec))
-      throw InputError(SourceLocation{out, ""}, "output exists and is not a folder");
-    fs::create_directories(out, ec);
-    if (ec) throw InputError(SourceLocation{out, ""}, "cannot create the output folder: " + ec.message());
-    return;
-  }
-  const fs::path dir = fs::path(out).parent_path().empty() ? "." : fs::path(out).parent_path();
-  if (!fs::is_directory(dir, ec))
-    throw InputError(SourceLocation{out, ""}, "output folder \"" + dir.string() + "\" does not exist");
-  if (fs::is_directory(out, ec)) throw InputError(SourceLocation{out, ""}, "output is a folder");
 }
 
 std::string light_kind(const Light& light) {
@@ -190,12 +159,6 @@ double frame_change(const ColorPlanes& a, const ColorPlanes& b) {
   return sum > 0 ? diff / sum : 0.0;
 }
 
-std::string frame_name(const std::string& folder, int index, bool exr) {
-  char name[32];
-  std::snprintf(name, sizeof name, "frame_%04d.%s", index, exr ? "exr" : "png");
-  return (std::filesystem::path(folder) / name).string();
-}
-
 // Light that is not from the scene's lights: emissive materials and media would be counted
 // once per light by a per-light reference.
 bool has_other_emitters(const SceneDesc& desc) {
@@ -238,7 +201,7 @@ Image reference_image(const RealtimeOptions& o, const SceneDesc& still, Vec2i re
 }
 
 void compare_with_reference(const RealtimeOptions& o, const SceneDesc& desc, const RealtimeSettings& s, float time,
-                            const RealtimeFrame& frame, const std::string& output) {
+                            const RealtimeFrame& frame, RealtimeOutputs& outputs) {
   const Image reference = reference_image(o, desc.at_time(time), s.resolution);
   const Image realtime = to_image(frame.color);
   const ReferenceError err = reference_error(realtime, reference);
@@ -246,45 +209,24 @@ void compare_with_reference(const RealtimeOptions& o, const SceneDesc& desc, con
               "RMSE/mean %.2f %%\n",
               o.reference_spp, o.reference_per_light ? " per light" : "", err.mean_error * 100.0,
               err.relative_rmse * 100.0, err.rmse_over_mean * 100.0);
-  std::filesystem::path png = output.empty() ? std::filesystem::path("realtime") : std::filesystem::path(output);
-  if (output_kind(output) == OutputKind::folder) png /= "comparison.png";
-  else png.replace_extension(".comparison.png");
   const Rgb8Image strip = comparison_strip(realtime, reference, o.exposure, 0.5f);
-  write_png(png.string(), strip.width, strip.height, strip.rgb);
-  std::printf("comparison (real-time | reference | |error| / mean, 0..50 %%) -> %s\n", png.string().c_str());
+  outputs.comparison(strip.width, strip.height, strip.rgb);
+  std::printf("comparison (real-time | reference | |error| / mean, 0..50 %%) -> %s\n", outputs.comparison_path().c_str());
 }
 
 // The options run_realtime checks itself (the scene's own values are checked by its parser).
-void check_realtime_options(const RealtimeOptions& o, const SceneDesc& desc, OutputKind kind) {
+void check_realtime_options(const RealtimeOptions& o, const SceneDesc& desc) {
   if (o.warmup < 0) throw InputError(kCommandLine, "--warmup: expected 0 or more");
   if (!(o.reference_spp >= 1 && o.reference_spp <= 1'000'000))
     throw InputError(kCommandLine, "--reference-spp: expected 1 to 1000000");
-  if (!std::isfinite(o.exposure)) throw InputError(kCommandLine, "--exposure: expected a finite number");
+  if (!(std::isfinite(o.exposure) && std::abs(o.exposure) <= 64.0f))
+    throw InputError(kCommandLine, "--exposure: expected stops in [-64, 64]");
   if (o.still_time && !(*o.still_time >= 0.0f && *o.still_time <= 1e6f))
     throw InputError(kCommandLine, "--time: expected seconds in [0, 1e6]");
-  check_output(o.output, kind);
   if (o.reference_per_light && has_other_emitters(desc))
     throw InputError(kCommandLine,
                      "--reference-per-light: the scene has emissive materials or media, whose light a per-light "
                      "reference would count once per light");
-}
-
-// Frame i's output: a file per frame in a folder, a GIF frame, or the last frame as one image.
-void write_frame(const RealtimeOptions& o, OutputKind kind, const RealtimeFrame& frame, int i, bool last,
-                 std::vector<std::vector<uint8_t>>& gif_frames) {
-  const PreviewSettings preview{o.exposure, true};
-  if (kind == OutputKind::folder) {
-    const Image image = to_image(frame.color);
-    if (o.exr) write_exr(frame_name(o.output, i, true), image);
-    else write_png(frame_name(o.output, i, false), image.width(), image.height(), to_srgb8_preview(image, preview));
-  } else if (kind == OutputKind::gif) {
-    gif_frames.push_back(to_srgb8_preview(to_image(frame.color), preview));
-  } else if (last && kind == OutputKind::single_png) {
-    const Image image = to_image(frame.color);
-    write_png(o.output, image.width(), image.height(), to_srgb8_preview(image, preview));
-  } else if (last && kind == OutputKind::single_exr) {
-    write_exr(o.output, to_image(frame.color));
-  }
 }
 
 // The one-line summary, the method per light and the frame-to-frame change.
@@ -320,8 +262,8 @@ int run_realtime(const RealtimeOptions& o) {
   const SceneDesc desc = load_scene(o.scene);
   const RealtimeSettings settings = settings_from(o, desc);
   const int frames = check_int(o.frames, 1, 100000, "--frames", desc.realtime.frames);
-  const OutputKind kind = output_kind(o.output);
-  check_realtime_options(o, desc, kind);
+  check_realtime_options(o, desc);
+  RealtimeOutputs outputs(o, desc, frames);  // every output is checked before any work
 
   RealtimePipeline pipeline(Scene::build(desc), settings);
   const VolumetricMethod method = *parse_volumetric_method(o.method);
@@ -332,7 +274,6 @@ int run_realtime(const RealtimeOptions& o) {
     pipeline.set_scatterer(std::move(owned));
   }
   std::vector<PassTimes> timed;
-  std::vector<std::vector<uint8_t>> gif_frames;
   float time = 0.0f;
   const RealtimeFrame* last_frame = nullptr;
   ColorPlanes previous_volumetric;
@@ -344,14 +285,13 @@ int run_realtime(const RealtimeOptions& o) {
     if (i > 0) changes.push_back(frame_change(frame.volumetric, previous_volumetric));
     previous_volumetric = frame.volumetric;
     if (i >= std::min(o.warmup, frames - 1)) timed.push_back(frame.times);
-    write_frame(o, kind, frame, i, i == frames - 1, gif_frames);
+    if (outputs.wants_frame(i == frames - 1)) outputs.frame(to_image(frame.color), i, i == frames - 1);
   }
-  if (kind == OutputKind::gif)
-    write_gif(o.output, settings.resolution.x, settings.resolution.y, gif_frames, desc.realtime.fps);
 
   if (!o.quiet) print_table(desc, timed, scatterer);
   print_summary(o, desc, settings, frames, timed, scatterer, changes);
-  if (o.compare_reference) compare_with_reference(o, desc, settings, time, *last_frame, o.output);
+  if (o.compare_reference) compare_with_reference(o, desc, settings, time, *last_frame, outputs);
+  outputs.commit(settings.resolution.x, settings.resolution.y, desc.realtime.fps);
   return 0;
 }
 

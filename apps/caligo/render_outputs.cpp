@@ -41,7 +41,7 @@ RenderOutputs::RenderOutputs(const RenderOptions& o, const SceneDesc& desc) {
   checkpoint_ = o.checkpoint ? *o.checkpoint : with_suffix(exr_, ".ckpt");
   for (OutputTransaction* plan : {&final_, &interrupted_}) {
     protect_scene_inputs(*plan, desc);
-    if (o.resume) plan->protect(*o.resume, "checkpoint resumed", asked_checkpoint_ ? checkpoint_ : "");
+    if (o.resume) plan->protect(*o.resume, "checkpoint resumed", checkpoint_);
   }
   final_.add(exr_, "image");
   final_.add(png_, "preview");

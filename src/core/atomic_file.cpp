@@ -40,15 +40,15 @@ void flush_to_disk(const fs::path& file, const std::string& what_for) {
   ::close(fd);
 }
 
-void remove_stale_temporaries(const fs::path& target) {
-  const std::string prefix = "." + target.filename().string() + ".tmp-";
-  const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+void remove_stale_temporaries(const fs::path& dir) {
   std::error_code ec;
-  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+  for (fs::directory_iterator it(dir.empty() ? fs::path(".") : dir, ec), end; !ec && it != end; it.increment(ec)) {
+    // temp_path_beside's names: "." NAME ".tmp-" PID "-" N EXT.
     const std::string name = it->path().filename().string();
-    if (name.compare(0, prefix.size(), prefix) != 0) continue;
+    const size_t tag = name.rfind(".tmp-");
+    if (name.empty() || name[0] != '.' || tag == std::string::npos) continue;
     char* rest = nullptr;
-    const long pid = std::strtol(name.c_str() + prefix.size(), &rest, 10);
+    const long pid = std::strtol(name.c_str() + tag + 5, &rest, 10);
     if (pid <= 0 || rest == nullptr || *rest != '-') continue;
     // Alive (or someone else's: EPERM) is left alone.
     if (::kill(pid_t(pid), 0) != 0 && errno == ESRCH) {

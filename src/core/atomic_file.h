@@ -17,9 +17,9 @@ std::filesystem::path temp_path_beside(const std::filesystem::path& target, cons
 // was renamed onto it holds the whole file. Throws EnvironmentError naming `what_for`.
 void flush_to_disk(const std::filesystem::path& file, const std::string& what_for);
 
-// Temporaries that a killed caligo left beside `target` (".NAME.tmp-PID-N.EXT" whose PID is no
-// live process): removed, best effort. Called when an output is planned.
-void remove_stale_temporaries(const std::filesystem::path& target);
+// Temporaries that a killed caligo left in `dir` (".NAME.tmp-PID-N.EXT" whose PID is no live
+// process): removed, best effort. Called when an output in that folder is planned.
+void remove_stale_temporaries(const std::filesystem::path& dir);
 
 // Calls write(temp_path) with a temporary beside `path` (temp_path_beside: same file system,
 // so the rename is atomic on POSIX), flushes it and renames it over `path`. If any step fails

@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <cstring>
@@ -21,10 +22,10 @@ namespace {
 namespace fs = std::filesystem;
 
 // Device and inode after following symlinks; nullopt for a path that names no file (yet).
-std::optional<std::pair<dev_t, ino_t>> identity(const std::string& path) {
+std::optional<std::pair<unsigned long, unsigned long>> identity(const std::string& path) {
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0) return std::nullopt;
-  return std::pair{st.st_dev, st.st_ino};
+  return std::pair<unsigned long, unsigned long>{st.st_dev, st.st_ino};
 }
 
 bool same_file(const std::string& a, const std::string& b) {
@@ -34,7 +35,10 @@ bool same_file(const std::string& a, const std::string& b) {
 
 }  // namespace
 
-void check_output_path(const std::string& path, const std::string& what) {
+namespace {
+
+// The checks of check_output_path but the probe: names a file in an existing folder.
+fs::path checked_folder(const std::string& path, const std::string& what) {
   const SourceLocation where{path, ""};
   if (path.empty()) throw InputError("the " + what + " output path is empty");
   const fs::path p(path);
@@ -45,45 +49,65 @@ void check_output_path(const std::string& path, const std::string& what) {
   const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
   if (!fs::is_directory(dir, ec))
     throw InputError(where, "the " + what + " output's folder \"" + dir.string() + "\" does not exist");
-  // Can a file be created there? (Permission bits do not say it for root, nor for read-only
-  // mounts: try.)
-  const fs::path probe = temp_path_beside(p, ".probe-");
+  return dir;
+}
+
+// Can a file be created in `dir`? (Permission bits do not say it for root, nor for read-only
+// mounts: try.) Also clears what killed runs left there.
+void probe_folder(const fs::path& dir, const std::string& path, const std::string& what) {
+  const fs::path probe = temp_path_beside(fs::path(path), ".probe-");
   const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
   if (fd < 0)
     throw EnvironmentError(path + ": cannot create the " + what + " output in \"" + dir.string() +
                            "\": " + std::strerror(errno));
   ::close(fd);
+  std::error_code ec;
   fs::remove(probe, ec);
-  remove_stale_temporaries(p);
+  remove_stale_temporaries(dir);
+}
+
+}  // namespace
+
+void check_output_path(const std::string& path, const std::string& what) {
+  probe_folder(checked_folder(path, what), path, what);
 }
 
 void OutputTransaction::add(const std::string& path, const std::string& what) {
-  check_output_path(path, what);
-  // Two outputs of one name would overwrite each other (-o x.exr --checkpoint x.exr).
+  const fs::path dir = checked_folder(path, what);
   std::error_code ec;
-  const fs::path canonical = fs::weakly_canonical(path, ec);
-  for (const std::string& other : paths_)
-    if (other == path || (!ec && fs::weakly_canonical(other, ec) == canonical) || same_file(other, path))
+  const std::string canonical = fs::weakly_canonical(dir, ec).string();
+  if (std::find(probed_.begin(), probed_.end(), canonical) == probed_.end()) {
+    probe_folder(dir, path, what);
+    probed_.push_back(canonical);
+  }
+  // Two outputs of one file would overwrite each other (-o x.exr --checkpoint x.exr).
+  Output out{path, fs::weakly_canonical(path, ec).string(), identity(path)};
+  if (ec) out.canonical.clear();
+  for (const Output& other : outputs_)
+    if (other.path == path || (!out.canonical.empty() && other.canonical == out.canonical) ||
+        (out.identity && other.identity == out.identity))
       throw InputError(SourceLocation{path, ""}, "the " + what + " output is the same file as another output");
-  refuse_input(path, what);
+  refuse_input(out, what);
+  outputs_.push_back(std::move(out));
   paths_.push_back(path);
 }
 
 void OutputTransaction::protect(const std::string& path, const std::string& what, const std::string& may_replace) {
-  inputs_.push_back({path, what, may_replace});
-  for (const std::string& output : paths_) refuse_input(output, "");
+  std::error_code ec;
+  Input in{path, what, may_replace, fs::weakly_canonical(path, ec).string(), identity(path)};
+  if (ec) in.canonical.clear();
+  inputs_.push_back(std::move(in));
+  for (const Output& output : outputs_) refuse_input(output, "");
 }
 
-void OutputTransaction::refuse_input(const std::string& output, const std::string& what) const {
-  std::error_code ec;
-  const fs::path canonical = fs::weakly_canonical(output, ec);
+void OutputTransaction::refuse_input(const Output& output, const std::string& what) const {
   for (const Input& in : inputs_) {
-    if (!in.may_replace.empty() && (in.may_replace == output || same_file(in.may_replace, output))) continue;
-    std::error_code ec2;
-    if (same_file(in.path, output) || (!ec && fs::weakly_canonical(in.path, ec2) == canonical))
-      throw InputError(SourceLocation{output, ""}, "the " + (what.empty() ? std::string() : what + " ") +
-                                                        "output is the " + in.what + " \"" + in.path +
-                                                        "\" the command reads; choose another output name");
+    if (!in.may_replace.empty() && (in.may_replace == output.path || same_file(in.may_replace, output.path))) continue;
+    if ((in.identity && in.identity == output.identity) ||
+        (!in.canonical.empty() && in.canonical == output.canonical))
+      throw InputError(SourceLocation{output.path, ""},
+                       "the " + (what.empty() ? std::string() : what + " ") + "output is the " + in.what + " \"" +
+                           in.path + "\" the command reads; choose another output name");
   }
 }
 

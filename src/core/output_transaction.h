@@ -20,6 +20,8 @@
 
 #include <cstddef>
 #include <functional>
+#include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -47,20 +49,29 @@ class OutputTransaction {
   const std::string& path(size_t index) const { return paths_[index]; }
 
   OutputTransaction() = default;
-  OutputTransaction(const OutputTransaction& other) : paths_(other.paths_), inputs_(other.inputs_) {}
+  OutputTransaction(const OutputTransaction& other)
+      : paths_(other.paths_), outputs_(other.outputs_), inputs_(other.inputs_), probed_(other.probed_) {}
   OutputTransaction& operator=(const OutputTransaction&) = delete;
   ~OutputTransaction();
 
  private:
-  struct Input {
-    std::string path, what, may_replace;
+  using FileId = std::optional<std::pair<unsigned long, unsigned long>>;  // device, inode
+  struct Output {
+    std::string path, canonical;
+    FileId identity;  // when the file exists
   };
-  void refuse_input(const std::string& output, const std::string& what) const;
+  struct Input {
+    std::string path, what, may_replace, canonical;
+    FileId identity;
+  };
+  void refuse_input(const Output& output, const std::string& what) const;
 
   void discard();
 
   std::vector<std::string> paths_;
+  std::vector<Output> outputs_;
   std::vector<Input> inputs_;
+  std::vector<std::string> probed_;  // folders already probed
   std::vector<std::string> temps_;  // per output: its staged temporary, or empty
 };
 

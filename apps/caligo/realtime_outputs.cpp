@@ -1,0 +1,113 @@
+#include "realtime_outputs.h"
+
+#include <cstdio>
+#include <filesystem>
+
+#include "core/error.h"
+#include "image/exr_io.h"
+#include "image/png_io.h"
+#include "image/tonemap.h"
+#include "render_outputs.h"
+
+namespace caligo {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string frame_name(const std::string& folder, int index, bool exr) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%04d.%s", index, exr ? "exr" : "png");
+  return (fs::path(folder) / name).string();
+}
+
+// The frame folder, made when missing (its parent must exist); "" when it was there already.
+std::string make_frame_folder(const std::string& out) {
+  std::error_code ec;
+  if (fs::exists(out, ec)) {
+    if (!fs::is_directory(out, ec)) throw InputError(SourceLocation{out, ""}, "output exists and is not a folder");
+    return "";
+  }
+  const fs::path parent = fs::path(out).parent_path().empty() ? "." : fs::path(out).parent_path();
+  if (!fs::is_directory(parent, ec))
+    throw InputError(SourceLocation{out, ""}, "the output folder's parent \"" + parent.string() + "\" does not exist");
+  if (!fs::create_directory(out, ec))
+    throw EnvironmentError(out + ": cannot create the output folder: " + ec.message());
+  return out;
+}
+
+}  // namespace
+
+RealtimeOutputKind realtime_output_kind(const std::string& out) {
+  if (out.empty()) return RealtimeOutputKind::none;
+  const std::string ext = fs::path(out).extension().string();
+  if (ext == ".gif") return RealtimeOutputKind::gif;
+  if (ext == ".png") return RealtimeOutputKind::single_png;
+  if (ext == ".exr") return RealtimeOutputKind::single_exr;
+  return RealtimeOutputKind::folder;
+}
+
+RealtimeOutputs::RealtimeOutputs(const RealtimeOptions& o, const SceneDesc& desc, int frames)
+    : kind_(realtime_output_kind(o.output)), exposure_(o.exposure), exr_frames_(o.exr) {
+  tx_.emplace();
+  protect_scene_inputs(*tx_, desc);
+  if (kind_ == RealtimeOutputKind::folder) created_folder_ = make_frame_folder(o.output);
+  try {
+    if (kind_ == RealtimeOutputKind::folder)
+      for (int i = 0; i < frames; ++i) tx_->add(frame_name(o.output, i, exr_frames_), "frame");
+    else if (kind_ != RealtimeOutputKind::none)
+      tx_->add(o.output, kind_ == RealtimeOutputKind::gif ? "GIF" : "image");
+    if (o.compare_reference) {
+      fs::path png = o.output.empty() ? fs::path("realtime") : fs::path(o.output);
+      if (kind_ == RealtimeOutputKind::folder) png /= "comparison.png";
+      else png.replace_extension(".comparison.png");
+      comparison_ = png.string();
+      tx_->add(comparison_, "comparison");
+    }
+  } catch (...) {
+    tx_.reset();
+    std::error_code ignored;
+    if (!created_folder_.empty()) fs::remove(created_folder_, ignored);
+    throw;
+  }
+}
+
+RealtimeOutputs::~RealtimeOutputs() {
+  tx_.reset();  // removes what was staged
+  std::error_code ignored;
+  if (!created_folder_.empty()) fs::remove(created_folder_, ignored);  // only if empty
+}
+
+void RealtimeOutputs::frame(const Image& image, int index, bool last) {
+  const PreviewSettings preview{exposure_, true};
+  const auto png = [&](const std::string& temp) {
+    write_png(temp, image.width(), image.height(), to_srgb8_preview(image, preview));
+  };
+  const auto exr = [&](const std::string& temp) { write_exr(temp, image); };
+  switch (kind_) {
+    case RealtimeOutputKind::folder:
+      if (exr_frames_) tx_->stage(size_t(index), exr);
+      else tx_->stage(size_t(index), png);
+      break;
+    case RealtimeOutputKind::gif: gif_frames_.push_back(to_srgb8_preview(image, preview)); break;
+    case RealtimeOutputKind::single_png:
+      if (last) tx_->stage(0, png);
+      break;
+    case RealtimeOutputKind::single_exr:
+      if (last) tx_->stage(0, exr);
+      break;
+    case RealtimeOutputKind::none: break;
+  }
+}
+
+void RealtimeOutputs::comparison(int width, int height, const std::vector<uint8_t>& rgb8) {
+  tx_->stage(tx_->size() - 1, [&](const std::string& temp) { write_png(temp, width, height, rgb8); });
+}
+
+void RealtimeOutputs::commit(int width, int height, float fps) {
+  if (kind_ == RealtimeOutputKind::gif)
+    tx_->stage(0, [&](const std::string& temp) { write_gif(temp, width, height, gif_frames_, fps); });
+  tx_->commit();
+  created_folder_.clear();
+}
+
+}  // namespace caligo
