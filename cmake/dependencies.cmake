@@ -5,6 +5,7 @@ find_package(OpenEXR CONFIG REQUIRED)
 find_package(Imath CONFIG REQUIRED)
 find_package(OpenImageIO 2.4 CONFIG REQUIRED)
 # PNG previews through libpng directly (CMake's FindPNG; OpenImageIO only in its plugin).
+find_package(ZLIB REQUIRED)
 find_package(PNG REQUIRED)
 find_package(nlohmann_json CONFIG REQUIRED)
 find_package(CLI11 CONFIG REQUIRED)

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/checksum.h"
 #include "scene/builtins.h"
 
 namespace caligo {
@@ -35,11 +36,16 @@ std::string scene_source(const std::string& scene_argument) {
   return text.str();
 }
 
-uint64_t checkpoint_key(const std::string& scene_source, const RenderSettings& s, float time,
-                        const std::vector<std::string>& priorities) {
+uint64_t checkpoint_key(const std::string& scene_source, const std::vector<std::string>& files,
+                        const RenderSettings& s, float time, const std::vector<std::string>& priorities) {
   std::ostringstream canon;
+  canon << "files " << files.size();
+  for (const std::string& f : files) {
+    const FileChecksum sum = file_checksum(f);
+    canon << ' ' << sum.bytes << ':' << sum.crc;
+  }
   const PathSettings& p = s.path;
-  canon << "v1 caligo " << CALIGO_VERSION << " res " << s.resolution.x << 'x' << s.resolution.y << " seed " << s.seed << " bounces "
+  canon << " v1 caligo " << CALIGO_VERSION << " res " << s.resolution.x << 'x' << s.resolution.y << " seed " << s.seed << " bounces "
         << p.limits.max_bounces << ' ' << p.limits.max_volume_bounces << " rr " << p.russian_roulette_depth
         << " null " << p.max_null_crossings << " dist " << int(p.distance_sampling) << " nee "
         << hex(p.volume_nee_scale) << " lights " << int(p.light_sampler) << " abs " << p.absorption_by_weight

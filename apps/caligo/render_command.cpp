@@ -377,9 +377,9 @@ int run_render(const RenderOptions& o) {
   if (!(std::isfinite(o.exposure) && std::abs(o.exposure) <= 64.0f))
     throw InputError(kCommandLine, "--exposure: expected stops in [-64, 64]");
   const RenderOutputs outputs(o, desc);  // every output is checked before any work
-  const uint64_t key = checkpoint_key(scene_source(o.scene), settings, o.time, o.priorities);
   check_memory(settings);
-  const auto scene = Scene::build(desc);
+  const auto scene = Scene::build(desc);  // meshes load here: their errors come first, located
+  const uint64_t key = checkpoint_key(scene_source(o.scene), desc.files, settings, o.time, o.priorities);
   const Progress::Style style = o.quiet ? Progress::Style::kQuiet : Progress::Style::kAuto;
   if (distributed::launcher_world_size()) return run_distributed(o, schedule, *scene, settings, outputs, key, style);
 

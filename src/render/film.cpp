@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/atomic_file.h"
+#include "core/checksum.h"
 #include "core/error.h"
 
 namespace caligo {
@@ -107,9 +108,11 @@ namespace {
 
 // The raw film file: a fixed header, then counts (u32 per pixel), depths (f32 per pixel, when the
 // film holds depth) and sums (16-byte little-endian integers, channels per pixel), in the host's
-// byte order (x86-64 and aarch64 alike: little-endian). The size must match the header exactly.
+// byte order (x86-64 and aarch64 alike: little-endian), then the CRC-32 of everything before it
+// (u32; core/checksum.h). The size must match the header exactly and the CRC the bytes: a
+// flipped bit in a sum, a count or the header is refused, not resumed into a wrong image.
 constexpr char kMagic[12] = {'C', 'A', 'L', 'I', 'G', 'O', '-', 'F', 'I', 'L', 'M', '\n'};
-constexpr uint32_t kVersion = 1;
+constexpr uint32_t kVersion = 2;  // 1: without the CRC
 constexpr uint32_t kMaxSide = 1u << 16;
 constexpr uint64_t kMaxFilmPixels = uint64_t(1) << 26;  // the render command's pixel cap
 constexpr uint32_t kMaxFilmSamples = 1'000'000;         // the --spp maximum
@@ -148,8 +151,10 @@ FilmHeader check_header(std::string_view prefix, uint64_t total, const SourceLoc
                                 " is out of range");
   if (header.aov_bits >> kAovCount) throw InputError(where, "film names unknown outputs");
   const AovSet aovs = AovSet::from_bits(header.aov_bits);
-  const uint64_t expected = sizeof header + pixels * (sizeof(uint32_t) + (aovs.has(Aov::kDepth) ? sizeof(float) : 0) +
-                                                      uint64_t(summed_channels(aovs)) * sizeof(FixedSum));
+  const uint64_t expected = sizeof header +
+                            pixels * (sizeof(uint32_t) + (aovs.has(Aov::kDepth) ? sizeof(float) : 0) +
+                                      uint64_t(summed_channels(aovs)) * sizeof(FixedSum)) +
+                            sizeof(uint32_t);
   if (total != expected)
     throw InputError(where, "film is " + std::to_string(total) + " bytes, its header needs " +
                                 std::to_string(expected) + " (truncated or corrupt)");
@@ -204,18 +209,26 @@ std::string Film::to_bytes(uint64_t key) const {
   header.key = key;
   const size_t counts = counts_.size() * sizeof(uint32_t), depths = depth_.size() * sizeof(float),
                sums = sums_.size() * sizeof(FixedSum);
-  std::string bytes(sizeof header + counts + depths + sums, '\0');
+  const size_t body = sizeof header + counts + depths + sums;
+  std::string bytes(body + sizeof(uint32_t), '\0');
   char* out = bytes.data();
   std::memcpy(out, &header, sizeof header);
   std::memcpy(out += sizeof header, counts_.data(), counts);
   if (depths > 0) std::memcpy(out + counts, depth_.data(), depths);  // no depth: data() may be null
   std::memcpy(out + counts + depths, sums_.data(), sums);
+  const uint32_t crc = crc32_of({bytes.data(), body});
+  std::memcpy(bytes.data() + body, &crc, sizeof crc);
   return bytes;
 }
 
 Film Film::from_bytes(std::string_view bytes, const std::string& source, uint64_t* key) {
   const SourceLocation where{source, ""};
   const FilmHeader header = check_header(bytes, bytes.size(), where);
+  const size_t body = bytes.size() - sizeof(uint32_t);
+  uint32_t crc = 0;
+  std::memcpy(&crc, bytes.data() + body, sizeof crc);
+  if (crc != crc32_of(bytes.substr(0, body)))
+    throw InputError(where, "the film's checksum does not match its contents (corrupt: a changed or damaged byte)");
   Film film({int(header.width), int(header.height)}, AovSet::from_bits(header.aov_bits));
   const size_t counts = film.counts_.size() * sizeof(uint32_t), depths = film.depth_.size() * sizeof(float),
                sums = film.sums_.size() * sizeof(FixedSum);
@@ -223,14 +236,14 @@ Film Film::from_bytes(std::string_view bytes, const std::string& source, uint64_
   std::memcpy(film.counts_.data(), in, counts);
   if (depths > 0) std::memcpy(film.depth_.data(), in + counts, depths);
   std::memcpy(film.sums_.data(), in + counts + depths, sums);
-  // What no render writes: more samples than --spp allows (a resume would try to "continue" a
+  // What no render writes (a checksum can be made to match): more samples than --spp allows (a resume would try to "continue" a
   // pixel from there), or a NaN depth.
   for (uint32_t c : film.counts_)
     if (c > kMaxFilmSamples)
       throw InputError(where, "the film holds a pixel of " + std::to_string(c) + " samples; at most " +
                                   std::to_string(kMaxFilmSamples) + " are possible (corrupt)");
   for (float d : film.depth_)
-    if (std::isnan(d)) throw InputError(where, "the film holds a NaN depth (corrupt)");
+    if (!(d >= 0.0f)) throw InputError(where, "the film holds a negative or NaN depth (corrupt)");
   if (key) *key = header.key;
   return film;
 }

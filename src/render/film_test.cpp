@@ -10,6 +10,7 @@
 
 #include <unistd.h>
 
+#include "core/checksum.h"
 #include "core/error.h"
 #include "core/rng.h"
 #include "render/film.h"
@@ -246,6 +247,12 @@ namespace {
 
 // Hostile checkpoints: a header claiming a huge film is refused before anything of that size is
 // allocated; a pixel count no render writes (2^31) is refused rather than "continued".
+// Recomputes a film file's trailing CRC-32 after an edit, as a deliberate forger would.
+void reseal(std::string& bytes) {
+  const uint32_t crc = crc32_of(std::string_view(bytes).substr(0, bytes.size() - 4));
+  std::memcpy(bytes.data() + bytes.size() - 4, &crc, 4);
+}
+
 TEST(Film, HostileFilmFilesAreRefusedBeforeAllocating) {
   Film film({2, 2}, AovSet::defaults());
   film.add(0, 0, PathSample{}, 1.0f);
@@ -259,14 +266,57 @@ TEST(Film, HostileFilmFilesAreRefusedBeforeAllocating) {
   std::ofstream(path, std::ios::binary) << huge;
   EXPECT_THROW(Film::load(path.string()), InputError);
   std::filesystem::remove(path);
+  // A crafted file whose checksum matches still meets the value checks.
   const uint32_t absurd = 0x80000000u;
   std::memcpy(bytes.data() + 40, &absurd, 4);  // the first pixel's count
+  reseal(bytes);
   try {
     Film::from_bytes(bytes, "counts.ckpt");
     ADD_FAILURE() << "no error";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("2147483648 samples"), std::string::npos) << e.what();
   }
+}
+
+// The message of from_bytes' refusal, or "" when it accepts.
+std::string refusal(const std::string& bytes) {
+  try {
+    Film::from_bytes(bytes, "c.ckpt");
+    return "";
+  } catch (const InputError& e) {
+    return e.what();
+  }
+}
+
+// Every kind of damage a disk, a copy or a hand can do is refused, naming the file: a flipped
+// bit in a sum, a zeroed or altered sample count, a changed header field, a negative depth.
+TEST(Film, CorruptCheckpointsAreRefused) {
+  Film film({3, 2}, AovSet::defaults());
+  for (int i = 0; i < 6; ++i) film.add(i % 3, i / 3, PathSample{}, 1.0f);
+  const std::string clean = film.to_bytes(77);
+  ASSERT_EQ(refusal(clean), "");
+  const size_t header = 40, counts = header, depths = counts + 6 * 4, sums = depths + 6 * 4;
+  for (size_t bit = 0; bit < 8 * (clean.size() - 4); bit += 97) {  // every 97th bit of the file
+    std::string flipped = clean;
+    flipped[bit / 8] = char(flipped[bit / 8] ^ (1 << (bit % 8)));
+    const std::string why = refusal(flipped);
+    EXPECT_NE(why.find("c.ckpt"), std::string::npos) << "bit " << bit << ": " << why;
+  }
+  std::string zeroed = clean;
+  std::memset(zeroed.data() + counts + 4, 0, 4);
+  EXPECT_NE(refusal(zeroed).find("checksum"), std::string::npos);
+  std::string altered = clean;
+  altered[counts] = 2;
+  EXPECT_NE(refusal(altered).find("checksum"), std::string::npos);
+  std::string sum_bit = clean;
+  sum_bit[sums + 5] ^= 0x10;
+  EXPECT_NE(refusal(sum_bit).find("checksum"), std::string::npos);
+  std::string negative = clean;
+  const float minus = -1.0f;
+  std::memcpy(negative.data() + depths, &minus, 4);
+  EXPECT_NE(refusal(negative).find("checksum"), std::string::npos);
+  reseal(negative);
+  EXPECT_NE(refusal(negative).find("negative"), std::string::npos);
 }
 
 }  // namespace
