@@ -4,16 +4,20 @@
 // experiment itself, and what it measures, is src/experiments/wyman_table.h.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "commands.h"
-#include "core/atomic_file.h"
+#include "output_folder.h"
+#include "core/output_transaction.h"
 #include "experiments/wyman_table.h"
 #include "image/png_io.h"
 
@@ -83,14 +87,6 @@ WymanTableSettings wyman_settings(const BenchTableOptions& o) {
   return s;
 }
 
-void create_output_folder(const std::string& output) {
-  std::error_code ec;
-  if (std::filesystem::exists(output, ec) && !std::filesystem::is_directory(output, ec))
-    throw InputError(SourceLocation{output, ""}, "output exists and is not a folder");
-  std::filesystem::create_directories(output, ec);
-  if (ec) throw InputError(SourceLocation{output, ""}, "cannot create the output folder: " + ec.message());
-}
-
 std::string png_name(const std::string& scene) {
   return std::filesystem::path(scene).stem().string() + ".png";
 }
@@ -100,32 +96,42 @@ std::string png_name(const std::string& scene) {
 int run_bench_table(const BenchTableOptions& o) {
   const WymanTableSettings settings = wyman_settings(o);
   const std::vector<WymanScene> scenes = load_wyman_scenes(settings, load_scene);  // fail before work
-  if (!o.output.empty()) create_output_folder(o.output);
+  // The outputs, one transaction planned now: a strip per scene, then the table.
+  std::optional<OutputFolder> folder;
+  OutputTransaction outputs;
+  const auto output_path = [&](const std::string& name) { return (std::filesystem::path(o.output) / name).string(); };
+  if (!o.output.empty()) {
+    folder.emplace(o.output);
+    for (const std::string& n : settings.scenes) outputs.add(output_path(png_name(n)), "strip");
+    outputs.add(output_path("table.md"), "table");
+  }
 
   WymanTableHooks hooks;
   hooks.progress = [](const std::string& line) { std::fprintf(stderr, "bench-table: %s\n", line.c_str()); };
   if (!o.output.empty())
     hooks.preview = [&](const std::string& scene, const Rgb8Image& strip) {
-      write_png((std::filesystem::path(o.output) / png_name(scene)).string(), strip.width, strip.height,
-                strip.rgb);
+      const auto it = std::find(settings.scenes.begin(), settings.scenes.end(), scene);
+      outputs.stage(size_t(it - settings.scenes.begin()), [&](const std::string& temp) {
+        write_png(temp, strip.width, strip.height, strip.rgb);
+      });
     };
   const std::string md = wyman_markdown(run_wyman_table(settings, scenes, hooks));
   std::fputs(md.c_str(), stdout);
   if (!o.output.empty()) {
-    const std::string path = (std::filesystem::path(o.output) / "table.md").string();
-    // Atomically, like every other output: an interrupted run leaves no half table.
-    write_file_atomically(path, [&](const std::string& temp) {
+    outputs.stage(outputs.size() - 1, [&](const std::string& temp) {
       std::ofstream out(temp);
       out << md;
       out.close();
-      if (!out) throw InputError(SourceLocation{path, ""}, "cannot write the table");
+      if (!out) throw std::runtime_error("cannot write the table");
     });
+    outputs.commit();
+    folder->keep();
     std::string pngs;
     for (const std::string& n : settings.scenes) pngs += " " + png_name(n);
     std::printf(
         "-> %s, per scene (rows: scales; columns: none, brute 150, hybrid 50, textured, march, reference, "
         "spot reference):%s\n",
-        path.c_str(), pngs.c_str());
+        output_path("table.md").c_str(), pngs.c_str());
   }
   return 0;
 }

@@ -20,7 +20,7 @@ struct RenderOptions {
   std::optional<int> spp;
   std::optional<std::string> resolution;  // "WxH"
   std::optional<int> threads;
-  std::optional<int64_t> seed;  // signed so that -1 is seen (and refused), not wrapped
+  std::optional<std::string> seed;  // parse_seed: text, so that -1 and 2^64 are refused, not wrapped
   // PathSettings (settings/path_settings.h), each overriding the scene's or the default.
   std::optional<int> max_bounces;  // --max-bounces, alias --max-depth
   std::optional<int> max_volume_bounces;
@@ -80,7 +80,7 @@ struct GenerateOptions {
   std::string kind;    // cloud, smoke, fire
   std::string output;  // .vdb or .nvdb
   int resolution = 128;
-  uint64_t seed = 1;
+  std::string seed = "1";  // parse_seed
   bool quiet = false;
 };
 
@@ -105,6 +105,8 @@ inline const SourceLocation kCommandLine{"command line", ""};
 SceneDesc load_scene(const std::string& name);
 // "WxH" of --res; InputError otherwise.
 Vec2i parse_resolution(const std::string& text);
+// A --seed: a decimal integer in [0, 2^63); a located InputError naming the option otherwise.
+uint64_t parse_seed(const std::string& text);
 
 void add_render_command(CLI::App& app, RenderOptions& options);
 void add_realtime_command(CLI::App& app, RealtimeOptions& options);

@@ -9,6 +9,7 @@
 
 #include "commands.h"
 #include "core/error.h"
+#include "core/output_transaction.h"
 #include "grids/grid_generate.h"
 #include "grids/grid_io.h"
 
@@ -33,23 +34,23 @@ int run_generate(const GenerateOptions& o) {
     throw InputError(kCommandLine, "--res must be in [" + std::to_string(kMinGenerateResolution) + ", " +
                                        std::to_string(kMaxGenerateResolution) + "], got " +
                                        std::to_string(o.resolution));
+  const uint64_t seed = parse_seed(o.seed);
   std::string ext = std::filesystem::path(o.output).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   if (ext != ".vdb" && ext != ".nvdb")
     throw InputError({o.output, ""}, "the output must end in .vdb (OpenVDB) or .nvdb (NanoVDB)");
-  const std::filesystem::path parent = std::filesystem::path(o.output).parent_path();
-  if (!parent.empty() && !std::filesystem::is_directory(parent))
-    throw InputError({o.output, ""}, "the output folder does not exist");
+  OutputTransaction output;
+  output.add(o.output, "grid");  // a folder, a missing folder or a read-only one: refused now
 
   const auto start = std::chrono::steady_clock::now();
-  const std::vector<SparseFloatGrid> grids = generate_grids({*kind, o.resolution, o.seed});
+  const std::vector<SparseFloatGrid> grids = generate_grids({*kind, o.resolution, seed});
   const auto generated = std::chrono::steady_clock::now();
-  write_grid_file(o.output, grids);
+  output.commit({[&](const std::string& temp) { write_grid_file(temp, grids); }});
   const auto written = std::chrono::steady_clock::now();
   if (!o.quiet) {
     const auto ms = [](auto a, auto b) { return std::chrono::duration<double, std::milli>(b - a).count(); };
     std::printf("wrote %s: %s at %d voxels (voxel %.4g m), seed %llu\n", o.output.c_str(), o.kind.c_str(),
-                o.resolution, double(grids[0].voxel_size), static_cast<unsigned long long>(o.seed));
+                o.resolution, double(grids[0].voxel_size), static_cast<unsigned long long>(seed));
     for (const SparseFloatGrid& g : grids)
       std::printf("  %-12s %10llu active voxels in %6zu blocks\n", g.name.c_str(),
                   static_cast<unsigned long long>(g.active_voxels()), g.blocks.size());

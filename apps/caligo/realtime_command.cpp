@@ -15,10 +15,10 @@
 #include <vector>
 
 #include "commands.h"
+#include "realtime_outputs.h"
 #include "core/median.h"
 #include "hybrid/hybrid_pipeline.h"
 #include "realtime/pipeline.h"
-#include "realtime_outputs.h"
 #include "realtime/reference_compare.h"
 #include "render/render.h"
 #include "scene/scene.h"

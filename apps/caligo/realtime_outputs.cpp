@@ -20,21 +20,6 @@ std::string frame_name(const std::string& folder, int index, bool exr) {
   return (fs::path(folder) / name).string();
 }
 
-// The frame folder, made when missing (its parent must exist); "" when it was there already.
-std::string make_frame_folder(const std::string& out) {
-  std::error_code ec;
-  if (fs::exists(out, ec)) {
-    if (!fs::is_directory(out, ec)) throw InputError(SourceLocation{out, ""}, "output exists and is not a folder");
-    return "";
-  }
-  const fs::path parent = fs::path(out).parent_path().empty() ? "." : fs::path(out).parent_path();
-  if (!fs::is_directory(parent, ec))
-    throw InputError(SourceLocation{out, ""}, "the output folder's parent \"" + parent.string() + "\" does not exist");
-  if (!fs::create_directory(out, ec))
-    throw EnvironmentError(out + ": cannot create the output folder: " + ec.message());
-  return out;
-}
-
 }  // namespace
 
 RealtimeOutputKind realtime_output_kind(const std::string& out) {
@@ -48,9 +33,9 @@ RealtimeOutputKind realtime_output_kind(const std::string& out) {
 
 RealtimeOutputs::RealtimeOutputs(const RealtimeOptions& o, const SceneDesc& desc, int frames)
     : kind_(realtime_output_kind(o.output)), exposure_(o.exposure), exr_frames_(o.exr) {
+  if (kind_ == RealtimeOutputKind::folder) folder_.emplace(o.output);
   tx_.emplace();
   protect_scene_inputs(*tx_, desc);
-  if (kind_ == RealtimeOutputKind::folder) created_folder_ = make_frame_folder(o.output);
   try {
     if (kind_ == RealtimeOutputKind::folder)
       for (int i = 0; i < frames; ++i) tx_->add(frame_name(o.output, i, exr_frames_), "frame");
@@ -65,16 +50,14 @@ RealtimeOutputs::RealtimeOutputs(const RealtimeOptions& o, const SceneDesc& desc
     }
   } catch (...) {
     tx_.reset();
-    std::error_code ignored;
-    if (!created_folder_.empty()) fs::remove(created_folder_, ignored);
+    folder_.reset();
     throw;
   }
 }
 
 RealtimeOutputs::~RealtimeOutputs() {
-  tx_.reset();  // removes what was staged
-  std::error_code ignored;
-  if (!created_folder_.empty()) fs::remove(created_folder_, ignored);  // only if empty
+  tx_.reset();  // removes what was staged, then the folder if this run made it
+  folder_.reset();
 }
 
 void RealtimeOutputs::frame(const Image& image, int index, bool last) {
@@ -107,7 +90,7 @@ void RealtimeOutputs::commit(int width, int height, float fps) {
   if (kind_ == RealtimeOutputKind::gif)
     tx_->stage(0, [&](const std::string& temp) { write_gif(temp, width, height, gif_frames_, fps); });
   tx_->commit();
-  created_folder_.clear();
+  if (folder_) folder_->keep();
 }
 
 }  // namespace caligo

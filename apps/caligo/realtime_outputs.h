@@ -14,6 +14,7 @@
 #include "commands.h"
 #include "core/output_transaction.h"
 #include "image/image.h"
+#include "output_folder.h"
 
 namespace caligo {
 
@@ -46,9 +47,10 @@ class RealtimeOutputs {
   float exposure_;
   bool exr_frames_;
   std::string comparison_;
+  std::optional<OutputFolder> folder_;
   std::optional<OutputTransaction> tx_;
   std::vector<std::vector<uint8_t>> gif_frames_;
-  std::string created_folder_;  // the frame folder this run made, until its commit
+
 };
 
 }  // namespace caligo

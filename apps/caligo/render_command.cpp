@@ -198,10 +198,7 @@ RenderSettings settings_from(const RenderOptions& o, const SceneDesc& desc) {
     if (*o.threads < 1 || *o.threads > 1024) throw InputError(kCommandLine, "--threads: expected 1 to 1024");
     s.threads = *o.threads;
   }
-  if (o.seed) {
-    if (*o.seed < 0) throw InputError(kCommandLine, "--seed: expected a non-negative integer");
-    s.seed = uint64_t(*o.seed);
-  }
+  if (o.seed) s.seed = parse_seed(*o.seed);
   apply_path_options(o, s.path);
   apply_image_options(o, desc, s);
   return s;

@@ -1,4 +1,6 @@
 // What the subcommands share: the scene argument and the resolution option.
+#include <charconv>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -19,6 +21,16 @@ Vec2i parse_resolution(const std::string& text) {
     throw InputError(kCommandLine,
                      "--res: each side must be between 1 and 16384, got " + quote_for_message(text));
   return {w, h};
+}
+
+uint64_t parse_seed(const std::string& text) {
+  int64_t value = 0;
+  const char* end = text.data() + text.size();
+  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+  if (text.empty() || ec != std::errc() || ptr != end || value < 0)
+    throw InputError(kCommandLine, "--seed: expected an integer from 0 to 9223372036854775807, got " +
+                                       quote_for_message(text));
+  return uint64_t(value);
 }
 
 SceneDesc load_scene(const std::string& name) {

@@ -74,13 +74,17 @@ void write_file_atomically(const std::string& path, const std::function<void(con
   } catch (const std::invalid_argument&) {
     discard();
     throw;
-  } catch (const EnvironmentError&) {
-    discard();
-    throw;
   } catch (const std::exception& e) {
     discard();
-    throw EnvironmentError(path + ": cannot write (nothing was replaced): " + e.what());
+    throw EnvironmentError(path + ": cannot write (nothing was replaced): " + write_failure_reason(e));
   }
+}
+
+std::string write_failure_reason(const std::exception& e) {
+  const std::string what = e.what();
+  const std::string tag = "(nothing was replaced): ";
+  const size_t at = what.rfind(tag);
+  return at == std::string::npos ? what : what.substr(at + tag.size());
 }
 
 }  // namespace caligo

@@ -30,4 +30,9 @@ void remove_stale_temporaries(const std::filesystem::path& dir);
 void write_file_atomically(const std::string& path,
                            const std::function<void(const std::string& temp_path)>& write);
 
+// The reason in a write failure's message: what follows its last "(nothing was replaced): ",
+// so that a writer that writes atomically itself, called on a transaction's temporary, is
+// reported under the final name alone.
+std::string write_failure_reason(const std::exception& e);
+
 }  // namespace caligo

@@ -134,12 +134,9 @@ void OutputTransaction::stage(size_t index, const Writer& writer) {
   } catch (const InputError&) {
     discard();
     throw;
-  } catch (const EnvironmentError&) {
-    discard();
-    throw;
   } catch (const std::exception& e) {
     discard();
-    throw EnvironmentError(paths_[index] + ": cannot write (nothing was replaced): " + e.what());
+    throw EnvironmentError(paths_[index] + ": cannot write (nothing was replaced): " + write_failure_reason(e));
   }
 }
 

@@ -157,6 +157,20 @@ void write_grid_file(const std::string& path, const std::vector<SparseFloatGrid>
       write_vdb_file(temp, grids);
     else
       write_nvdb_file(temp, grids);
+    // OpenVDB's and NanoVDB's writers do not report a failed write (a full disk): read the
+    // file back and compare before it replaces anything.
+    GridFileInfo written;
+    try {
+      written = describe_grid_file(temp);
+    } catch (const std::exception&) {
+      throw std::runtime_error("the file written does not read back whole (is the disk full?)");
+    }
+    // Names, not voxel counts: the writers may prune or tile what a SparseFloatGrid holds.
+    bool same = written.grids.size() == grids.size();
+    for (const SparseFloatGrid& g : grids)
+      same = same && std::any_of(written.grids.begin(), written.grids.end(),
+                                 [&](const GridInfo& w) { return w.name == g.name; });
+    if (!same) throw std::runtime_error("the written file does not hold the grids written (disk full?)");
   });
 }
 
