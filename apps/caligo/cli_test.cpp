@@ -111,7 +111,7 @@ TEST_F(Cli, SameSeedGivesTheSameImageOnOneAndTwoThreads) {
 
   ASSERT_EQ(run("render default --res 32x32 --spp 4 -q --seed 7 -o " + other.string()).exit_code, 0);
   const RunResult differ = run("compare " + one.string() + " " + other.string() + " --max-rmse 1e-9");
-  EXPECT_EQ(differ.exit_code, 1);
+  EXPECT_EQ(differ.exit_code, 4);
   EXPECT_NE(differ.err.find("exceeds"), std::string::npos);
 }
 
@@ -302,7 +302,7 @@ TEST_F(Cli, PriorityOverrideChangesTheImage) {
   ASSERT_EQ(g.exit_code, 0) << g.err;
   ASSERT_EQ(run(base + "--priority red=high -o " + same.string()).exit_code, 0);
   EXPECT_EQ(run("compare " + red.string() + " " + same.string() + " --max-rmse 0").exit_code, 0);
-  EXPECT_EQ(run("compare " + red.string() + " " + green.string() + " --max-rmse 1e-9").exit_code, 1);
+  EXPECT_EQ(run("compare " + red.string() + " " + green.string() + " --max-rmse 1e-9").exit_code, 4);
 
   const fs::path exr = dir_ / "x.exr";
   for (const auto& [args, expected] : std::vector<std::pair<std::string, std::string>>{
@@ -333,7 +333,7 @@ TEST_F(Cli, LightSamplerOption) {
   const fs::path explicit_tree = dir_ / "tree2.exr";
   ASSERT_EQ(run(base + "--light-sampler tree -o " + explicit_tree.string()).exit_code, 0);
   EXPECT_EQ(run("compare " + tree.string() + " " + explicit_tree.string() + " --max-rmse 0").exit_code, 0);
-  EXPECT_EQ(run("compare " + tree.string() + " " + power.string() + " --max-rmse 1e-9").exit_code, 1);
+  EXPECT_EQ(run("compare " + tree.string() + " " + power.string() + " --max-rmse 1e-9").exit_code, 4);
   const fs::path bad = dir_ / "bad.exr";
   const RunResult r = run(base + "--light-sampler bvh -o " + bad.string());
   EXPECT_EQ(r.exit_code, 2) << r.err;
@@ -350,7 +350,7 @@ TEST_F(Cli, MaxBouncesAndItsAlias) {
   ASSERT_EQ(run(base + "--max-depth 1 -o " + depth.string()).exit_code, 0);
   ASSERT_EQ(run(base + "--max-bounces 2 -o " + more.string()).exit_code, 0);
   EXPECT_EQ(run("compare " + bounces.string() + " " + depth.string() + " --max-rmse 0").exit_code, 0);
-  EXPECT_EQ(run("compare " + bounces.string() + " " + more.string() + " --max-rmse 1e-9").exit_code, 1);
+  EXPECT_EQ(run("compare " + bounces.string() + " " + more.string() + " --max-rmse 1e-9").exit_code, 4);
   const fs::path bad = dir_ / "bad.exr";
   const RunResult both = run(base + "--max-bounces 1 --max-depth 2 -o " + bad.string());
   EXPECT_EQ(both.exit_code, 2) << both.err;

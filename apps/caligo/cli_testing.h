@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/mount.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -38,7 +39,23 @@ class CliFixture : public ::testing::Test {
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
-  void TearDown() override { fs::remove_all(dir_); }
+  void TearDown() override {
+    for (const fs::path& m : mounts_) ::umount2(m.c_str(), MNT_DETACH);
+    fs::remove_all(dir_);
+  }
+
+  // A small tmpfs at dir_/name ("size=64k", ...), unmounted at the end; false where mounting is
+  // not allowed (not root, a container without CAP_SYS_ADMIN).
+  bool mount_tmpfs(const std::string& name, const std::string& options) {
+    const fs::path at = dir_ / name;
+    fs::create_directories(at);
+    if (::mount("tmpfs", at.c_str(), "tmpfs", 0, options.c_str()) != 0) return false;
+    mounts_.push_back(at);
+    return true;
+  }
+  void remount_read_only(const std::string& name) {
+    ::mount("tmpfs", (dir_ / name).c_str(), "tmpfs", MS_REMOUNT | MS_RDONLY, "size=1m");
+  }
 
   RunResult run(const std::string& args) const { return run_with_env("", args); }
 
@@ -67,6 +84,7 @@ class CliFixture : public ::testing::Test {
   }
 
   fs::path dir_;
+  std::vector<fs::path> mounts_;
 };
 
 }  // namespace caligo_cli

@@ -56,6 +56,8 @@ class EnvironmentError : public std::runtime_error {
 inline constexpr int kExitInputError = 2;
 inline constexpr int kExitInternalError = 1;
 inline constexpr int kExitEnvironmentError = 3;
+// A check that ran and failed: `compare` above --max-rmse, or an image holding NaN or Inf.
+inline constexpr int kExitCheckFailed = 4;
 // A render stopped by SIGINT or SIGTERM after saving its checkpoint and partial image: 128 + the
 // signal's number, as shells report a process the signal killed.
 inline constexpr int kExitInterruptedBase = 128;

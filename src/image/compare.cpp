@@ -66,4 +66,14 @@ ImageMetrics compare_images(const Image& a, const Image& b) {
   return m;
 }
 
+size_t non_finite_rgb(const Image& image) {
+  const auto rgb = image.rgb_indices();
+  if (!rgb) return 0;
+  size_t n = 0;
+  for (int y = 0; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x)
+      for (int c : *rgb) n += std::isfinite(image.at(x, y, c)) ? 0 : 1;
+  return n;
+}
+
 }  // namespace caligo

@@ -31,4 +31,7 @@ struct ImageMetrics {
 // an R, G or B channel.
 ImageMetrics compare_images(const Image& a, const Image& b);
 
+// How many of the image's R, G and B values are NaN or infinite (0 without those channels).
+size_t non_finite_rgb(const Image& image);
+
 }  // namespace caligo

@@ -5,7 +5,9 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <memory>
+#include <system_error>
 
 namespace caligo {
 namespace {
@@ -13,6 +15,21 @@ namespace {
 bool is_integer_format(OIIO::TypeDesc format) {
   return format.basetype != OIIO::TypeDesc::FLOAT && format.basetype != OIIO::TypeDesc::HALF &&
          format.basetype != OIIO::TypeDesc::DOUBLE;
+}
+
+// No image format Caligo reads packs pixels tighter than deflate's limit of about 1032:1
+// (PNG, EXR's ZIP; JPEG's and RLE's limits are lower), so a header claiming more decoded
+// bytes than that ratio allows from the file's length is a lie, refused before any buffer is
+// made. Uncompressed formats are held to their exact size by OpenImageIO itself.
+constexpr double kMaxCompressionRatio = 1032.0;
+
+bool size_is_plausible(const OIIO::ImageSpec& spec, const std::string& path) {
+  std::error_code ec;
+  const uintmax_t file_bytes = std::filesystem::file_size(path, ec);
+  if (ec) return true;  // not a plain file: the reader's own checks decide
+  const double decoded = double(spec.width) * double(spec.height) * double(spec.nchannels) *
+                         double(std::max<size_t>(1, spec.format.size()));
+  return decoded <= kMaxCompressionRatio * double(file_bytes) + 4096.0;
 }
 
 OiioReadStatus read_image(const std::string& path, int64_t max_pixels, OiioImage* out, std::string* error) {
@@ -27,10 +44,17 @@ OiioReadStatus read_image(const std::string& path, int64_t max_pixels, OiioImage
   out->channels = spec.nchannels;
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || int64_t(spec.width) * spec.height > max_pixels)
     return OiioReadStatus::kBadSize;
+  if (!size_is_plausible(spec, path)) {
+    *error = "its header claims " + std::to_string(spec.width) + "x" + std::to_string(spec.height) + " pixels, more "
+             "than the file's " + std::to_string(std::filesystem::file_size(path)) + " bytes can hold (truncated or corrupt)";
+    return OiioReadStatus::kCannotRead;
+  }
   out->integer_format = is_integer_format(spec.format);
   out->color_space = spec.get_string_attribute("oiio:ColorSpace");
-  out->pixels.resize(size_t(spec.width) * size_t(spec.height) * size_t(spec.nchannels));
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, out->pixels.data())) {
+  // Only what is used: R, G, B, or the grey of one or two (grey + alpha) channels.
+  out->channels = spec.nchannels >= 3 ? 3 : 1;
+  out->pixels.resize(size_t(spec.width) * size_t(spec.height) * size_t(out->channels));
+  if (!in->read_image(0, 0, 0, out->channels, OIIO::TypeDesc::FLOAT, out->pixels.data())) {
     *error = in->geterror();
     return OiioReadStatus::kCannotRead;
   }

@@ -77,6 +77,12 @@ void write_gif_now(const std::string& file, const std::string& path, int width, 
   std::string error;
   if (!oiio_plugin("needed to write GIF files").write_gif(file, width, height, frames, fps, &error))
     throw std::runtime_error("cannot write GIF file " + path + ": " + error);
+  // The GIF writer does not report a failed write (a full disk): a whole file ends with the
+  // trailer byte 0x3B.
+  std::FILE* in = std::fopen(file.c_str(), "rb");
+  const bool whole = in != nullptr && std::fseek(in, -1, SEEK_END) == 0 && std::fgetc(in) == 0x3B;
+  if (in != nullptr) std::fclose(in);
+  if (!whole) throw std::runtime_error("cannot write GIF file " + path + ": the file written is incomplete (is the disk full?)");
 }
 
 }  // namespace
