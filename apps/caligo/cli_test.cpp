@@ -92,11 +92,11 @@ TEST_F(Cli, RendersABuiltinTwiceAndComparesTheRenders) {
 
   const std::string direct = render("direct", 64, 3, "default --max-depth 1");
   const RunResult no_indirect = run("compare " + direct + " " + b64 + max_rmse);
-  EXPECT_EQ(no_indirect.exit_code, 1) << no_indirect.out;
+  EXPECT_EQ(no_indirect.exit_code, 4) << no_indirect.out;
   EXPECT_NE(no_indirect.err.find("exceeds"), std::string::npos) << no_indirect.err;
   const std::string other = render("other", 16, 1, "lights-showcase");
   const RunResult different = run("compare " + other + " " + b64 + max_rmse);
-  EXPECT_EQ(different.exit_code, 1) << different.out;
+  EXPECT_EQ(different.exit_code, 4) << different.out;
   std::printf("rmse against the 64 spp render: --max-depth 1 %.4f, lights-showcase %.4f\n",
               printed_rmse(no_indirect), printed_rmse(different));
 }
