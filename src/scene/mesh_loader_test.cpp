@@ -658,6 +658,13 @@ TEST_F(MeshLoaderTest, ColladaIndexListWithOtherCharactersIsRefusedBeforeAssimp)
   EXPECT_TRUE(contains(load_error(write("ref.dae", with_p("<p>0 1&#11;2</p>"))), "holds the character \"&\""));
   EXPECT_TRUE(contains(load_error(write("cdata.dae", with_p("<p><![CDATA[0 1\v2]]></p>"))), "a <p> holds markup"));
   EXPECT_EQ(load_mesh(write("separators.dae", with_p("<p>\n 0\t1\r\n 2 </p>")), kWhere).triangle_count(), 1u);
+  // Negative and huge indices, which assimp 5.2 reads as vertex 0 without a word.
+  EXPECT_TRUE(contains(load_error(write("neg.dae", with_p("<p>0 -3 2</p>"))), "holds the character \"-\""));
+  for (const char* huge : {"4294967295", "4294967296", "000000000004294967295", "99999999999"})
+    EXPECT_TRUE(contains(load_error(write("huge.dae", with_p(std::string("<p>0 1 ") + huge + "</p>"))),
+                         std::string("holds the index ") + huge))
+        << huge;
+  EXPECT_EQ(load_mesh(write("zeros.dae", with_p("<p>0 0001 00002</p>")), kWhere).triangle_count(), 1u);
 }
 
 TEST_F(MeshLoaderTest, ColladaDepthIgnoresCommentsCdataDeclarationsAndAttributes) {

@@ -177,14 +177,27 @@ std::optional<uint64_t> collada_number(const XmlTag& tag, std::string_view attri
 // which pugixml would turn into other characters).
 bool is_collada_index_list(std::string_view name) { return name == "p" || name == "vcount" || name == "h" || name == "v"; }
 
+// An index list (<p>, <vcount>, <v>...): whole numbers from 0 to 2^32 - 2 between blanks.
+// assimp 5.2 reads "-3", 4294967295 and 4294967296 all as vertex 0, without a word.
 std::string index_list_problem(std::string_view xml, const XmlTag& tag) {
   const size_t next = std::min(xml.find('<', tag.end), xml.size());
   const std::string_view text = xml.substr(tag.end, next - tag.end);
-  const size_t bad = text.find_first_not_of("0123456789+- \t\r\n");
-  if (bad == npos && xml.compare(next, 2, "</") == 0) return {};
-  const std::string what = bad != npos ? "the character " + quote_for_message(text.substr(bad, 1)) : "markup";
-  return at_line(xml, tag.offset) + "a <" + std::string(tag.name) + "> holds " + what +
-         "; it may hold only whole numbers separated by spaces, tabs and line ends";
+  const auto refuse = [&](const std::string& what) {
+    return at_line(xml, tag.offset) + "a <" + std::string(tag.name) + "> holds " + what +
+           "; it may hold only whole numbers from 0 to 4294967294 separated by spaces, tabs and line ends";
+  };
+  if (const size_t bad = text.find_first_not_of("0123456789 \t\r\n"); bad != npos)
+    return refuse("the character " + quote_for_message(text.substr(bad, 1)));
+  if (xml.compare(next, 2, "</") != 0) return refuse("markup");
+  for (size_t at = text.find_first_of("0123456789"); at != npos; at = text.find_first_of("0123456789", at)) {
+    const size_t end = std::min(text.find_first_not_of("0123456789", at), text.size());
+    const std::string_view number = text.substr(at, end - at);
+    const size_t digits = number.size() - std::min(number.find_first_not_of('0'), number.size());
+    if (digits > 10 || (digits == 10 && number.substr(number.size() - 10) > "4294967294"))
+      return refuse("the index " + std::string(number));
+    at = end;
+  }
+  return {};
 }
 
 bool is_collada_array(std::string_view name) {
