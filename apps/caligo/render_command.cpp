@@ -90,8 +90,9 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                   "Continue the render saved in this checkpoint (same scene and settings; --spp may be raised); "
                   "the result equals an uninterrupted render bit for bit");
   cmd->add_option("--time-limit", o.time_limit,
-                  "Progressive: stop when the next pass would not fit in this time (90, 90s, 5m), every pixel at "
-                  "the same sample count (at most --spp)");
+                  "Progressive: a deadline (90, 90s, 5m): stop when the next pass would not fit, every pixel at "
+                  "the same sample count (at most --spp); a pass that runs past it (a busy machine) is cut there, "
+                  "pixels keeping their own counts");
   cmd->add_option("--target-rmse", o.target_rmse,
                   "Progressive: stop once the image's estimated RMSE (from each pixel's sample variance; adds the "
                   "variance layer) is at most this, in linear radiance (at most --spp samples)");
@@ -204,10 +205,15 @@ RenderSettings settings_from(const RenderOptions& o, const SceneDesc& desc) {
   return s;
 }
 
+// `samples`: the fewest and most samples a pixel of the image holds (a time limit, an error
+// target or a resume make them differ from --spp).
 void print_summary(const std::string& scene, const RenderSettings& s, const RenderStats& stats,
-                   const std::string& output) {
-  std::fprintf(stderr, "caligo: %s %dx%d, %d spp: %s wall, %.3g paths/s, %.3g rays/s, %d threads -> %s\n",
-               scene.c_str(), s.resolution.x, s.resolution.y, s.spp, format_duration(stats.seconds).c_str(),
+                   const std::string& output, std::pair<int, int> samples) {
+  const std::string spp = samples.first == samples.second
+                              ? std::to_string(samples.first)
+                              : std::to_string(samples.first) + " to " + std::to_string(samples.second);
+  std::fprintf(stderr, "caligo: %s %dx%d, %s spp: %s wall, %.3g paths/s, %.3g rays/s, %d threads -> %s\n",
+               scene.c_str(), s.resolution.x, s.resolution.y, spp.c_str(), format_duration(stats.seconds).c_str(),
                double(stats.paths) / stats.seconds, double(stats.rays) / stats.seconds,
                s.threads > 0 ? s.threads : int(std::thread::hardware_concurrency()), output.c_str());
 }
@@ -354,7 +360,7 @@ int run_distributed(const RenderOptions& o, const ProgressiveSchedule& schedule,
       distributed::render_frame(scene, settings, *distributed::split_from_name(o.mpi_split), style, key);
   if (!frame) return 0;  // an MPI rank other than 0: rank 0 writes the outputs
   outputs.write_final(frame->image, nullptr, key, o.exposure);
-  if (!o.quiet) print_summary(o.scene, settings, frame->stats, outputs.exr());
+  if (!o.quiet) print_summary(o.scene, settings, frame->stats, outputs.exr(), {settings.spp, settings.spp});
   return 0;
 }
 
@@ -399,7 +405,7 @@ int run_render(const RenderOptions& o) {
   if (!result.stopped_by.empty() && !o.quiet)
     std::fprintf(stderr, "caligo: stopped by %s at %d of %d samples per pixel\n", result.stopped_by.c_str(),
                  samples.first, target);
-  if (!o.quiet) print_summary(o.scene, settings, result.stats, outputs.exr());
+  if (!o.quiet) print_summary(o.scene, settings, result.stats, outputs.exr(), samples);
   return 0;
 }
 

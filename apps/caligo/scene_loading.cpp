@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <system_error>
 
 #include "commands.h"
 #include "core/error.h"
@@ -37,7 +38,11 @@ SceneDesc load_scene(const std::string& name) {
   if (name.empty()) throw InputError(kCommandLine, "no scene given (a .json file or a built-in name)");
   if (const BuiltinScene* builtin = find_builtin(name))
     return parse_scene_text(builtin->json, "builtin:" + builtin->name, ".");
-  if (!std::filesystem::exists(name)) {
+  std::error_code ec;
+  const bool exists = std::filesystem::exists(name, ec);
+  if (ec && ec != std::errc::no_such_file_or_directory)  // a symlink loop, a folder we may not enter
+    throw InputError(SourceLocation{name, ""}, "cannot read the scene file: " + ec.message());
+  if (!exists) {
     std::string names;
     for (const BuiltinScene& b : builtin_scenes()) names += (names.empty() ? "" : ", ") + b.name;
     throw InputError(SourceLocation{name, ""},

@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <condition_variable>
 #include <cstdint>
+#include <mutex>
+#include <optional>
+#include <thread>
 
 namespace caligo {
 namespace {
@@ -15,6 +19,50 @@ struct Clock {
 };
 
 bool stopped(const std::atomic<bool>* stop) { return stop && stop->load(std::memory_order_relaxed); }
+
+// The stop a pass sees: the caller's, or the time limit reached. The scheduler sizes passes to
+// end before the limit, but on a busy machine a pass can take far longer than the last one
+// did; a thread watching the clock then cuts it at the limit (pixels keep what they hold).
+class DeadlineWatch {
+ public:
+  DeadlineWatch(const Clock& clock, std::optional<double> limit, const std::atomic<bool>* outer) : outer_(outer) {
+    if (!limit) return;
+    watcher_ = std::thread([this, &clock, limit] {
+      std::unique_lock lock(mutex_);
+      while (!done_) {
+        if (stopped(outer_) || clock.seconds() >= *limit) {
+          cut_ = !stopped(outer_);
+          flag_.store(true, std::memory_order_relaxed);
+          return;
+        }
+        wake_.wait_for(lock, std::chrono::milliseconds(5));
+      }
+    });
+  }
+  ~DeadlineWatch() {
+    if (!watcher_.joinable()) return;
+    {
+      std::lock_guard lock(mutex_);
+      done_ = true;
+    }
+    wake_.notify_all();
+    watcher_.join();
+  }
+  const std::atomic<bool>* flag() const { return watcher_.joinable() ? &flag_ : outer_; }
+  // Whether the limit (not the caller) stopped the pass.
+  bool cut() const {
+    std::lock_guard lock(mutex_);
+    return cut_;
+  }
+
+ private:
+  const std::atomic<bool>* outer_;
+  std::atomic<bool> flag_{false};
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;
+  bool done_ = false, cut_ = false;
+  std::thread watcher_;
+};
 
 // The next pass's sample count from `done`: doubling, bounded by the checkpoint interval and
 // by what fits before the time limit (0: nothing fits).
@@ -61,6 +109,7 @@ ProgressiveResult render_progressive(Film& film, const Scene& scene, const Rende
     return result;
   }
   double last_checkpoint = 0.0, seconds_per_sample = 0.0;
+  const DeadlineWatch watch(clock, schedule.time_limit, stop);
   for (int done = sample_range(film, settings).first; done < target && !stopped(stop);) {
     const int batch = next_batch(schedule, done, seconds_per_sample, clock.seconds());
     if (batch < 1) {
@@ -68,9 +117,13 @@ ProgressiveResult render_progressive(Film& film, const Scene& scene, const Rende
       break;
     }
     const int next = std::min(target, done + batch);
-    const RenderStats pass = render_up_to(film, scene, settings, next, stop, Progress::Style::kQuiet);
+    const RenderStats pass = render_up_to(film, scene, settings, next, watch.flag(), Progress::Style::kQuiet);
     result.stats += pass;
     if (stopped(stop)) break;
+    if (watch.cut()) {
+      result.stopped_by = "the time limit, which cut the last pass (pixels hold their own sample counts)";
+      break;
+    }
     seconds_per_sample = pass.seconds / double(next - done);
     done = next;
     if (hooks.on_pass) hooks.on_pass(done, target, clock.seconds());

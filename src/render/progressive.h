@@ -39,8 +39,10 @@ struct ProgressiveResult {
 // Brings `film` (which may hold samples already: a resumed checkpoint) to settings.spp samples
 // per pixel of the crop window, in passes when the schedule asks for them: 1 sample first,
 // then as many as the last pass's time per sample says fit before the next checkpoint or the
-// time limit (never more than doubling). `stop` ends the current pass between pixels. The
-// film ends bit for bit as one render_up_to to the same count would leave it.
+// time limit (never more than doubling). `stop` ends the current pass between pixels, and so
+// does the time limit when a pass runs past it (a busy machine): the limit is a deadline, and
+// the pixels then hold their own counts. Otherwise the film ends bit for bit as one
+// render_up_to to the same count would leave it.
 ProgressiveResult render_progressive(Film& film, const Scene& scene, const RenderSettings& settings,
                                      const ProgressiveSchedule& schedule, const ProgressiveHooks& hooks,
                                      const std::atomic<bool>* stop = nullptr,

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <stdexcept>
 #include <vector>
 
@@ -89,6 +90,31 @@ TEST(Progressive, ErrorTargetAndStopEndEarly) {
   schedule.time_limit = 1e6;
   render_progressive(untouched, *f.scene, f.settings, schedule, {}, &stop);
   EXPECT_EQ(sample_range(untouched, f.settings), std::make_pair(0, 0));
+}
+
+// The time limit is a deadline: a first pass far longer than the limit (1 sample of a large
+// frame, as a machine under load makes of any pass) is cut at it, not finished.
+TEST(Progressive, TheTimeLimitCutsAPassThatRunsPastIt) {
+  Fixture f;
+  f.settings.resolution = {640, 480};
+  f.settings.threads = 1;
+  f.settings.spp = 64;
+  Film once(f.settings.resolution, f.settings.aovs);
+  const auto start = std::chrono::steady_clock::now();
+  RenderSettings one = f.settings;
+  one.spp = 1;
+  render_up_to(once, *f.scene, one, 1);
+  const double pass = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_GT(pass, 0.2) << "the 1-sample pass must outlast the limit below";
+  Film film(f.settings.resolution, f.settings.aovs);
+  ProgressiveSchedule schedule;
+  schedule.time_limit = 0.02;
+  const ProgressiveResult r = render_progressive(film, *f.scene, f.settings, schedule, {});
+  EXPECT_NE(r.stopped_by.find("cut"), std::string::npos) << r.stopped_by;
+  EXPECT_LT(r.stats.seconds, 0.5 * pass) << "the pass was finished, not cut";
+  const auto [fewest, most] = sample_range(film, f.settings);
+  EXPECT_EQ(fewest, 0);
+  EXPECT_EQ(most, 1);
 }
 
 }  // namespace
