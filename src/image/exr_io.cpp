@@ -8,6 +8,8 @@
 #include <half.h>
 
 #include <algorithm>
+#include <filesystem>
+#include <system_error>
 #include <cstdint>
 #include <stdexcept>
 #include <tuple>
@@ -84,7 +86,11 @@ std::vector<std::string> channel_names(const Imf::ChannelList& channels) {
 // Guards against a corrupt header asking for an absurd allocation (2^31 floats = 8 GiB).
 constexpr int64_t kMaxSamples = int64_t(1) << 31;
 
-Image allocate_for(const Imf::Header& header) {
+// No OpenEXR compression packs more than deflate's ~1032:1 (ZIP; RLE, PIZ, B44 and DWA pack
+// less), so a header claiming more half-float samples than that from the file's length lies.
+constexpr double kMaxCompressionRatio = 1032.0;
+
+Image allocate_for(const Imf::Header& header, uint64_t file_bytes) {
   const Imath::Box2i& window = header.dataWindow();
   int64_t width = int64_t(window.max.x) - window.min.x + 1;
   int64_t height = int64_t(window.max.y) - window.min.y + 1;
@@ -94,12 +100,18 @@ Image allocate_for(const Imf::Header& header) {
     throw InputError("implausible data window of " + std::to_string(width) + "x" + std::to_string(height) +
                      " pixels");
   }
+  if (double(width) * double(height) * double(channels) * 2.0 > kMaxCompressionRatio * double(file_bytes) + 65536.0)
+    throw InputError("its header claims " + std::to_string(width) + "x" + std::to_string(height) + " pixels of " +
+                     std::to_string(channels) + " channels, more than the file's " + std::to_string(file_bytes) +
+                     " bytes can hold (truncated or corrupt)");
   return Image(int(width), int(height), exr_channel_order(std::move(names)));
 }
 
 Image read_exr_now(const std::string& path) {
   Imf::InputFile in(path.c_str());
-  Image image = allocate_for(in.header());
+  std::error_code ec;
+  const uintmax_t bytes = std::filesystem::file_size(path, ec);
+  Image image = allocate_for(in.header(), ec ? UINT64_MAX / 2048 : uint64_t(bytes));
   const Imath::Box2i& window = in.header().dataWindow();
   in.setFrameBuffer(frame_buffer(image, Imf::FLOAT, image.pixels().data(), sizeof(float), window));
   in.readPixels(window.min.y, window.max.y);

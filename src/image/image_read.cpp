@@ -11,6 +11,9 @@ namespace {
 
 // Larger than any texture a light needs; stops a corrupt header from allocating gigabytes.
 constexpr int64_t kMaxPixels = int64_t(16384) * 16384;
+// Far above any radiance (the sun's is ~1e9 W m^-2 sr^-1), far enough below float's 3.4e38 that
+// the sums of a sampling distribution over 2^28 pixels stay finite.
+constexpr float kMaxValue = 1e29f;
 
 bool says_linear(std::string space) {
   std::transform(space.begin(), space.end(), space.begin(),
@@ -48,6 +51,8 @@ Image read_image_rgb(const std::string& path) {
     for (int c = 0; c < 3; ++c) {
       float v = px[channels >= 3 ? c : 0];
       if (!std::isfinite(v)) throw InputError({path, ""}, "the image holds a non-finite value");
+      if (v > kMaxValue)
+        throw InputError({path, ""}, "the image holds the value " + std::to_string(v) + ", above the 1e29 allowed");
       v = std::max(0.0f, v);
       image.pixels()[p * 3 + size_t(c)] = decode ? srgb_to_linear(std::min(v, 1.0f)) : v;
     }
