@@ -44,7 +44,8 @@ NanoGrids read_grid_channels(const std::string& path, const GridChannels& channe
 // OpenVDB files (grid_vdb_read.cpp, grid_vdb_write.cpp). Reading converts double grids to
 // float and vec3d to vec3s, then each grid to NanoVDB.
 // Header, version and grid descriptors checked against the file's size (vdb_layout.cpp).
-void check_vdb_layout(const std::string& path, const SourceLocation& where);
+// Returns whether the file has grid offsets (false: written as a stream, read sequentially).
+bool check_vdb_layout(const std::string& path, const SourceLocation& where);
 std::vector<GridEntry> list_vdb_grids(const std::string& path, const SourceLocation& where);
 std::vector<NanoGridHandle> read_vdb_grids(const std::string& path, const std::vector<GridRequest>& requests,
                                            const SourceLocation& where);

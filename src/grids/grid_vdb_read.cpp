@@ -3,6 +3,7 @@
 // InputError naming the file. Delayed loading is off: it memory-maps the file, and a
 // truncated file then faults (SIGBUS) long after the read "succeeded".
 #include <openvdb/io/File.h>
+#include <openvdb/io/Stream.h>
 #include <openvdb/tools/ValueTransformer.h>
 
 #include <nanovdb/util/OpenToNanoVDB.h>
@@ -10,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <mutex>
 #include <set>
 #include <tuple>
@@ -49,7 +51,7 @@ auto guarded(const std::string& path, const SourceLocation& where, Body body) ->
 // (path, size, modification time); a crash or exception there is a located error here. The
 // child may use 1 GiB plus 256 times the file's size (more than any compression ratio
 // OpenVDB reaches), so corrupt lengths that ask for gigabytes fail fast.
-void probe_vdb_file(const std::string& path, const SourceLocation& where) {
+void probe_vdb_file(const std::string& path, const SourceLocation& where, bool has_offsets) {
   static std::mutex mutex;
   static std::set<std::tuple<std::string, uintmax_t, int64_t>> verified;
   std::error_code ec;
@@ -63,11 +65,19 @@ void probe_vdb_file(const std::string& path, const SourceLocation& where) {
   const auto timeout = std::chrono::milliseconds(30000 + 50 * int64_t(size >> 20));
   const ProbeOutcome outcome = probe_in_child(
       [&] {
-        openvdb::io::File file(path);
-        file.open(/*delayLoad=*/false);
         // Kept alive: the child exits without destructors (freeing a tree runs TBB).
         static openvdb::GridPtrVecPtr grids;
+        openvdb::io::File file(path);
+        file.open(/*delayLoad=*/false);
         grids = file.getGrids();
+        if (has_offsets) return;
+        // A file written as a stream has no offsets that say where it should end, and OpenVDB
+        // can read one cut short without complaint (the missing bytes are whatever memory
+        // held). Read again through a stream watched here: a read past the end leaves it failed.
+        std::ifstream in(path, std::ios::binary);
+        openvdb::io::Stream stream(in);
+        grids = stream.getGrids();
+        if (!in) throw std::runtime_error("truncated: the grids end past the end of the file");
       },
       timeout, (uint64_t(1) << 30) + 256 * uint64_t(size));
   switch (outcome.result) {
@@ -87,8 +97,7 @@ void probe_vdb_file(const std::string& path, const SourceLocation& where) {
 
 struct OpenFile {
   OpenFile(const std::string& path, const SourceLocation& where) : file(path) {
-    check_vdb_layout(path, where);
-    probe_vdb_file(path, where);
+    probe_vdb_file(path, where, check_vdb_layout(path, where));
     file.open(/*delayLoad=*/false);
   }
   ~OpenFile() {

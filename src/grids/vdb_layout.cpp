@@ -96,7 +96,7 @@ class LayoutReader {
 
 }  // namespace
 
-void check_vdb_layout(const std::string& path, const SourceLocation& where) {
+bool check_vdb_layout(const std::string& path, const SourceLocation& where) {
   LayoutReader r(path, where);
   if (r.read<int64_t>("header") != openvdb::OPENVDB_MAGIC) r.fail("not an OpenVDB file (wrong magic number)");
   const uint32_t version = r.read<uint32_t>("header");
@@ -109,8 +109,9 @@ void check_vdb_layout(const std::string& path, const SourceLocation& where) {
   const bool has_offsets = r.read<char>("header") != 0;
   r.skip(36, "header");  // UUID
   r.metadata(r.size(), "file metadata");
-  // Files written as streams have no descriptors to check; OpenVDB reads them sequentially.
-  if (!has_offsets) return;
+  // Files written as streams have no descriptors to check; OpenVDB reads them sequentially
+  // (and the crash probe reads them through a stream it watches: grid_vdb_read.cpp).
+  if (!has_offsets) return false;
   const int32_t grids = r.read<int32_t>("grid count");
   if (grids < 0 || grids > kMaxEntries) r.fail("corrupt OpenVDB file (grid count)");
   for (int32_t i = 0; i < grids; ++i) {
@@ -130,6 +131,7 @@ void check_vdb_layout(const std::string& path, const SourceLocation& where) {
     r.metadata(uint64_t(block_pos), "grid metadata");
     r.seek(uint64_t(end_pos));
   }
+  return true;
 }
 
 }  // namespace caligo
