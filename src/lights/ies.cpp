@@ -201,8 +201,10 @@ float IesProfile::mean_over_sphere() const {
   const size_t nv = vertical_.size();
   double sum = 0.0;
   for (int j = 0; j < n_phi; ++j) {
-    const auto [h, th] = bracket(horizontal_, fold_horizontal(360.0f * (j + 0.5f) / n_phi));
-    const size_t h1 = horizontal_.size() == 1 ? h : h + 1;
+    // Not a structured binding: clang 14 cannot capture one in the lambda below.
+    const auto bracketed = bracket(horizontal_, fold_horizontal(360.0f * (j + 0.5f) / n_phi));
+    const size_t h = bracketed.first, h1 = horizontal_.size() == 1 ? h : h + 1;
+    const float th = bracketed.second;
     const auto value = [&](size_t v) { return double(lerp(th, values_[h * nv + v], values_[h1 * nv + v])); };
     for (size_t k = 0; k + 1 < nv; ++k) {
       const double a = radians(double(vertical_[k])), b = radians(double(vertical_[k + 1]));
