@@ -63,7 +63,7 @@ RGB surface_direct_light(const PathContext& ctx, const PathState& state, const S
   if (choice.light < 0) return RGB(0.0f);
   const Light& light = ctx.scene.lights()[size_t(choice.light)];
   const auto ls = sample_light(
-      light, si.p, is_delta(light) ? Vec2(0.5f) : sampler.get_2d(bounce(depth, sample_dim::kLightPosition)));
+      light, si.p, is_delta(light) ? Vec2{0.5f, 0.0f} : sampler.get_2d(bounce(depth, sample_dim::kLightPosition)));
   if (!ls || ls->radiance.is_black() || !(ls->pdf > 0.0f)) return RGB(0.0f);
   const RGB f = bsdf_eval(si.material->bsdf, si.ns, wo, ls->wi) * abs_dot(si.ns, ls->wi);
   if (f.is_black() || dot(si.ng, ls->wi) * dot(si.ng, wo) <= 0.0f) return RGB(0.0f);
@@ -163,7 +163,7 @@ void deferred_connections(const PathContext& ctx, int first_dim, PathSample& out
     if (choice.light < 0) continue;
     const Light& light = ctx.scene.lights()[size_t(choice.light)];
     const auto ls = sample_light(
-        light, v.x, is_delta(light) ? Vec2(0.5f) : sampler.get_2d(bounce(dim, sample_dim::kVolumeLightPosition)));
+        light, v.x, is_delta(light) ? Vec2{0.5f, 0.0f} : sampler.get_2d(bounce(dim, sample_dim::kVolumeLightPosition)));
     if (!ls || ls->radiance.is_black() || !(ls->pdf > 0.0f)) continue;
     const RGB phase = mixed_phase_eval(
         std::span<const PhaseLobe>(scratch.deferred_lobes).subspan(v.first_lobe, v.lobe_count), v.wo, ls->wi);

@@ -143,7 +143,7 @@ RGB volume_direct_light(const PathContext& ctx, const Ray& ray, const Transmitta
                     (1.0f - equiangular_share) * record.scatter_density_pdf(t);
   if (!(pdf > 0.0f)) return RGB(0.0f);
   return scattered_light(ctx, ray, record, light_index, pick_pmf, t,
-                         is_delta(light) ? Vec2(0.5f) : sampler.get_2d(bounce(depth, sample_dim::kVolumeLightPosition)),
+                         is_delta(light) ? Vec2{0.5f, 0.0f} : sampler.get_2d(bounce(depth, sample_dim::kVolumeLightPosition)),
                          shadow_medium(ctx, depth, secondary, sample_dim::kDistanceSample)) /
          pdf;
 }
@@ -156,7 +156,7 @@ RGB point_volume_direct_light(const PathContext& ctx, Vec3 x, Vec3 direction, st
   if (choice.light < 0) return RGB(0.0f);
   const Light& light = ctx.scene.lights()[size_t(choice.light)];
   const auto ls = sample_light(
-      light, x, is_delta(light) ? Vec2(0.5f) : sampler.get_2d(bounce(vertex, sample_dim::kVolumeLightPosition)));
+      light, x, is_delta(light) ? Vec2{0.5f, 0.0f} : sampler.get_2d(bounce(vertex, sample_dim::kVolumeLightPosition)));
   if (!ls || ls->radiance.is_black() || !(ls->pdf > 0.0f)) return RGB(0.0f);
   const RGB phase = mixed_phase_eval(lobes, direction, ls->wi);
   if (phase.is_black()) return RGB(0.0f);
