@@ -17,6 +17,7 @@
 
 #include "commands.h"
 #include "output_folder.h"
+#include "render_outputs.h"
 #include "core/output_transaction.h"
 #include "experiments/wyman_table.h"
 #include "image/png_io.h"
@@ -101,6 +102,7 @@ int run_bench_table(const BenchTableOptions& o) {
   OutputTransaction outputs;
   const auto output_path = [&](const std::string& name) { return (std::filesystem::path(o.output) / name).string(); };
   if (!o.output.empty()) {
+    for (const WymanScene& scene : scenes) protect_scene_inputs(outputs, scene.desc);
     folder.emplace(o.output);
     for (const std::string& n : settings.scenes) outputs.add(output_path(png_name(n)), "strip");
     outputs.add(output_path("table.md"), "table");

@@ -212,4 +212,11 @@ TEST_F(Outputs, ConcurrentWritersLeaveOneCompleteFile) {
   EXPECT_EQ(leftovers(dir_), 0);
 }
 
+// A frame folder named with a trailing slash is made like any other.
+TEST_F(Outputs, AFolderNamedWithATrailingSlashIsMade) {
+  const RunResult r = run("realtime lamp-in-fog --res 32x24 --frames 2 -q -o " + (dir_ / "frames").string() + "/");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir_ / "frames" / "frame_0001.png"));
+}
+
 }  // namespace

@@ -15,7 +15,9 @@ OutputFolder::OutputFolder(const std::string& path) {
     if (!fs::is_directory(path, ec)) throw InputError(SourceLocation{path, ""}, "output exists and is not a folder");
     return;
   }
-  const fs::path parent = fs::path(path).parent_path().empty() ? "." : fs::path(path).parent_path();
+  fs::path folder(path);
+  if (folder.filename().empty()) folder = folder.parent_path();  // "frames/"
+  const fs::path parent = folder.parent_path().empty() ? "." : folder.parent_path();
   if (!fs::is_directory(parent, ec))
     throw InputError(SourceLocation{path, ""}, "the output folder's parent \"" + parent.string() + "\" does not exist");
   if (!fs::create_directory(path, ec)) throw EnvironmentError(path + ": cannot create the output folder: " + ec.message());

@@ -395,11 +395,19 @@ int run_render(const RenderOptions& o) {
   if (samples.second > target && !o.quiet)
     std::fprintf(stderr, "caligo: the checkpoint already held %d samples per pixel, more than --spp %d: all are kept\n",
                  samples.second, target);
-  // A signal after the last sample changes nothing: the render is complete.
-  const bool complete = samples.first >= target || !result.stopped_by.empty();
+  // A signal after the last sample changes nothing: the render is complete. A time limit that
+  // cut the first pass leaves pixels without a sample: that image must not replace a finished one.
+  const bool complete = samples.first >= target || (!result.stopped_by.empty() && samples.first > 0);
   if (interrupt.stopped() && !complete) {
     outputs.write_interrupted(image, film, key, o.exposure);
     return report_interrupt(outputs, interrupt.signal_number(), samples, target);
+  }
+  if (!complete && !result.stopped_by.empty()) {
+    outputs.write_interrupted(image, film, key, o.exposure);
+    std::fprintf(stderr, "caligo: %s came before every pixel had a sample: wrote the partial image %s (%s is kept)\n",
+                 result.stopped_by.c_str(), quote_for_message(outputs.partial_exr()).c_str(),
+                 quote_for_message(outputs.exr()).c_str());
+    return 0;
   }
   outputs.write_final(image, &film, key, o.exposure);
   if (!result.stopped_by.empty() && !o.quiet)

@@ -1,6 +1,7 @@
 #include "render_outputs.h"
 
 #include <filesystem>
+#include <memory>
 #include <vector>
 
 #include "core/error.h"
@@ -47,6 +48,8 @@ RenderOutputs::RenderOutputs(const RenderOptions& o, const SceneDesc& desc) {
   final_.add(png_, "preview");
   interrupted_.add(partial_exr_, "partial image");
   interrupted_.add(partial_png_, "partial preview");
+  final_images_ = std::make_unique<OutputTransaction>(final_);
+  interrupted_images_ = std::make_unique<OutputTransaction>(interrupted_);
   if (asked_checkpoint_) {
     final_.add(checkpoint_, "checkpoint");
     interrupted_.add(checkpoint_, "checkpoint");
@@ -63,30 +66,32 @@ RenderOutputs::RenderOutputs(const RenderOptions& o, const SceneDesc& desc) {
   }
 }
 
-void RenderOutputs::write_final(const Image& image, const Film* film, uint64_t key, float exposure) const {
+// Commits `plan` (images, then a checkpoint when `film`); when that fails, the images alone
+// (their own plan), then reports the checkpoint: what fits is kept.
+void RenderOutputs::write_keeping_images(const OutputTransaction& plan, const OutputTransaction& images_only,
+                                         const Image& image, const Film* film, uint64_t key, float exposure) const {
   std::vector<OutputTransaction::Writer> writers = image_writers(image, exposure);
-  if (!asked_checkpoint_) {
-    OutputTransaction(final_).commit(writers);
+  if (!film) {
+    OutputTransaction(plan).commit(writers);
     return;
   }
   writers.push_back([&](const std::string& temp) { film->save(temp, key); });
   try {
-    OutputTransaction(final_).commit(writers);
+    OutputTransaction(plan).commit(writers);
   } catch (const EnvironmentError& e) {
-    // Keep what fits: the image and preview alone, then report the checkpoint.
-    OutputTransaction images;
-    images.add(exr_, "image");
-    images.add(png_, "preview");
     writers.pop_back();
-    images.commit(writers);
-    throw EnvironmentError(std::string(e.what()) + "; the image " + exr_ + " and its preview were written");
+    OutputTransaction(images_only).commit(writers);
+    throw EnvironmentError(std::string(e.what()) + "; the image " + images_only.path(0) + " and its preview were written");
   }
 }
 
+void RenderOutputs::write_final(const Image& image, const Film* film, uint64_t key, float exposure) const {
+  write_keeping_images(final_, *final_images_, image, asked_checkpoint_ ? film : nullptr, key, exposure);
+}
+
 void RenderOutputs::write_interrupted(const Image& image, const Film& film, uint64_t key, float exposure) const {
-  std::vector<OutputTransaction::Writer> writers = image_writers(image, exposure);
-  if (interrupt_leaves_checkpoint()) writers.push_back([&](const std::string& temp) { film.save(temp, key); });
-  OutputTransaction(interrupted_).commit(writers);
+  write_keeping_images(interrupted_, *interrupted_images_, image, interrupt_leaves_checkpoint() ? &film : nullptr, key,
+                       exposure);
 }
 
 }  // namespace caligo

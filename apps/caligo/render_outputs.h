@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include "commands.h"
@@ -36,14 +37,20 @@ class RenderOutputs {
   // The finished image, its preview and the asked-for checkpoint of `film`; when only the
   // checkpoint fails, the image and preview are written and the EnvironmentError says so.
   void write_final(const Image& image, const Film* film, uint64_t key, float exposure) const;
-  // The partial image and preview, and a checkpoint when one can be written.
+  // The partial image and preview, and a checkpoint when one can be written; the images are
+  // kept when only the checkpoint fails, as above.
   void write_interrupted(const Image& image, const Film& film, uint64_t key, float exposure) const;
 
  private:
+  void write_keeping_images(const OutputTransaction& plan, const OutputTransaction& images_only, const Image& image,
+                            const Film* film, uint64_t key, float exposure) const;
+
   std::string exr_, png_, partial_exr_, partial_png_, checkpoint_;
   bool asked_checkpoint_ = false;
   bool interrupt_checkpoint_ = false;
   OutputTransaction final_, interrupted_;
+  // The same plans without the checkpoint: what is written when only the checkpoint fails.
+  std::unique_ptr<OutputTransaction> final_images_, interrupted_images_;
 };
 
 }  // namespace caligo

@@ -5,6 +5,9 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cctype>
+#include <chrono>
+#include <cstdlib>
 #include <cerrno>
 #include <cstdint>
 #include <cstring>
@@ -40,21 +43,36 @@ void flush_to_disk(const fs::path& file, const std::string& what_for) {
   ::close(fd);
 }
 
+namespace {
+
+// Whether `name` is exactly what temp_path_beside makes: "." BASE TAG PID "-" N EXT, with
+// EXT the extension of BASE; returns the PID, or 0.
+long temporary_pid(const std::string& name) {
+  const size_t tag = name.rfind(".tmp-");
+  if (name.size() < 2 || name[0] != '.' || tag == std::string::npos || tag < 2) return 0;
+  const std::string base = name.substr(1, tag - 1), ext = fs::path(base).extension().string();
+  size_t i = tag + 5, pid_end = i;
+  while (pid_end < name.size() && std::isdigit(static_cast<unsigned char>(name[pid_end]))) ++pid_end;
+  if (pid_end == i || pid_end - i > 7 || pid_end >= name.size() || name[pid_end] != '-') return 0;
+  size_t n_end = pid_end + 1;
+  while (n_end < name.size() && std::isdigit(static_cast<unsigned char>(name[n_end]))) ++n_end;
+  if (n_end == pid_end + 1 || name.compare(n_end, std::string::npos, ext) != 0) return 0;
+  return std::strtol(name.c_str() + i, nullptr, 10);
+}
+
+}  // namespace
+
 void remove_stale_temporaries(const fs::path& dir) {
+  // Only an hour after their last write: a PID says nothing about a writer on another host
+  // sharing the folder (NFS) or in another PID namespace, and no write of ours pauses that long.
+  const auto old = fs::file_time_type::clock::now() - std::chrono::hours(1);
   std::error_code ec;
   for (fs::directory_iterator it(dir.empty() ? fs::path(".") : dir, ec), end; !ec && it != end; it.increment(ec)) {
-    // temp_path_beside's names: "." NAME ".tmp-" PID "-" N EXT.
-    const std::string name = it->path().filename().string();
-    const size_t tag = name.rfind(".tmp-");
-    if (name.empty() || name[0] != '.' || tag == std::string::npos) continue;
-    char* rest = nullptr;
-    const long pid = std::strtol(name.c_str() + tag + 5, &rest, 10);
-    if (pid <= 0 || rest == nullptr || *rest != '-') continue;
+    const long pid = temporary_pid(it->path().filename().string());
+    std::error_code e;
+    if (pid <= 0 || !it->is_regular_file(e) || it->last_write_time(e) > old || e) continue;
     // Alive (or someone else's: EPERM) is left alone.
-    if (::kill(pid_t(pid), 0) != 0 && errno == ESRCH) {
-      std::error_code ignored;
-      fs::remove(it->path(), ignored);
-    }
+    if (::kill(pid_t(pid), 0) != 0 && errno == ESRCH) fs::remove(it->path(), e);
   }
 }
 

@@ -17,8 +17,9 @@ std::filesystem::path temp_path_beside(const std::filesystem::path& target, cons
 // was renamed onto it holds the whole file. Throws EnvironmentError naming `what_for`.
 void flush_to_disk(const std::filesystem::path& file, const std::string& what_for);
 
-// Temporaries that a killed caligo left in `dir` (".NAME.tmp-PID-N.EXT" whose PID is no live
-// process): removed, best effort. Called when an output in that folder is planned.
+// Temporaries that a killed caligo left in `dir` (regular files named exactly as
+// temp_path_beside names them, ".NAME.tmp-PID-N.EXT", untouched for an hour, whose PID is no
+// live process): removed, best effort. Called when an output in that folder is planned.
 void remove_stale_temporaries(const std::filesystem::path& dir);
 
 // Calls write(temp_path) with a temporary beside `path` (temp_path_beside: same file system,

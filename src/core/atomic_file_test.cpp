@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -118,6 +120,30 @@ TEST_F(AtomicFileTest, TemporaryNamesAreUnique) {
   });
   EXPECT_NE(first, second);
   EXPECT_EQ(read_text(target), "2");
+}
+
+// Only what a dead caligo left: our exact name shape, a dead PID, an hour untouched. A user's
+// file that merely looks similar, a fresh temporary (a writer on another host may own it) and
+// a live process's are kept.
+TEST_F(AtomicFileTest, OnlyStaleTemporariesOfOursAreRemoved) {
+  const auto make = [&](const std::string& name, bool old) {
+    write_text((dir_ / name).string(), "x");
+    if (old) fs::last_write_time(dir_ / name, fs::file_time_type::clock::now() - std::chrono::hours(2));
+  };
+  const std::string dead = "4194303";  // pid_max's top: no process of a test machine has it
+  const std::string alive = std::to_string(::getpid());
+  make(".out.exr.tmp-" + dead + "-3.exr", true);   // stale: removed
+  make(".out.exr.tmp-" + dead + "-4.exr", false);  // fresh: kept
+  make(".out.exr.tmp-" + alive + "-5.exr", true);  // alive: kept
+  make(".backup.tmp-2023-05.tar", true);           // not ours: kept
+  make(".out.exr.tmp-" + dead + "-6.png", true);   // extension differs: kept
+  remove_stale_temporaries(dir_);
+  std::vector<std::string> left = entries();
+  std::sort(left.begin(), left.end());
+  std::vector<std::string> kept = {".backup.tmp-2023-05.tar", ".out.exr.tmp-" + dead + "-4.exr",
+                                   ".out.exr.tmp-" + dead + "-6.png", ".out.exr.tmp-" + alive + "-5.exr"};
+  std::sort(kept.begin(), kept.end());
+  EXPECT_EQ(left, kept);
 }
 
 }  // namespace caligo

@@ -123,7 +123,8 @@ void OutputTransaction::discard() {
 void OutputTransaction::stage(size_t index, const Writer& writer) {
   if (index >= paths_.size()) throw std::invalid_argument("OutputTransaction: no output " + std::to_string(index));
   temps_.resize(paths_.size());
-  if (!temps_[index].empty()) fs::remove(temps_[index]);
+  std::error_code ignored;
+  if (!temps_[index].empty()) fs::remove(temps_[index], ignored);
   temps_[index] = temp_path_beside(paths_[index], ".tmp-").string();
   try {
     writer(temps_[index]);

@@ -176,10 +176,10 @@ void Film::save(const std::string& path, uint64_t key) const {
   const std::string bytes = to_bytes(key);
   write_file_atomically(path, [&](const std::string& temp) {
     std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    if (!out) throw EnvironmentError(path + ": cannot create " + temp);
+    if (!out) throw std::runtime_error("cannot create " + temp);
     out.write(bytes.data(), std::streamsize(bytes.size()));
     out.close();  // the close flushes: a full disk shows here
-    if (!out) throw EnvironmentError(path + ": cannot write the film (disk full?)");
+    if (!out) throw std::runtime_error("cannot write the film (is the disk full?)");
   });
 }
 
