@@ -18,18 +18,18 @@ bool is_integer_format(OIIO::TypeDesc format) {
 }
 
 // No image format Caligo reads packs pixels tighter than deflate's limit of about 1032:1
-// (PNG, EXR's ZIP; JPEG's and RLE's limits are lower), so a header claiming more decoded
-// bytes than that ratio allows from the file's length is a lie, refused before any buffer is
-// made. Uncompressed formats are held to their exact size by OpenImageIO itself.
+// (PNG, EXR's ZIP; JPEG's and RLE's limits are lower), so a header claiming more packed bytes
+// than that ratio allows from the file's length is a lie, refused before any buffer is made.
 constexpr double kMaxCompressionRatio = 1032.0;
 
 bool size_is_plausible(const OIIO::ImageSpec& spec, const std::string& path) {
   std::error_code ec;
   const uintmax_t file_bytes = std::filesystem::file_size(path, ec);
   if (ec) return true;  // not a plain file: the reader's own checks decide
-  const double decoded = double(spec.width) * double(spec.height) * double(spec.nchannels) *
-                         double(std::max<size_t>(1, spec.format.size()));
-  return decoded <= kMaxCompressionRatio * double(file_bytes) + 4096.0;
+  // The least the file can have packed: one bit per pixel (1-bit masks are common gobos, and a
+  // palette index expands into three or four channels).
+  const double packed = double(spec.width) * double(spec.height) / 8.0;
+  return packed <= kMaxCompressionRatio * double(file_bytes) + 4096.0;
 }
 
 OiioReadStatus read_image(const std::string& path, int64_t max_pixels, OiioImage* out, std::string* error) {
