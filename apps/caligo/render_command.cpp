@@ -382,7 +382,11 @@ int run_render(const RenderOptions& o) {
   const RenderOutputs outputs(o, desc);  // every output is checked before any work
   check_memory(settings);
   const auto scene = Scene::build(desc);  // meshes load here: their errors come first, located
-  const uint64_t key = checkpoint_key(scene_source(o.scene), desc.files, settings, o.time, o.priorities);
+  // The key re-reads every file the scene names (for their CRC-32s): only when a checkpoint is
+  // read, saved or shared between ranks; an interrupt's own checkpoint takes it then.
+  const auto key_now = [&] { return checkpoint_key(scene_source(o.scene), desc.files, settings, o.time, o.priorities); };
+  const bool keyed = o.checkpoint || o.resume || distributed::launcher_world_size();
+  const uint64_t key = keyed ? key_now() : 0;
   const Progress::Style style = o.quiet ? Progress::Style::kQuiet : Progress::Style::kAuto;
   if (distributed::launcher_world_size()) return run_distributed(o, schedule, *scene, settings, outputs, key, style);
 
@@ -399,11 +403,11 @@ int run_render(const RenderOptions& o) {
   // cut the first pass leaves pixels without a sample: that image must not replace a finished one.
   const bool complete = samples.first >= target || (!result.stopped_by.empty() && samples.first > 0);
   if (interrupt.stopped() && !complete) {
-    outputs.write_interrupted(image, film, key, o.exposure);
+    outputs.write_interrupted(image, film, keyed ? key : key_now(), o.exposure);
     return report_interrupt(outputs, interrupt.signal_number(), samples, target);
   }
   if (!complete && !result.stopped_by.empty()) {
-    outputs.write_interrupted(image, film, key, o.exposure);
+    outputs.write_interrupted(image, film, keyed ? key : key_now(), o.exposure);
     std::fprintf(stderr, "caligo: %s came before every pixel had a sample: wrote the partial image %s (%s is kept)\n",
                  result.stopped_by.c_str(), quote_for_message(outputs.partial_exr()).c_str(),
                  quote_for_message(outputs.exr()).c_str());

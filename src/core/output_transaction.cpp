@@ -37,7 +37,7 @@ bool same_file(const std::string& a, const std::string& b) {
 
 namespace {
 
-// The checks of check_output_path but the probe: names a file in an existing folder.
+// The checks add() makes before the probe: the path names a file in an existing folder.
 fs::path checked_folder(const std::string& path, const std::string& what) {
   const SourceLocation where{path, ""};
   if (path.empty()) throw InputError("the " + what + " output path is empty");
@@ -67,10 +67,6 @@ void probe_folder(const fs::path& dir, const std::string& path, const std::strin
 }
 
 }  // namespace
-
-void check_output_path(const std::string& path, const std::string& what) {
-  probe_folder(checked_folder(path, what), path, what);
-}
 
 void OutputTransaction::add(const std::string& path, const std::string& what) {
   const fs::path dir = checked_folder(path, what);

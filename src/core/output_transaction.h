@@ -75,7 +75,4 @@ class OutputTransaction {
   std::vector<std::string> temps_;  // per output: its staged temporary, or empty
 };
 
-// The check add() makes, alone.
-void check_output_path(const std::string& path, const std::string& what);
-
 }  // namespace caligo
