@@ -27,6 +27,10 @@ struct RenderOptions {
   std::optional<std::string> distance_sampling;
   std::optional<std::string> secondary;
   std::optional<int> deferred_nee;
+  std::optional<std::string> guiding;
+  std::optional<float> adaptive_threshold;  // --adaptive-threshold X
+  std::optional<int> adaptive_min_samples;
+  std::optional<float> clamp_direct, clamp_indirect;
   std::optional<std::string> light_sampler;
   std::optional<std::string> filter;  // --filter box|gaussian|blackman_harris (its default radius)
   std::optional<std::string> crop;    // --crop x0,x1,y0,y1: fractions of the image

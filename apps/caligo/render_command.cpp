@@ -42,6 +42,11 @@ void add_path_options(CLI::App* cmd, RenderOptions& o) {
       ->default_str("auto");
   cmd->add_option("--deferred-nee", o.deferred_nee,
                   "Connect K scattering vertices per path to lights after building it (0: each segment as it goes)");
+  cmd->add_option("--guiding", o.guiding,
+                  "Path guiding: learn where light comes from in training passes of doubling sample counts and "
+                  "sample scattering directions from it at diffuse surfaces, in media, both or nowhere: "
+                  "off, surface, volume or all (overrides the scene's render.guiding)")
+      ->default_str("off");
   cmd->add_option("--light-sampler", o.light_sampler,
                   "How next-event estimation picks a light: tree (light tree: importance at the receiver), "
                   "power (in proportion to power, the same everywhere) or uniform")
@@ -96,6 +101,18 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
   cmd->add_option("--target-rmse", o.target_rmse,
                   "Progressive: stop once the image's estimated RMSE (from each pixel's sample variance; adds the "
                   "variance layer) is at most this, in linear radiance (at most --spp samples)");
+  cmd->add_option("--adaptive-threshold", o.adaptive_threshold,
+                  "Adaptive sampling: a pixel stops once the estimated relative error of its mean (from its own "
+                  "samples' variance; adds the variance layer) is below this, e.g. 0.01; pixel by pixel, unlike "
+                  "--target-rmse, which stops the whole image (overrides the scene's render.adaptive)");
+  cmd->add_option("--adaptive-min-samples", o.adaptive_min_samples,
+                  "Adaptive sampling: samples every pixel takes before it may stop (default max(16, sqrt(spp)))");
+  cmd->add_option("--clamp-direct", o.clamp_direct,
+                  "Biased, off by default: limit each channel of a sample's direct light (and emission and "
+                  "background seen) to this value; 0 is no limit");
+  cmd->add_option("--clamp-indirect", o.clamp_indirect,
+                  "Biased, off by default: limit each channel of a sample's indirect light to this value (fireflies "
+                  "of caustics and rare paths go, energy with them); 0 is no limit");
   cmd->add_option("--mpi-split", o.mpi_split,
                   "Under mpirun or srun, how the ranks split the frame: samples (each rank a range of every "
                   "pixel's samples) or rows (each rank a band of rows, all samples); rank 0 merges and writes")
@@ -133,6 +150,7 @@ void apply_path_options(const RenderOptions& o, PathSettings& path) {
     path.deferred_nee = *o.deferred_nee;
   }
   if (o.light_sampler) path.light_sampler = parse_choice("--light-sampler", *o.light_sampler, kLightSamplerNames);
+  if (o.guiding) path.guiding = parse_choice("--guiding", *o.guiding, kGuidingModeNames);
 }
 
 // --crop x0,x1,y0,y1.
@@ -176,6 +194,29 @@ void apply_image_options(const RenderOptions& o, const SceneDesc& desc, RenderSe
   }
 }
 
+// --adaptive-threshold, --adaptive-min-samples, --clamp-direct and --clamp-indirect.
+void apply_sampling_options(const RenderOptions& o, RenderSettings& s) {
+  if (o.adaptive_threshold) {
+    if (!(*o.adaptive_threshold > 0.0f && *o.adaptive_threshold <= 1.0f))
+      throw InputError(kCommandLine, "--adaptive-threshold: expected a relative error in (0, 1], e.g. 0.01");
+    s.adaptive.threshold = *o.adaptive_threshold;
+  }
+  if (o.adaptive_min_samples) {
+    if (*o.adaptive_min_samples < 1 || *o.adaptive_min_samples > 1'000'000)
+      throw InputError(kCommandLine, "--adaptive-min-samples: expected 1 to 1000000");
+    if (!(s.adaptive.threshold > 0.0f)) throw InputError(kCommandLine, "--adaptive-min-samples needs --adaptive-threshold");
+    s.adaptive.min_samples = *o.adaptive_min_samples;
+  }
+  if (s.adaptive.threshold > 0.0f) s.aovs = s.aovs.with(Aov::kVariance);
+  const auto limit = [](std::optional<float> v, const char* option, float& out) {
+    if (!v) return;
+    if (!(std::isfinite(*v) && *v >= 0.0f)) throw InputError(kCommandLine, std::string(option) + ": expected a value >= 0");
+    out = *v;
+  };
+  limit(o.clamp_direct, "--clamp-direct", s.clamp.direct);
+  limit(o.clamp_indirect, "--clamp-indirect", s.clamp.indirect);
+}
+
 // The scene's settings with every option of the command line applied.
 RenderSettings settings_from(const RenderOptions& o, const SceneDesc& desc) {
   RenderSettings s = render_settings(desc);
@@ -202,6 +243,7 @@ RenderSettings settings_from(const RenderOptions& o, const SceneDesc& desc) {
   if (o.seed) s.seed = parse_seed(*o.seed);
   apply_path_options(o, s.path);
   apply_image_options(o, desc, s);
+  apply_sampling_options(o, s);
   return s;
 }
 
@@ -216,6 +258,10 @@ void print_summary(const std::string& scene, const RenderSettings& s, const Rend
                scene.c_str(), s.resolution.x, s.resolution.y, spp.c_str(), format_duration(stats.seconds).c_str(),
                double(stats.paths) / stats.seconds, double(stats.rays) / stats.seconds,
                s.threads > 0 ? s.threads : int(std::thread::hardware_concurrency()), output.c_str());
+  if (stats.guiding.leaves > 0)
+    std::fprintf(stderr, "caligo: guiding: %d of %d training iterations, %llu spatial leaves, %llu directional nodes, %.3g MB\n",
+                 stats.guiding.iterations, GuidingConfig{}.iterations, (unsigned long long)stats.guiding.leaves,
+                 (unsigned long long)stats.guiding.nodes, double(stats.guiding.bytes) / 1e6);
 }
 
 // --priority MATERIAL=LEVEL. Only materials that already bound a medium may change (the scene
@@ -353,6 +399,9 @@ int report_interrupt(const RenderOutputs& outputs, int signal, std::pair<int, in
 int run_distributed(const RenderOptions& o, const ProgressiveSchedule& schedule, const Scene& scene,
                     const RenderSettings& settings, const RenderOutputs& outputs, uint64_t key,
                     Progress::Style style) {
+  if (settings.adaptive.threshold > 0.0f && o.mpi_split == "samples")
+    throw InputError(kCommandLine, "adaptive sampling stops each pixel by its own samples, which --mpi-split samples "
+                                   "spreads over the ranks: use --mpi-split rows");
   if (o.checkpoint || o.resume || schedule.passes())
     throw InputError(kCommandLine, "--checkpoint, --resume, --time-limit and --target-rmse are for single-process "
                                    "renders, not under mpirun");

@@ -57,6 +57,15 @@ enum Emission : uint32_t {
 constexpr uint32_t emission(int vertex, Emission which) {
   return kEmissionBase + uint32_t(vertex) * kPerEmission + which;
 }
+// Path guiding's choices (integrators/guided_direction.h), likewise apart: unguided renders keep
+// every other dimension.
+inline constexpr uint32_t kGuidingBase = 3u << 29;
+enum Guiding : uint32_t {
+  kGuideChoice = 0,  // 1D: the guided density or the BSDF / phase function
+  kGuideDirection,   // 2D: the guided direction
+  kPerGuiding
+};
+constexpr uint32_t guiding(int vertex, Guiding which) { return kGuidingBase + uint32_t(vertex) * kPerGuiding + which; }
 }  // namespace sample_dim
 
 class Sampler {

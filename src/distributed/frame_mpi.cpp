@@ -26,6 +26,7 @@
 #include "core/message_text.h"
 #include "core/rng.h"
 #include "distributed/frame.h"
+#include "guiding/guiding_schedule.h"
 
 namespace caligo::distributed {
 
@@ -220,16 +221,61 @@ Film receive_film(const Job& job, int from) {
   }
 }
 
+// A guided frame (render.h: guided()): the training iterations are collective. Each iteration's
+// samples [2^k - 1, 2^(k+1) - 1) are split over the ranks as the frame's are (share.h); then the
+// ranks agree on their outcome, sum the field's statistics (32-bit limbs in 64-bit words, so
+// MPI_SUM is exact) and every rank refines the same field. The samples after training are split
+// once. Each sample is rendered once, with the field the single-process render gives it.
+void render_guided_shares(const Job& job, std::optional<Film>& film, RenderStats& stats, const Scene& scene,
+                          const RenderSettings& frame, Split split, Progress::Style progress) {
+  GuidingField field(guiding_bounds(scene));
+  for (int first = 0; first < frame.spp;) {
+    const bool train = field.training();
+    const int end = train ? std::min(frame.spp, training_iteration_end(field.completed_iterations())) : frame.spp;
+    RenderSettings part = frame;
+    part.first_sample = first;
+    part.spp = end - first;
+    const RenderSettings share = settings_for_rank(part, split, job.rank(), job.size());
+    Outcome outcome;
+    try {
+      if (!film) film.emplace(frame.resolution, frame.aovs);
+      inject_test_failure(job.rank());
+      stats += render_into(*film, scene, share, job.rank() == 0 ? progress : Progress::Style::kQuiet,
+                           {&field, train});
+    } catch (const InputError& e) {
+      outcome = {kExitInputError, e.what()};
+    } catch (const EnvironmentError& e) {
+      outcome = {kExitEnvironmentError, e.what()};
+    } catch (const std::exception& e) {
+      outcome = {kExitInternalError, std::string("internal: ") + e.what()};
+    }
+    agree_on_outcome(job, outcome);
+    if (train) {
+      const std::vector<uint64_t> mine = field.statistics_words();
+      std::vector<uint64_t> total(mine.size());
+      check(MPI_Allreduce(mine.data(), total.data(), int(mine.size()), MPI_UINT64_T, MPI_SUM, job.comm()),
+            "MPI_Allreduce");
+      field.set_statistics_words(total);
+      if (end == training_iteration_end(field.completed_iterations())) field.finish_iteration();
+    }
+    first = end;
+  }
+}
+
 std::optional<RenderResult> render_frame_on(const Job& job, const Scene& scene, const RenderSettings& frame,
                                             Split split, Progress::Style progress, uint64_t frame_key) {
   const auto start = std::chrono::steady_clock::now();
   check_same_frame(job, frame, frame_key);
-  const RenderSettings share = settings_for_rank(frame, split, job.rank(), job.size());
   std::optional<Film> film;
   RenderStats stats;
-  const Outcome outcome = render_share(film, stats, scene, share,
-                                       job.rank() == 0 ? progress : Progress::Style::kQuiet, job.rank());
-  agree_on_outcome(job, outcome);
+  if (guided(frame)) {
+    render_guided_shares(job, film, stats, scene, frame, split, progress);
+  } else {
+    const RenderSettings share = settings_for_rank(frame, split, job.rank(), job.size());
+    const Outcome outcome = render_share(film, stats, scene, share,
+                                         job.rank() == 0 ? progress : Progress::Style::kQuiet, job.rank());
+    agree_on_outcome(job, outcome);
+  }
   sum_stats(job, stats);
   if (job.rank() != 0) {
     send_film(job, *film);

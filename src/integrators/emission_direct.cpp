@@ -1,5 +1,7 @@
 #include "integrators/emission_direct.h"
 
+#include "integrators/guided_direction.h"
+
 #include <cmath>
 
 #include "core/sampling.h"
@@ -17,12 +19,14 @@ struct Scattered {
 
 // The vertex's scattering towards wi; f is black where no bounce could go (the far side of an
 // opaque surface: bounce rays there are rejected too).
-Scattered scatter_towards(const EmissionVertex& v, Vec3 wi) {
-  if (!v.surface) return {mixed_phase_eval(v.lobes, v.direction, wi), mixed_phase_pdf(v.lobes, v.direction, wi), v.p};
+// The pdf is the vertex's own sampling density (guided or not), as the bounce ray's MIS weight has it.
+Scattered scatter_towards(const PathContext& ctx, const EmissionVertex& v, Vec3 wi) {
+  if (!v.surface)
+    return {mixed_phase_eval(v.lobes, v.direction, wi), phase_sampling_pdf(ctx, v.p, v.lobes, v.direction, wi), v.p};
   const SurfaceInteraction& si = *v.surface;
   if (dot(si.ng, wi) * dot(si.ng, v.direction) <= 0.0f) return {RGB(0.0f), 0.0f, si.p};
   return {bsdf_eval(si.material->bsdf, si.ns, v.direction, wi) * abs_dot(si.ns, wi),
-          bsdf_pdf(si.material->bsdf, si.ns, v.direction, wi), offset_ray_origin(si.p, si.ng, wi)};
+          bsdf_sampling_pdf(ctx, si.p, si.material->bsdf, si.ns, v.direction, wi), offset_ray_origin(si.p, si.ng, wi)};
 }
 
 }  // namespace
@@ -39,7 +43,7 @@ RGB emission_direct_light(const PathContext& ctx, const EmissionVertex& v, int v
   const float r = length(to);
   if (!(r > 0.0f) || !std::isfinite(r)) return RGB(0.0f);
   const Vec3 wi = to / r;
-  const Scattered s = scatter_towards(v, wi);
+  const Scattered s = scatter_towards(ctx, v, wi);
   if (s.f.is_black()) return RGB(0.0f);
   const float p_e = ctx.emission->direction_pdf(v.p, wi);
   if (!(p_e > 0.0f)) return RGB(0.0f);

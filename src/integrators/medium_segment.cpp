@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "integrators/emission_direct.h"
+#include "integrators/guided_direction.h"
 #include "integrators/visibility.h"
 #include "integrators/volume_direct.h"
 #include "tracking/tracking.h"
@@ -31,13 +32,18 @@ SegmentOutcome scatter_in_medium(const PathContext& ctx, PathState& state, Ray& 
   const Vec3 x = ray.at(t);
   const Sampler& sampler = ctx.sampler;
   const RGB beta = state.throughput;  // at the vertex, before the phase sample (deferred NEE)
-  const MixedPhaseSample ps = sample_mixed_phase(
-      lobes, ray.direction, lobes.size() > 1 ? sampler.get_1d(bounce(state.vertex(), sample_dim::kPhaseLobe)) : 0.0f,
-      sampler.get_2d(bounce(state.vertex(), sample_dim::kPhaseDirection)));
+  const DirectionalTree* guide = volume_guide(ctx, x);
+  const MixedPhaseSample ps =
+      guide ? guided_phase_sample(ctx, *guide, lobes, ray.direction, state.vertex())
+            : sample_mixed_phase(lobes, ray.direction,
+                                 lobes.size() > 1 ? sampler.get_1d(bounce(state.vertex(), sample_dim::kPhaseLobe)) : 0.0f,
+                                 sampler.get_2d(bounce(state.vertex(), sample_dim::kPhaseDirection)));
   if (ctx.emission)
     out.add(state.connected(true), beta * emission_direct_light(ctx, {x, ray.direction, lobes}, state.vertex()));
   state.throughput *= ps.weight;
   if (state.throughput.is_black()) return SegmentOutcome::kAbsorbed;
+  if (trains_volume(ctx)) remember_guided_vertex(ctx, x, ps.wi, ps.pdf, state.throughput, out);
+  ++ctx.guided_volume_vertex;
   state.emission_weight = emission_bounce_weight(ctx, x, ps.wi, ps.pdf);
   // Kept only on the scattered outcome, which is where trace_path stores its medium stack.
   PathScratch& scratch = ctx.scratch;

@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "core/sampler.h"
+#include "guiding/guiding_field.h"
+#include "integrators/guided_vertex.h"
 #include "integrators/path_sample.h"
 #include "settings/path_settings.h"
 #include "media/medium_stack.h"
@@ -52,6 +54,9 @@ struct PathScratch {
   std::vector<DeferredVertex> deferred;
   std::vector<PhaseLobe> deferred_lobes;
   std::vector<MediumStack> deferred_stacks;
+  // Path guiding's training: the path's guided vertices, whose incident radiance is what the
+  // path adds to the image after them (integrators/guided_direction.h).
+  std::vector<GuidedVertex> guided;
 };
 
 struct PathContext {
@@ -66,6 +71,11 @@ struct PathContext {
   // Volume emission as a light (integrators/emission_direct.h); null when nothing emits in a
   // grid or PathSettings::sample_emission is off.
   const EmissionSampler* emission = nullptr;
+  // Path guiding (integrators/guided_direction.h): the field to sample from (null: none), where
+  // it applies, and whether this sample trains it.
+  const GuidingField* guide = nullptr;
+  bool guide_surfaces = false, guide_volumes = false, train = false;
+  mutable int guided_volume_vertex = 0;
 };
 
 }  // namespace caligo

@@ -1,9 +1,12 @@
 #include "integrators/path_tracer.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <cstdlib>
 
 #include "core/sampling.h"
 #include "integrators/emission_direct.h"
+#include "integrators/guided_direction.h"
 #include "integrators/interface_eta.h"
 #include "integrators/medium_segment.h"
 #include "integrators/path_state.h"
@@ -76,7 +79,8 @@ RGB surface_direct_light(const PathContext& ctx, const PathState& state, const S
   const float light_pdf_sa = choice.pmf * ls->pdf;
   const float weight = ls->delta || through_interface
                            ? 1.0f
-                           : power_heuristic(1, light_pdf_sa, 1, bsdf_pdf(si.material->bsdf, si.ns, wo, ls->wi));
+                           : power_heuristic(1, light_pdf_sa, 1,
+                                             bsdf_sampling_pdf(ctx, si.p, si.material->bsdf, si.ns, wo, ls->wi));
   return f * tr * ls->radiance * (weight / light_pdf_sa);
 }
 
@@ -212,14 +216,17 @@ bool surface_hit(const PathContext& ctx, PathState& state, Ray& ray, const Surfa
     interface = DielectricBsdf{interface_eta(ctx.scratch.stack, entry, d->ior, dot(si.ng, wo) > 0.0f)};
     bsdf = &interface;
   }
-  const auto bs = bsdf_sample(*bsdf, si.ns, wo, sampler.get_1d(bounce(state.vertex(), sample_dim::kBsdfLobe)),
-                              sampler.get_2d(bounce(state.vertex(), sample_dim::kBsdfDirection)));
+  const DirectionalTree* guide = surface_guide(ctx, si.p, *bsdf);
+  const auto bs = guide ? guided_bsdf_sample(ctx, *guide, *bsdf, si.ns, wo, state.vertex())
+                        : bsdf_sample(*bsdf, si.ns, wo, sampler.get_1d(bounce(state.vertex(), sample_dim::kBsdfLobe)),
+                                      sampler.get_2d(bounce(state.vertex(), sample_dim::kBsdfDirection)));
   if (!bs || bs->weight.is_black()) return false;
   // Reject directions the shading normal allows but the geometry does not (light leaks).
   const bool transmits = dot(si.ng, bs->wi) * dot(si.ng, wo) < 0.0f;
   if (transmits && !std::holds_alternative<DielectricBsdf>(*bsdf)) return false;
   if (transmits && entry) ctx.scratch.stack.cross(*entry);
   state.throughput *= bs->weight;
+  if (trains_surface(ctx, *bsdf)) remember_guided_vertex(ctx, si.p, bs->wi, bs->pdf, state.throughput, out);
   state.specular_bounce = bs->specular;
   state.camera_view = state.camera_view && bs->specular;
   if (!bs->specular) state.count_nonspecular_event(false);
@@ -289,13 +296,21 @@ Next medium_in_front(const PathContext& ctx, PathState& state, Ray& ray, const s
 }  // namespace
 
 PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const PathSettings& settings,
-                      PathCounters& counters, PathScratch& scratch) {
+                      PathCounters& counters, PathScratch& scratch, PathGuiding guiding) {
   // Scenes without priority surfaces take exactly the paths they took before nested media.
   const EmissionSampler* emission =
       settings.sample_emission && !scene.emission_sampler().empty() ? &scene.emission_sampler() : nullptr;
-  const PathContext ctx{scene,    sampler, settings, scratch, counters, scene.light_sampler(settings.light_sampler),
+  PathContext ctx{scene,    sampler, settings, scratch, counters, scene.light_sampler(settings.light_sampler),
                         scene.has_priority_objects(), !scene.volumes().empty() || scene.volumes().has_media(),
                         emission};
+  // Deferred connections have no single incident direction for a vertex to learn from.
+  if (guiding.field && settings.deferred_nee <= 0 && settings.guiding != GuidingMode::kOff) {
+    ctx.guide = guiding.field;
+    ctx.guide_surfaces = settings.guiding == GuidingMode::kSurface || settings.guiding == GuidingMode::kAll;
+    ctx.guide_volumes = settings.guiding == GuidingMode::kVolume || settings.guiding == GuidingMode::kAll;
+    ctx.train = guiding.train;
+  }
+  scratch.guided.clear();
   PathSample out;
   PathState state;
   state.deferred_nee = settings.deferred_nee > 0;
@@ -336,6 +351,13 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
     if (!surface_hit(ctx, state, ray, si, entry, out)) break;
   }
   if (state.deferred_nee && !scratch.deferred.empty()) deferred_connections(ctx, state.vertex() + 1, out);
+  if (!scratch.guided.empty()) train_guide(ctx, out);
+  if (std::getenv("CALIGO_DEBUG_FIREFLY") && out.beauty().max_component() > 50.0f) {
+    std::fprintf(stderr, "firefly %g: events %d vol %d surf %d train %d guide %d; layers", out.beauty().max_component(), state.events,
+                 state.volume_bounces, state.surface_bounces, int(ctx.train), ctx.guide != nullptr);
+    for (const RGB& l : out.light) std::fprintf(stderr, " %g", l.max_component());
+    std::fprintf(stderr, "\n");
+  }
   out.alpha = 1.0f - state.visibility;
   return out;
 }

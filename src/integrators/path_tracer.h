@@ -31,7 +31,14 @@
 
 namespace caligo {
 
+// Path guiding for one sample: the field it samples from (null: none; settings.guiding says
+// where) and whether it trains the field (render/render.cpp follows guiding/guiding_schedule.h).
+struct PathGuiding {
+  const GuidingField* field = nullptr;
+  bool train = false;
+};
+
 PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const PathSettings& settings,
-                      PathCounters& counters, PathScratch& scratch);
+                      PathCounters& counters, PathScratch& scratch, PathGuiding guiding = {});
 
 }  // namespace caligo

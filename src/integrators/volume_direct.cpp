@@ -1,5 +1,7 @@
 #include "integrators/volume_direct.h"
 
+#include "integrators/guided_direction.h"
+
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -51,7 +53,7 @@ RGB scattered_light(const PathContext& ctx, const Ray& ray, const TransmittanceR
   const float w =
       ls->delta || through_interface
           ? 1.0f
-          : power_heuristic(1, light_pdf_sa, 1, mixed_phase_pdf(record.lobes(step), ray.direction, ls->wi));
+          : power_heuristic(1, light_pdf_sa, 1, phase_sampling_pdf(ctx, x, record.lobes(step), ray.direction, ls->wi));
   return step.sigma_s * record.transmittance(t) * tr * ls->radiance * phase * (w / light_pdf_sa);
 }
 
@@ -168,7 +170,7 @@ RGB point_volume_direct_light(const PathContext& ctx, Vec3 x, Vec3 direction, st
   const float light_pdf_sa = choice.pmf * ls->pdf;
   const float w = ls->delta || through_interface
                       ? 1.0f
-                      : power_heuristic(1, light_pdf_sa, 1, mixed_phase_pdf(lobes, direction, ls->wi));
+                      : power_heuristic(1, light_pdf_sa, 1, phase_sampling_pdf(ctx, x, lobes, direction, ls->wi));
   return phase * tr * ls->radiance * (w / light_pdf_sa);
 }
 

@@ -74,8 +74,23 @@ Image Film::resolve() const {
         image.at(x, y, out++) = float(sum[c].value() * inv);
       }
       if (out == z_channel) image.at(x, y, out++) = depth_[i];
+      if (aovs_.has(Aov::kSamples)) image.at(x, y, out++) = float(counts_[i]);
     }
   return image;
+}
+
+double Film::relative_error(int x, int y) const {
+  const size_t i = index(x, y);
+  if (squares_ < 0 || counts_[i] < 2) return kInfinity;
+  const FixedSum* sum = &sums_[i * size_t(channels_)];
+  const double n = double(counts_[i]);
+  double variance = 0.0, mean = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    const double m = sum[c].value() / n;
+    mean += m / 3.0;
+    variance += std::max(0.0, sum[squares_ + c].value() / n - m * m) / (n - 1.0) / 3.0;
+  }
+  return std::sqrt(variance) / std::max(mean, kRelativeErrorFloor);
 }
 
 std::optional<double> Film::estimated_rmse() const {
@@ -112,7 +127,8 @@ namespace {
 // (u32; core/checksum.h). The size must match the header exactly and the CRC the bytes: a
 // flipped bit in a sum, a count or the header is refused, not resumed into a wrong image.
 constexpr char kMagic[12] = {'C', 'A', 'L', 'I', 'G', 'O', '-', 'F', 'I', 'L', 'M', '\n'};
-constexpr uint32_t kVersion = 2;  // 1: without the CRC
+constexpr uint32_t kVersion = 3;  // 2: without the training state, 1: without the CRC
+constexpr uint64_t kMaxTrainingBytes = uint64_t(1) << 30;
 constexpr uint32_t kMaxSide = 1u << 16;
 constexpr uint64_t kMaxFilmPixels = uint64_t(1) << 26;  // the render command's pixel cap
 constexpr uint32_t kMaxFilmSamples = 1'000'000;         // the --spp maximum
@@ -123,6 +139,7 @@ struct FilmHeader {
   uint32_t width, height;
   uint32_t aov_bits;
   uint64_t key;
+  uint64_t training_bytes;  // Film::training_state, after the sums
 };
 
 // Sums per pixel for a set of outputs (the constructor's layout).
@@ -151,7 +168,8 @@ FilmHeader check_header(std::string_view prefix, uint64_t total, const SourceLoc
                                 " is out of range");
   if (header.aov_bits >> kAovCount) throw InputError(where, "film names unknown outputs");
   const AovSet aovs = AovSet::from_bits(header.aov_bits);
-  const uint64_t expected = sizeof header +
+  if (header.training_bytes > kMaxTrainingBytes) throw InputError(where, "film names a training state too large");
+  const uint64_t expected = sizeof header + header.training_bytes +
                             pixels * (sizeof(uint32_t) + (aovs.has(Aov::kDepth) ? sizeof(float) : 0) +
                                       uint64_t(summed_channels(aovs)) * sizeof(FixedSum)) +
                             sizeof(uint32_t);
@@ -207,15 +225,17 @@ std::string Film::to_bytes(uint64_t key) const {
   header.height = uint32_t(resolution_.y);
   header.aov_bits = aovs_.bits();
   header.key = key;
+  header.training_bytes = training_.size();
   const size_t counts = counts_.size() * sizeof(uint32_t), depths = depth_.size() * sizeof(float),
                sums = sums_.size() * sizeof(FixedSum);
-  const size_t body = sizeof header + counts + depths + sums;
+  const size_t body = sizeof header + counts + depths + sums + training_.size();
   std::string bytes(body + sizeof(uint32_t), '\0');
   char* out = bytes.data();
   std::memcpy(out, &header, sizeof header);
   std::memcpy(out += sizeof header, counts_.data(), counts);
   if (depths > 0) std::memcpy(out + counts, depth_.data(), depths);  // no depth: data() may be null
   std::memcpy(out + counts + depths, sums_.data(), sums);
+  if (!training_.empty()) std::memcpy(out + counts + depths + sums, training_.data(), training_.size());
   const uint32_t crc = crc32_of({bytes.data(), body});
   std::memcpy(bytes.data() + body, &crc, sizeof crc);
   return bytes;
@@ -236,6 +256,7 @@ Film Film::from_bytes(std::string_view bytes, const std::string& source, uint64_
   std::memcpy(film.counts_.data(), in, counts);
   if (depths > 0) std::memcpy(film.depth_.data(), in + counts, depths);
   std::memcpy(film.sums_.data(), in + counts + depths, sums);
+  film.training_.assign(in + counts + depths + sums, size_t(header.training_bytes));
   // What no render writes (a checksum can be made to match): more samples than --spp allows (a resume would try to "continue" a
   // pixel from there), or a NaN depth.
   for (uint32_t c : film.counts_)

@@ -42,6 +42,13 @@ class Film {
   // pixel's mean. nullopt without Aov::kVariance or without such a pixel.
   std::optional<double> estimated_rmse() const;
 
+  // The estimated relative error of pixel (x, y)'s mean beauty, from its own samples: the root of
+  // the variance of its mean, averaged over R, G, B, over its mean averaged likewise (at least
+  // kRelativeErrorFloor, so that a near-black pixel is not refined for noise nobody sees).
+  // Infinity below two samples or without Aov::kVariance. Adaptive sampling stops by it.
+  static constexpr double kRelativeErrorFloor = 1e-3;
+  double relative_error(int x, int y) const;
+
   // Averages over each pixel's own samples (a pixel with none is zero, alpha 0): the beauty as
   // R G B, then A, Z, N.X/Y/Z, albedo.R/G/B and the light layers "surface_direct.R", ... as
   // selected (aov_channels). Z is the nearest depth any sample of the pixel saw.
@@ -66,6 +73,13 @@ class Film {
   std::string to_bytes(uint64_t key = 0) const;
   static Film from_bytes(std::string_view bytes, const std::string& source, uint64_t* key = nullptr);
 
+  // What the sampler that renders into this film has learnt from its samples so far (path
+  // guiding's field, guiding/guiding_field.h, as bytes): saved and loaded with the sums, so a
+  // resumed render continues the training where it stopped. Empty when nothing learns. merge()
+  // keeps this film's.
+  const std::string& training_state() const { return training_; }
+  void set_training_state(std::string bytes) { training_ = std::move(bytes); }
+
   friend bool operator==(const Film&, const Film&) = default;
 
  private:
@@ -81,6 +95,7 @@ class Film {
   std::vector<FixedSum> sums_;  // pixel-major, channels_ per pixel
   std::vector<uint32_t> counts_;
   std::vector<float> depth_;  // nearest depth per pixel (only with Aov::kDepth)
+  std::string training_;
 };
 
 }  // namespace caligo

@@ -199,7 +199,7 @@ AovSet read_aovs(const JsonCursor& c) {
 RenderSettings parse_render(const JsonCursor& c) {
   ObjectReader r(c, "the render settings");
   r.allow({"spp", "max_bounces", "max_depth", "max_volume_bounces", "seed", "priority_shadows", "filter", "crop",
-           "aovs"});
+           "aovs", "guiding", "adaptive", "clamp"});
   RenderSettings render;
   render.spp = int(r.integer_or("spp", render.spp, Range::closed(1, kMaxSpp)));
   // "max_depth" is the former name of "max_bounces" (PathLimits), kept as an alias.
@@ -215,6 +215,25 @@ RenderSettings parse_render(const JsonCursor& c) {
   if (auto f = r.optional("filter")) render.filter = read_pixel_filter(*f);
   if (auto crop = r.optional("crop")) render.crop = read_crop(*crop);
   if (auto aovs = r.optional("aovs")) render.aovs = read_aovs(*aovs);
+  if (r.has("guiding")) {
+    const std::string mode = r.choice("guiding", {"off", "surface", "volume", "all"});
+    render.path.guiding = *enum_from_name(kGuidingModeNames, mode);
+  }
+  if (auto a = r.optional("adaptive")) {
+    ObjectReader ar(*a, "the adaptive sampling settings");
+    ar.allow({"threshold", "min_samples"});
+    render.adaptive.threshold = float(ar.number_or("threshold", 0.01, Range::above_up_to(0, 1)));
+    render.adaptive.min_samples = int(ar.integer_or("min_samples", 0, Range::closed(0, kMaxSpp)));
+    ar.finish();
+    render.aovs = render.aovs.with(Aov::kVariance);  // the error each pixel stops by
+  }
+  if (auto c = r.optional("clamp")) {
+    ObjectReader cr(*c, "the sample clamp");
+    cr.allow({"direct", "indirect"});
+    render.clamp.direct = float(cr.number_or("direct", 0.0, Range::non_negative()));
+    render.clamp.indirect = float(cr.number_or("indirect", 0.0, Range::non_negative()));
+    cr.finish();
+  }
   r.finish();
   return render;
 }

@@ -18,6 +18,7 @@ std::string_view aov_name(Aov a) {
     case Aov::kVolumeEmission:
     case Aov::kBackground: return light_kind_name(LightKind(int(a) - int(Aov::kSurfaceDirect)));
     case Aov::kVariance: return "variance";
+    case Aov::kSamples: return "samples";
   }
   return "?";
 }
@@ -77,6 +78,7 @@ std::vector<std::string> aov_channels(AovSet set) {
   }
   if (set.has(Aov::kVariance))
     for (const char* c : {"variance.R", "variance.G", "variance.B"}) names.push_back(c);
+  if (set.has(Aov::kSamples)) names.push_back("samples");
   return names;
 }
 

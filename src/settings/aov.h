@@ -30,8 +30,10 @@ enum class Aov : uint8_t {
   // The variance of each pixel's mean, per channel of the beauty: (sum x^2 / n - mean^2) / (n - 1),
   // for denoisers and for --target-rmse, which estimates the image's error from it.
   kVariance = 4 + kLightKindCount,
+  // Each pixel's sample count (one channel, "samples"): where adaptive sampling spent them.
+  kSamples,
 };
-inline constexpr int kAovCount = int(Aov::kVariance) + 1;
+inline constexpr int kAovCount = int(Aov::kSamples) + 1;
 
 constexpr Aov light_aov(LightKind kind) { return Aov(int(Aov::kSurfaceDirect) + int(kind)); }
 

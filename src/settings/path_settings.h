@@ -47,12 +47,21 @@ enum class SecondarySegments {
            // equiangular sampling, emissive ones their exact per-step emission
 };
 
-// --distance-sampling and --secondary.
+// Where path guiding (guiding/guiding_field.h) samples scattering directions: at diffuse surfaces,
+// at scattering events in media, both, or nowhere. Guided vertices mix the learnt density with
+// the BSDF's or phase function's by one-sample MIS (integrators/guided_direction.h).
+enum class GuidingMode { kOff, kSurface, kVolume, kAll };
+
+// --distance-sampling, --secondary and --guiding.
 inline constexpr std::array<EnumName<DistanceSampling>, 4> kDistanceSamplingNames{
     {{DistanceSampling::kMis, "mis"},
      {DistanceSampling::kMisFixed, "mis-fixed"},
      {DistanceSampling::kDensity, "density"},
      {DistanceSampling::kEquiangular, "equiangular"}}};
+inline constexpr std::array<EnumName<GuidingMode>, 4> kGuidingModeNames{{{GuidingMode::kOff, "off"},
+                                                                          {GuidingMode::kSurface, "surface"},
+                                                                          {GuidingMode::kVolume, "volume"},
+                                                                          {GuidingMode::kAll, "all"}}};
 inline constexpr std::array<EnumName<SecondarySegments>, 3> kSecondarySegmentsNames{
     {{SecondarySegments::kAuto, "auto"}, {SecondarySegments::kTrack, "track"}, {SecondarySegments::kMarch, "march"}}};
 
@@ -93,6 +102,12 @@ struct PathSettings {
   // rays that gather their emission (integrators/emission_direct.h); false: emission is found by
   // bounce rays alone (the former behaviour, for benchmarks).
   bool sample_emission = true;
+  // Path guiding (docs/techniques.md, "Path guiding"): the render loop trains a field in
+  // iterations of doubling sample counts and the path tracer samples from it where this says.
+  // Off with deferred_nee > 0 (a deferred connection has no single incident direction to learn).
+  GuidingMode guiding = GuidingMode::kOff;
+  // The guided density's share of the one-sample mixture with the BSDF or phase function.
+  float guiding_fraction = 0.5f;
 };
 
 }  // namespace caligo

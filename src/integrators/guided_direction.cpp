@@ -1,0 +1,110 @@
+#include "integrators/guided_direction.h"
+#include <cstdlib>
+
+namespace caligo {
+
+using sample_dim::bounce;
+using sample_dim::guiding;
+
+namespace {
+
+// Only a BSDF with a density can be mixed with the guide (a mirror or glass has a Dirac delta).
+bool guidable(const Bsdf& bsdf) { return std::holds_alternative<DiffuseBsdf>(bsdf); }
+
+}  // namespace
+
+const DirectionalTree* surface_guide(const PathContext& ctx, Vec3 x, const Bsdf& bsdf) {
+  return ctx.guide && ctx.guide_surfaces && guidable(bsdf) ? ctx.guide->at(x) : nullptr;
+}
+
+const DirectionalTree* volume_guide(const PathContext& ctx, Vec3 x) {
+  static const int kMax = std::getenv("CALIGO_GUIDE_MAXV") ? std::atoi(std::getenv("CALIGO_GUIDE_MAXV")) : 1000000;
+  if (ctx.guided_volume_vertex >= kMax) return nullptr;
+  return ctx.guide && ctx.guide_volumes ? ctx.guide->at(x) : nullptr;
+}
+
+std::optional<BsdfSample> guided_bsdf_sample(const PathContext& ctx, const DirectionalTree& guide, const Bsdf& bsdf,
+                                             Vec3 n, Vec3 wo, int vertex) {
+  const Sampler& sampler = ctx.sampler;
+  const float alpha = ctx.settings.guiding_fraction;
+  Vec3 wi;
+  if (sampler.get_1d(guiding(vertex, sample_dim::kGuideChoice)) < alpha) {
+    float unused = 0.0f;
+    wi = guide.sample(sampler.get_2d(guiding(vertex, sample_dim::kGuideDirection)), &unused);
+  } else {
+    const auto bs = bsdf_sample(bsdf, n, wo, sampler.get_1d(bounce(vertex, sample_dim::kBsdfLobe)),
+                                sampler.get_2d(bounce(vertex, sample_dim::kBsdfDirection)));
+    if (!bs) return std::nullopt;
+    wi = bs->wi;
+  }
+  // Both densities evaluated at the direction, whichever drew it (the evaluated guide density,
+  // not the sampler's, so that the two agree on a leaf's edge).
+  const float pdf = alpha * guide.pdf(wi) + (1.0f - alpha) * bsdf_pdf(bsdf, n, wo, wi);
+  const RGB f = bsdf_eval(bsdf, n, wo, wi) * abs_dot(n, wi);
+  if (!(pdf > 0.0f) || f.is_black()) return std::nullopt;
+  return BsdfSample{wi, f / pdf, pdf, false};
+}
+
+MixedPhaseSample guided_phase_sample(const PathContext& ctx, const DirectionalTree& guide,
+                                     std::span<const PhaseLobe> lobes, Vec3 wo, int vertex) {
+  const Sampler& sampler = ctx.sampler;
+  const float alpha = ctx.settings.guiding_fraction;
+  Vec3 wi;
+  if (sampler.get_1d(guiding(vertex, sample_dim::kGuideChoice)) < alpha) {
+    float unused = 0.0f;
+    wi = guide.sample(sampler.get_2d(guiding(vertex, sample_dim::kGuideDirection)), &unused);
+  } else {
+    wi = sample_mixed_phase(
+             lobes, wo, lobes.size() > 1 ? sampler.get_1d(bounce(vertex, sample_dim::kPhaseLobe)) : 0.0f,
+             sampler.get_2d(bounce(vertex, sample_dim::kPhaseDirection)))
+             .wi;
+  }
+  const float pdf = alpha * guide.pdf(wi) + (1.0f - alpha) * mixed_phase_pdf(lobes, wo, wi);
+  const RGB f = mixed_phase_eval(lobes, wo, wi);
+  return {wi, pdf > 0.0f ? f / pdf : RGB(0.0f), pdf};
+}
+
+float phase_sampling_pdf(const PathContext& ctx, Vec3 x, std::span<const PhaseLobe> lobes, Vec3 wo, Vec3 wi) {
+  const float native = mixed_phase_pdf(lobes, wo, wi);
+  const DirectionalTree* guide = volume_guide(ctx, x);
+  if (!guide) return native;
+  const float alpha = ctx.settings.guiding_fraction;
+  return alpha * guide->pdf(wi) + (1.0f - alpha) * native;
+}
+
+float bsdf_sampling_pdf(const PathContext& ctx, Vec3 x, const Bsdf& bsdf, Vec3 n, Vec3 wo, Vec3 wi) {
+  const float native = bsdf_pdf(bsdf, n, wo, wi);
+  const DirectionalTree* guide = surface_guide(ctx, x, bsdf);
+  if (!guide) return native;
+  const float alpha = ctx.settings.guiding_fraction;
+  return alpha * guide->pdf(wi) + (1.0f - alpha) * native;
+}
+
+bool trains_surface(const PathContext& ctx, const Bsdf& bsdf) {
+  return ctx.train && ctx.guide_surfaces && guidable(bsdf);
+}
+
+bool trains_volume(const PathContext& ctx) { return ctx.train && ctx.guide_volumes; }
+
+void remember_guided_vertex(const PathContext& ctx, Vec3 x, Vec3 wi, float pdf, RGB throughput,
+                            const PathSample& out) {
+  if (pdf > 0.0f && !throughput.is_black()) ctx.scratch.guided.push_back({x, wi, pdf, throughput, out.beauty()});
+}
+
+void train_guide(const PathContext& ctx, const PathSample& out) {
+  const RGB image = out.beauty();
+  for (const GuidedVertex& v : ctx.scratch.guided) {
+    // The radiance along wi, per channel the throughput carries, averaged.
+    const RGB added = image - v.image_before;
+    double radiance = 0.0;
+    int channels = 0;
+    for (int c = 0; c < 3; ++c)
+      if (v.throughput[c] > 0.0f) {
+        radiance += double(added[c]) / double(v.throughput[c]);
+        ++channels;
+      }
+    if (channels > 0) ctx.guide->record(v.x, v.wi, radiance / channels / double(v.pdf));
+  }
+}
+
+}  // namespace caligo

@@ -1,0 +1,18 @@
+// A vertex of a path that guiding trains from: where it is, the direction the path left along and
+// that direction's pdf, the throughput after it, and the image's sum when it was made (what the
+// path adds after it, over that throughput, is the radiance that arrived along the direction).
+#pragma once
+
+#include "core/rgb.h"
+#include "core/vec.h"
+
+namespace caligo {
+
+struct GuidedVertex {
+  Vec3 x, wi;
+  float pdf;
+  RGB throughput;
+  RGB image_before;
+};
+
+}  // namespace caligo
