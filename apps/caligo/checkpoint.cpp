@@ -49,7 +49,7 @@ uint64_t checkpoint_key(const std::string& scene_source, const std::vector<std::
         << p.limits.max_bounces << ' ' << p.limits.max_volume_bounces << " rr " << p.russian_roulette_depth
         << " null " << p.max_null_crossings << " dist " << int(p.distance_sampling) << " nee "
         << hex(p.volume_nee_scale) << " lights " << int(p.light_sampler) << " abs " << p.absorption_by_weight
-        << " deferred " << p.deferred_nee << " secondary " << int(p.secondary) << " guiding " << int(p.guiding) << ' ' << hex(p.guiding_fraction) << " filter " << int(s.filter.type) << ' ' << hex(s.filter.radius)
+        << " deferred " << p.deferred_nee << " secondary " << int(p.secondary) << " guiding " << int(p.guiding) << " filter " << int(s.filter.type) << ' ' << hex(s.filter.radius)
         << ' ' << hex(s.filter.sigma) << " crop " << hex(s.crop.x0) << ' ' << hex(s.crop.x1) << ' '
         << hex(s.crop.y0) << ' ' << hex(s.crop.y1) << " aovs " << s.aovs.bits() << " march "
         << hex(s.march.opacity_threshold) << ' ' << s.march.max_steps_per_span << ' '

@@ -356,6 +356,11 @@ Film load_checkpoint(const std::string& path, uint64_t key, const RenderSettings
                             "seed, path, filter, crop, outputs, time or priorities differ); it cannot be resumed here");
   if (film.resolution() != s.resolution || film.aovs() != s.aovs)
     throw InputError(where, "this checkpoint's resolution or outputs differ from the render's");
+  // A guided render's field is read here, so that a damaged one is refused naming the file.
+  if (!film.training_state().empty()) {
+    if (!guided(s)) throw InputError(where, "this checkpoint holds a guiding field, but the render is not guided");
+    (void)GuidingField::from_bytes(film.training_state(), path);
+  }
   return film;
 }
 

@@ -228,7 +228,7 @@ Film receive_film(const Job& job, int from) {
 // once. Each sample is rendered once, with the field the single-process render gives it.
 void render_guided_shares(const Job& job, std::optional<Film>& film, RenderStats& stats, const Scene& scene,
                           const RenderSettings& frame, Split split, Progress::Style progress) {
-  GuidingField field(guiding_bounds(scene));
+  GuidingField field(guiding_bounds(scene), guiding_config(frame));
   for (int first = 0; first < frame.spp;) {
     const bool train = field.training();
     const int end = train ? std::min(frame.spp, training_iteration_end(field.completed_iterations())) : frame.spp;

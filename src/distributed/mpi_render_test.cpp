@@ -43,6 +43,7 @@ std::string mpirun(int ranks) {
 
 // The small scene every test renders: fog, a glass sphere, light through both (a few ms a pass).
 const std::string kScene = "render default --res 40x30 --spp 5 --threads 1 -q";
+const std::string kGuidedScene = "render default --res 40x30 --spp 12 --threads 1 -q --guiding all";
 
 class MpiRender : public ::testing::Test {
  protected:
@@ -105,6 +106,16 @@ TEST_F(MpiRender, RowSplitEqualsSingleProcessBitForBit) {
 }
 
 // Rank 1 fails with a scene error: rank 0 says which rank and why, once; exit 2; nothing written.
+// Path guiding over ranks: each training iteration split over them, the field's statistics
+// summed exactly after it (--spp 12 trains through iteration 3 and renders 5 samples after).
+TEST_F(MpiRender, GuidedSampleSplitEqualsSingleProcessBitForBit) {
+  expect_same_as_single_process(2, kGuidedScene);
+}
+
+TEST_F(MpiRender, GuidedRowSplitEqualsSingleProcessBitForBit) {
+  expect_same_as_single_process(2, kGuidedScene + " --mpi-split rows");
+}
+
 TEST_F(MpiRender, FailingRankIsReportedOnRankZero) {
   const RunResult r = run("CALIGO_TEST_MPI_FAIL=1:input " + mpirun(2), kScene + " -o " + (dir_ / "a.exr").string());
   EXPECT_EQ(r.exit_code, 2) << r.err;

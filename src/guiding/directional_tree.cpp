@@ -100,7 +100,36 @@ void DirectionalTree::record(Vec3 w, double value) const {
   }
 }
 
+void DirectionalTree::record(const GuidingRecord& r) const {
+  if (r.pdf_used > 0.0f) record(r.wi, r.radiance / r.pdf_used);
+  if (!usable() || !(r.pdf_used > 0.0f)) return;
+  // E[(f L)^2 / (p_k p_used)] over samples drawn from p_used is candidate k's second moment.
+  // Scaled by 2^16 so that dim scenes keep resolution in the fixed-point sums.
+  const double fl = double(r.f) * r.radiance, guide = pdf(r.wi);
+  if (!(fl > 0.0)) return;
+  const size_t base = r.surface ? 0 : kFractions.size();
+  for (size_t k = 0; k < kFractions.size(); ++k) {
+    const double p = kFractions[k] * guide + (1.0 - kFractions[k]) * r.pdf_native;
+    moments_[base + k].add(p > 0.0 ? 0x1p16 * fl * fl / (p * r.pdf_used) : 0x1p100);
+  }
+}
+
 namespace {
+
+// The candidate share of least second moment; `current` without data.
+float best_fraction(const std::array<AtomicFixedSum, DirectionalTree::kMoments>& moments, size_t base, float current) {
+  double best = 0.0;
+  float chosen = current;
+  for (size_t k = 0; k < DirectionalTree::kFractions.size(); ++k) {
+    const double m = moments[base + k].value();
+    if (!(m > 0.0)) return current;  // no vertex of this kind recorded here
+    if (k == 0 || m < best) {
+      best = m;
+      chosen = DirectionalTree::kFractions[k];
+    }
+  }
+  return chosen;
+}
 
 // Each quadrant's energy this iteration: its statistic when a leaf, its child's sum otherwise.
 void gather(const std::vector<DirectionalTree::Node>& nodes, const std::vector<AtomicFixedSum>& stats, uint32_t n,
@@ -147,6 +176,8 @@ DirectionalTree DirectionalTree::refined(double split_fraction, int max_depth) c
   gather(nodes_, stats_, 0, totals);
   const double total = totals[0][0] + totals[0][1] + totals[0][2] + totals[0][3];
   DirectionalTree next;
+  next.fraction_ = {best_fraction(moments_, 0, fraction_[0]),
+                    best_fraction(moments_, kFractions.size(), fraction_[1])};
   if (!(total > 0.0)) {  // nothing learnt here this iteration: keep what was known
     next.nodes_ = nodes_;
     next.stats_.assign(stats_.size(), AtomicFixedSum());
@@ -163,8 +194,9 @@ DirectionalTree DirectionalTree::refined(double split_fraction, int max_depth) c
 }
 
 DirectionalTree DirectionalTree::from_parts(std::vector<Node> nodes, std::vector<AtomicFixedSum> stats,
-                                            FixedTotal vertices) {
+                                            FixedTotal vertices, std::array<float, 2> fractions) {
   DirectionalTree t;
+  t.fraction_ = fractions;
   t.nodes_ = std::move(nodes);
   t.stats_ = std::move(stats);
   t.vertices_.set(vertices);
@@ -173,15 +205,5 @@ DirectionalTree DirectionalTree::from_parts(std::vector<Node> nodes, std::vector
   return t;
 }
 
-void DirectionalTree::add_statistics(const DirectionalTree& other) {
-  for (size_t i = 0; i < stats_.size(); ++i) {
-    FixedTotal t = stats_[i].total();
-    t += other.stats_[i].total();
-    stats_[i].set(t);
-  }
-  FixedTotal v = vertices_.total();
-  v += other.vertices_.total();
-  vertices_.set(v);
-}
 
 }  // namespace caligo

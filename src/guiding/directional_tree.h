@@ -26,8 +26,25 @@ namespace caligo {
 Vec2 sphere_to_square(Vec3 w);
 Vec3 square_to_sphere(Vec2 p);
 
+// What training learns from one guided vertex: the direction, the radiance that came back along
+// it, the scattering function's value there (BSDF times cosine, or phase function; channel
+// averages), and the densities of the native (BSDF or phase) sampling and of the mixture that
+// drew it.
+struct GuidingRecord {
+  Vec3 wi;
+  double radiance;
+  float f, pdf_native, pdf_used;
+  bool surface;
+};
+
 class DirectionalTree {
  public:
+  // The guided density's shares of the one-sample mixture a tree may choose between; after each
+  // iteration it keeps, for surface and for medium vertices apart, the one whose estimated second
+  // moment of f L / p was least (a discrete form of Mueller 2019's learnt BSDF-sampling fraction):
+  // where guiding does not pay (a forward-scattering, dense cloud) the share falls to 0.
+  static constexpr std::array<float, 5> kFractions{0.0f, 0.125f, 0.25f, 0.5f, 0.75f};
+
   struct Node {
     std::array<uint32_t, 4> child{};  // 0: the quadrant is a leaf (node 0 is the root, nobody's child)
     std::array<float, 4> energy{};
@@ -45,6 +62,11 @@ class DirectionalTree {
   // into the count the spatial tree splits by. (const: the statistics sit beside the distribution,
   // which does not change while they gather.)
   void record(Vec3 w, double value) const;
+  // record(), and the second moments of every candidate share.
+  void record(const GuidingRecord& r) const;
+  // The guided density's share at surface or medium vertices.
+  float fraction(bool surface) const { return fraction_[surface ? 0 : 1]; }
+  void set_fractions(float surface, float volume) { fraction_ = {surface, volume}; }
   double vertex_count() const { return vertices_.value(); }
 
   // The next iteration's tree: this iteration's statistics as the energies, a quadrant split while
@@ -60,15 +82,21 @@ class DirectionalTree {
   // For guiding_field_io.cpp: the raw parts, and a tree from them (checked by the caller).
   const std::vector<AtomicFixedSum>& statistics() const { return stats_; }
   const AtomicFixedSum& vertices() const { return vertices_; }
-  static DirectionalTree from_parts(std::vector<Node> nodes, std::vector<AtomicFixedSum> stats, FixedTotal vertices);
-  // Adds another tree's statistics (same structure: the same field on another MPI rank).
-  void add_statistics(const DirectionalTree& other);
+  static constexpr size_t kMoments = 2 * kFractions.size();  // surface candidates, then medium ones
+  const std::array<AtomicFixedSum, kMoments>& moments() const { return moments_; }
+  void set_moments(const std::array<FixedTotal, kMoments>& m) {
+    for (size_t i = 0; i < kMoments; ++i) moments_[i].set(m[i]);
+  }
+  static DirectionalTree from_parts(std::vector<Node> nodes, std::vector<AtomicFixedSum> stats, FixedTotal vertices,
+                                    std::array<float, 2> fractions);
 
  private:
   std::vector<Node> nodes_;
   mutable std::vector<AtomicFixedSum> stats_;  // 4 per node, in quadrant order
   mutable AtomicFixedSum vertices_;
+  mutable std::array<AtomicFixedSum, kMoments> moments_;
   float total_ = 0.0f;  // the root's energy
+  std::array<float, 2> fraction_{0.5f, 0.5f};  // surface, medium
 };
 
 }  // namespace caligo

@@ -37,6 +37,7 @@ const DirectionalTree* GuidingField::at(Vec3 x) const {
 }
 
 void GuidingField::record(Vec3 x, Vec3 w, double value) const { trees_[leaf_of(x)].record(w, value); }
+void GuidingField::record(Vec3 x, const GuidingRecord& r) const { trees_[leaf_of(x)].record(r); }
 
 size_t GuidingField::directional_nodes() const {
   size_t n = 0;
@@ -103,6 +104,7 @@ std::vector<uint64_t> GuidingField::statistics_words() const {
   };
   for (const DirectionalTree& t : trees_) {
     put(t.vertices().total());
+    for (const AtomicFixedSum& s : t.moments()) put(s.total());
     for (const AtomicFixedSum& s : t.statistics()) put(s.total());
   }
   return words;
@@ -110,7 +112,7 @@ std::vector<uint64_t> GuidingField::statistics_words() const {
 
 void GuidingField::set_statistics_words(const std::vector<uint64_t>& words) {
   size_t expected = 0;
-  for (const DirectionalTree& t : trees_) expected += 4 * (1 + t.statistics().size());
+  for (const DirectionalTree& t : trees_) expected += 4 * (1 + DirectionalTree::kMoments + t.statistics().size());
   if (words.size() != expected) throw std::invalid_argument("guiding statistics of another field's shape");
   size_t i = 0;
   const auto take = [&] {
@@ -125,9 +127,12 @@ void GuidingField::set_statistics_words(const std::vector<uint64_t>& words) {
   };
   for (DirectionalTree& t : trees_) {
     const FixedTotal vertices = take();
+    std::array<FixedTotal, DirectionalTree::kMoments> moments;
+    for (FixedTotal& m : moments) m = take();
     std::vector<AtomicFixedSum> stats(t.statistics().size());
     for (AtomicFixedSum& s : stats) s.set(take());
-    t = DirectionalTree::from_parts(t.nodes(), std::move(stats), vertices);
+    t = DirectionalTree::from_parts(t.nodes(), std::move(stats), vertices, {t.fraction(true), t.fraction(false)});
+    t.set_moments(moments);
   }
 }
 

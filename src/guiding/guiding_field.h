@@ -50,6 +50,7 @@ class GuidingField {
   const DirectionalTree* at(Vec3 x) const;
   // Training: see DirectionalTree::record. From any number of threads at once.
   void record(Vec3 x, Vec3 w, double value) const;
+  void record(Vec3 x, const GuidingRecord& r) const;
 
   int completed_iterations() const { return completed_; }
   bool training() const { return completed_ < config_.iterations; }
@@ -59,6 +60,7 @@ class GuidingField {
   const GuidingConfig& config() const { return config_; }
   const Bounds3& bounds() const { return bounds_; }
   size_t spatial_leaves() const { return trees_.size(); }
+  const DirectionalTree& tree(size_t leaf) const { return trees_[leaf]; }
   size_t directional_nodes() const;
   uint64_t memory_bytes() const;
 
@@ -69,7 +71,8 @@ class GuidingField {
   static GuidingField from_bytes(std::string_view bytes, const std::string& source);
 
   // The training statistics alone, as 32-bit limbs in 64-bit words (so that MPI_SUM over ranks is
-  // exact), and adding such words of fields of the same structure (other ranks').
+  // exact), and setting them from such words (summed over the ranks' fields, which have the same
+  // structure). set_statistics_words throws std::invalid_argument for words of another shape.
   std::vector<uint64_t> statistics_words() const;
   void set_statistics_words(const std::vector<uint64_t>& words);
 

@@ -2,6 +2,7 @@
 // endian raw values; a reader that checks every count against what is left, every index against
 // what it indexes and every value against what training can produce, since a checkpoint is
 // untrusted input.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -93,7 +94,18 @@ DirectionalTree read_tree(Reader& r, int max_depth) {
   std::vector<AtomicFixedSum> stats(4 * size_t(n));
   for (AtomicFixedSum& s : stats) s.set(get_total(r));
   const FixedTotal vertices = get_total(r);
-  return DirectionalTree::from_parts(std::move(nodes), std::move(stats), vertices);
+  std::array<FixedTotal, DirectionalTree::kMoments> moments;
+  for (FixedTotal& m : moments) m = get_total(r);
+  std::array<float, 2> fractions;
+  for (float& f : fractions) {
+    f = r.get<float>();
+    if (std::find(DirectionalTree::kFractions.begin(), DirectionalTree::kFractions.end(), f) ==
+        DirectionalTree::kFractions.end())
+      r.fail("a guided share that is not one of the candidates");
+  }
+  DirectionalTree tree = DirectionalTree::from_parts(std::move(nodes), std::move(stats), vertices, fractions);
+  tree.set_moments(moments);
+  return tree;
 }
 
 }  // namespace
@@ -123,6 +135,9 @@ std::string GuidingField::to_bytes() const {
     }
     for (const AtomicFixedSum& s : t.statistics()) put_total(w, s.total());
     put_total(w, t.vertices().total());
+    for (const AtomicFixedSum& m : t.moments()) put_total(w, m.total());
+    w.put(t.fraction(true));
+    w.put(t.fraction(false));
   }
   return std::move(w.bytes);
 }

@@ -1,5 +1,4 @@
 #include "integrators/guided_direction.h"
-#include <cstdlib>
 
 namespace caligo {
 
@@ -18,23 +17,21 @@ const DirectionalTree* surface_guide(const PathContext& ctx, Vec3 x, const Bsdf&
 }
 
 const DirectionalTree* volume_guide(const PathContext& ctx, Vec3 x) {
-  static const int kMax = std::getenv("CALIGO_GUIDE_MAXV") ? std::atoi(std::getenv("CALIGO_GUIDE_MAXV")) : 1000000;
-  if (ctx.guided_volume_vertex >= kMax) return nullptr;
   return ctx.guide && ctx.guide_volumes ? ctx.guide->at(x) : nullptr;
 }
 
 std::optional<BsdfSample> guided_bsdf_sample(const PathContext& ctx, const DirectionalTree& guide, const Bsdf& bsdf,
                                              Vec3 n, Vec3 wo, int vertex) {
   const Sampler& sampler = ctx.sampler;
-  const float alpha = ctx.settings.guiding_fraction;
+  const float alpha = guide.fraction(true);
   Vec3 wi;
-  if (sampler.get_1d(guiding(vertex, sample_dim::kGuideChoice)) < alpha) {
+  if (alpha > 0.0f && sampler.get_1d(guiding(vertex, sample_dim::kGuideChoice)) < alpha) {
     float unused = 0.0f;
     wi = guide.sample(sampler.get_2d(guiding(vertex, sample_dim::kGuideDirection)), &unused);
   } else {
     const auto bs = bsdf_sample(bsdf, n, wo, sampler.get_1d(bounce(vertex, sample_dim::kBsdfLobe)),
                                 sampler.get_2d(bounce(vertex, sample_dim::kBsdfDirection)));
-    if (!bs) return std::nullopt;
+    if (!bs || alpha == 0.0f) return bs;
     wi = bs->wi;
   }
   // Both densities evaluated at the direction, whichever drew it (the evaluated guide density,
@@ -48,16 +45,17 @@ std::optional<BsdfSample> guided_bsdf_sample(const PathContext& ctx, const Direc
 MixedPhaseSample guided_phase_sample(const PathContext& ctx, const DirectionalTree& guide,
                                      std::span<const PhaseLobe> lobes, Vec3 wo, int vertex) {
   const Sampler& sampler = ctx.sampler;
-  const float alpha = ctx.settings.guiding_fraction;
+  const float alpha = guide.fraction(false);
   Vec3 wi;
-  if (sampler.get_1d(guiding(vertex, sample_dim::kGuideChoice)) < alpha) {
+  if (alpha > 0.0f && sampler.get_1d(guiding(vertex, sample_dim::kGuideChoice)) < alpha) {
     float unused = 0.0f;
     wi = guide.sample(sampler.get_2d(guiding(vertex, sample_dim::kGuideDirection)), &unused);
   } else {
-    wi = sample_mixed_phase(
-             lobes, wo, lobes.size() > 1 ? sampler.get_1d(bounce(vertex, sample_dim::kPhaseLobe)) : 0.0f,
-             sampler.get_2d(bounce(vertex, sample_dim::kPhaseDirection)))
-             .wi;
+    const MixedPhaseSample ps = sample_mixed_phase(
+        lobes, wo, lobes.size() > 1 ? sampler.get_1d(bounce(vertex, sample_dim::kPhaseLobe)) : 0.0f,
+        sampler.get_2d(bounce(vertex, sample_dim::kPhaseDirection)));
+    if (alpha == 0.0f) return ps;
+    wi = ps.wi;
   }
   const float pdf = alpha * guide.pdf(wi) + (1.0f - alpha) * mixed_phase_pdf(lobes, wo, wi);
   const RGB f = mixed_phase_eval(lobes, wo, wi);
@@ -68,7 +66,7 @@ float phase_sampling_pdf(const PathContext& ctx, Vec3 x, std::span<const PhaseLo
   const float native = mixed_phase_pdf(lobes, wo, wi);
   const DirectionalTree* guide = volume_guide(ctx, x);
   if (!guide) return native;
-  const float alpha = ctx.settings.guiding_fraction;
+  const float alpha = guide->fraction(false);
   return alpha * guide->pdf(wi) + (1.0f - alpha) * native;
 }
 
@@ -76,7 +74,7 @@ float bsdf_sampling_pdf(const PathContext& ctx, Vec3 x, const Bsdf& bsdf, Vec3 n
   const float native = bsdf_pdf(bsdf, n, wo, wi);
   const DirectionalTree* guide = surface_guide(ctx, x, bsdf);
   if (!guide) return native;
-  const float alpha = ctx.settings.guiding_fraction;
+  const float alpha = guide->fraction(true);
   return alpha * guide->pdf(wi) + (1.0f - alpha) * native;
 }
 
@@ -86,9 +84,11 @@ bool trains_surface(const PathContext& ctx, const Bsdf& bsdf) {
 
 bool trains_volume(const PathContext& ctx) { return ctx.train && ctx.guide_volumes; }
 
-void remember_guided_vertex(const PathContext& ctx, Vec3 x, Vec3 wi, float pdf, RGB throughput,
-                            const PathSample& out) {
-  if (pdf > 0.0f && !throughput.is_black()) ctx.scratch.guided.push_back({x, wi, pdf, throughput, out.beauty()});
+void remember_guided_vertex(const PathContext& ctx, Vec3 x, bool surface, Vec3 wi, RGB weight, float pdf,
+                            float pdf_native, RGB throughput, const PathSample& out) {
+  if (pdf > 0.0f && !throughput.is_black())
+    ctx.scratch.guided.push_back(
+        {x, wi, pdf, (weight * pdf).average(), pdf_native, surface, throughput, out.beauty()});
 }
 
 void train_guide(const PathContext& ctx, const PathSample& out) {
@@ -103,7 +103,8 @@ void train_guide(const PathContext& ctx, const PathSample& out) {
         radiance += double(added[c]) / double(v.throughput[c]);
         ++channels;
       }
-    if (channels > 0) ctx.guide->record(v.x, v.wi, radiance / channels / double(v.pdf));
+    if (channels > 0)
+      ctx.guide->record(v.x, GuidingRecord{v.wi, radiance / channels, v.f, v.pdf_native, v.pdf, v.surface});
   }
 }
 

@@ -1,6 +1,7 @@
 // Path guiding at a path vertex (guiding/guiding_field.h holds the learnt field): the next
 // direction by one-sample MIS of the guided density and the BSDF's or phase function's -- the
-// direction comes from the guide with probability alpha (PathSettings::guiding_fraction) and
+// direction comes from the guide with probability alpha (the share its leaf learnt for surface
+// or medium vertices: DirectionalTree::fraction) and
 // from the BSDF or phase function otherwise, and is weighted by f / (alpha p_guide + (1 - alpha)
 // p_native), the balance heuristic of the two for one sample (Mueller et al. 2017). Where the
 // field knows nothing yet, the native sampling runs alone, drawing what it always draws. The
@@ -42,8 +43,10 @@ float bsdf_sampling_pdf(const PathContext& ctx, Vec3 x, const Bsdf& bsdf, Vec3 n
 // iteration); remembering one; and, at the end of the path, handing its vertices to the field.
 bool trains_surface(const PathContext& ctx, const Bsdf& bsdf);
 bool trains_volume(const PathContext& ctx);
-void remember_guided_vertex(const PathContext& ctx, Vec3 x, Vec3 wi, float pdf, RGB throughput,
-                            const PathSample& out);
+// `weight` and `pdf`: of the sample taken (f = weight * pdf); `pdf_native`: the BSDF's or phase
+// function's density at its direction.
+void remember_guided_vertex(const PathContext& ctx, Vec3 x, bool surface, Vec3 wi, RGB weight, float pdf,
+                            float pdf_native, RGB throughput, const PathSample& out);
 void train_guide(const PathContext& ctx, const PathSample& out);
 
 }  // namespace caligo

@@ -10,7 +10,10 @@ namespace caligo {
 
 struct GuidedVertex {
   Vec3 x, wi;
-  float pdf;
+  float pdf;         // of the sampling that drew wi (the mixture, or the native alone)
+  float f;           // BSDF times cosine, or phase function, at wi (channel average)
+  float pdf_native;  // the BSDF's or phase function's own density at wi
+  bool surface;
   RGB throughput;
   RGB image_before;
 };

@@ -42,8 +42,9 @@ SegmentOutcome scatter_in_medium(const PathContext& ctx, PathState& state, Ray& 
     out.add(state.connected(true), beta * emission_direct_light(ctx, {x, ray.direction, lobes}, state.vertex()));
   state.throughput *= ps.weight;
   if (state.throughput.is_black()) return SegmentOutcome::kAbsorbed;
-  if (trains_volume(ctx)) remember_guided_vertex(ctx, x, ps.wi, ps.pdf, state.throughput, out);
-  ++ctx.guided_volume_vertex;
+  if (trains_volume(ctx))
+    remember_guided_vertex(ctx, x, false, ps.wi, ps.weight, ps.pdf,
+                           guide ? mixed_phase_pdf(lobes, ray.direction, ps.wi) : ps.pdf, state.throughput, out);
   state.emission_weight = emission_bounce_weight(ctx, x, ps.wi, ps.pdf);
   // Kept only on the scattered outcome, which is where trace_path stores its medium stack.
   PathScratch& scratch = ctx.scratch;

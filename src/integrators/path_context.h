@@ -75,7 +75,6 @@ struct PathContext {
   // it applies, and whether this sample trains it.
   const GuidingField* guide = nullptr;
   bool guide_surfaces = false, guide_volumes = false, train = false;
-  mutable int guided_volume_vertex = 0;
 };
 
 }  // namespace caligo

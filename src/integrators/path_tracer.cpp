@@ -1,8 +1,6 @@
 #include "integrators/path_tracer.h"
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 
 #include "core/sampling.h"
 #include "integrators/emission_direct.h"
@@ -226,7 +224,9 @@ bool surface_hit(const PathContext& ctx, PathState& state, Ray& ray, const Surfa
   if (transmits && !std::holds_alternative<DielectricBsdf>(*bsdf)) return false;
   if (transmits && entry) ctx.scratch.stack.cross(*entry);
   state.throughput *= bs->weight;
-  if (trains_surface(ctx, *bsdf)) remember_guided_vertex(ctx, si.p, bs->wi, bs->pdf, state.throughput, out);
+  if (trains_surface(ctx, *bsdf))
+    remember_guided_vertex(ctx, si.p, true, bs->wi, bs->weight, bs->pdf,
+                           guide ? bsdf_pdf(*bsdf, si.ns, wo, bs->wi) : bs->pdf, state.throughput, out);
   state.specular_bounce = bs->specular;
   state.camera_view = state.camera_view && bs->specular;
   if (!bs->specular) state.count_nonspecular_event(false);
@@ -352,12 +352,6 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
   }
   if (state.deferred_nee && !scratch.deferred.empty()) deferred_connections(ctx, state.vertex() + 1, out);
   if (!scratch.guided.empty()) train_guide(ctx, out);
-  if (std::getenv("CALIGO_DEBUG_FIREFLY") && out.beauty().max_component() > 50.0f) {
-    std::fprintf(stderr, "firefly %g: events %d vol %d surf %d train %d guide %d; layers", out.beauty().max_component(), state.events,
-                 state.volume_bounces, state.surface_bounces, int(ctx.train), ctx.guide != nullptr);
-    for (const RGB& l : out.light) std::fprintf(stderr, " %g", l.max_component());
-    std::fprintf(stderr, "\n");
-  }
   out.alpha = 1.0f - state.visibility;
   return out;
 }

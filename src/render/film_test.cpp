@@ -257,7 +257,7 @@ TEST(Film, HostileFilmFilesAreRefusedBeforeAllocating) {
   Film film({2, 2}, AovSet::defaults());
   film.add(0, 0, PathSample{}, 1.0f);
   std::string bytes = film.to_bytes();
-  std::string huge = bytes.substr(0, 40);
+  std::string huge = bytes.substr(0, 48);
   const uint32_t side = 65536;
   std::memcpy(huge.data() + 16, &side, 4);  // width
   std::memcpy(huge.data() + 20, &side, 4);  // height
@@ -268,7 +268,7 @@ TEST(Film, HostileFilmFilesAreRefusedBeforeAllocating) {
   std::filesystem::remove(path);
   // A crafted file whose checksum matches still meets the value checks.
   const uint32_t absurd = 0x80000000u;
-  std::memcpy(bytes.data() + 40, &absurd, 4);  // the first pixel's count
+  std::memcpy(bytes.data() + 48, &absurd, 4);  // the first pixel's count
   reseal(bytes);
   try {
     Film::from_bytes(bytes, "counts.ckpt");
@@ -295,7 +295,7 @@ TEST(Film, CorruptCheckpointsAreRefused) {
   for (int i = 0; i < 6; ++i) film.add(i % 3, i / 3, PathSample{}, 1.0f);
   const std::string clean = film.to_bytes(77);
   ASSERT_EQ(refusal(clean), "");
-  const size_t header = 40, counts = header, depths = counts + 6 * 4, sums = depths + 6 * 4;
+  const size_t header = 48, counts = header, depths = counts + 6 * 4, sums = depths + 6 * 4;
   for (size_t bit = 0; bit < 8 * (clean.size() - 4); bit += 97) {  // every 97th bit of the file
     std::string flipped = clean;
     flipped[bit / 8] = char(flipped[bit / 8] ^ (1 << (bit % 8)));
@@ -317,6 +317,19 @@ TEST(Film, CorruptCheckpointsAreRefused) {
   EXPECT_NE(refusal(negative).find("checksum"), std::string::npos);
   reseal(negative);
   EXPECT_NE(refusal(negative).find("negative"), std::string::npos);
+}
+
+// The training state (a guided render's field) travels with the sums, under the checksum.
+TEST(Film, TheTrainingStateIsSavedWithTheSums) {
+  Film film({2, 2}, AovSet::defaults());
+  film.add(1, 1, PathSample{}, 1.0f);
+  film.set_training_state("learnt bytes");
+  const std::string bytes = film.to_bytes();
+  EXPECT_EQ(Film::from_bytes(bytes, "t.ckpt").training_state(), "learnt bytes");
+  std::string changed = bytes;
+  changed[bytes.size() - 6] ^= 1;  // inside the training state
+  EXPECT_NE(refusal(changed).find("checksum"), std::string::npos);
+  EXPECT_NE(refusal(bytes.substr(0, bytes.size() - 3)).find("c.ckpt"), std::string::npos);
 }
 
 }  // namespace

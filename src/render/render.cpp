@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <cstdlib>
+#include <cmath>
 #include <memory>
 
 #include <tbb/enumerable_thread_specific.h>
@@ -185,6 +185,17 @@ bool stopped(const std::atomic<bool>* stop) { return stop && stop->load(std::mem
 
 }  // namespace
 
+GuidingConfig guiding_config(const RenderSettings& settings) {
+  // Mueller et al.'s c = 12000 vertices per leaf was set for megapixel images; smaller ones would
+  // get a handful of leaves (a point light seen from everywhere at once), so c follows the crop
+  // window's pixels below 2^20, down to 1/16 of it.
+  GuidingConfig config;
+  const PixelBounds b = settings.crop.pixels(settings.resolution);
+  const double pixels = b.empty() ? 0.0 : double(b.width()) * double(b.height());
+  config.spatial_threshold *= std::clamp(pixels / double(1 << 20), 1.0 / 16.0, 1.0);
+  return config;
+}
+
 bool guided(const RenderSettings& settings) {
   return settings.path.guiding != GuidingMode::kOff && settings.path.deferred_nee <= 0;
 }
@@ -199,13 +210,8 @@ Bounds3 guiding_bounds(const Scene& scene) {
   return b;
 }
 
-GuidingField guiding_field_of(const Film& film, const Scene& scene) {
-  if (film.training_state().empty()) {
-    GuidingConfig config;
-    if (const char* c = std::getenv("CALIGO_GUIDING_C")) config.spatial_threshold = std::atof(c);
-    if (const char* c = std::getenv("CALIGO_GUIDING_RHO")) config.split_fraction = std::atof(c);
-    return GuidingField(guiding_bounds(scene), config);
-  }
+GuidingField guiding_field_of(const Film& film, const Scene& scene, const RenderSettings& settings) {
+  if (film.training_state().empty()) return GuidingField(guiding_bounds(scene), guiding_config(settings));
   return GuidingField::from_bytes(film.training_state(), "the film's guiding field");
 }
 
@@ -215,7 +221,7 @@ RenderStats render_up_to(Film& film, const Scene& scene, const RenderSettings& s
   if (!guided(settings)) return pass_up_to(film, scene, settings, target, stop, progress_style);
   // Path guiding: one pass per training iteration (guiding/guiding_schedule.h), the field refined
   // between them; the field goes back into the film, so a checkpoint holds it.
-  GuidingField field = guiding_field_of(film, scene);
+  GuidingField field = guiding_field_of(film, scene, settings);
   RenderStats stats;
   for (;;) {
     const int iteration = field.completed_iterations();

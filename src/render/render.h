@@ -71,7 +71,8 @@ RenderStats render_up_to(Film& film, const Scene& scene, const RenderSettings& s
 // render_up_to trains the field in the film's training state, iteration by iteration.
 bool guided(const RenderSettings& settings);
 Bounds3 guiding_bounds(const Scene& scene);
-GuidingField guiding_field_of(const Film& film, const Scene& scene);
+GuidingConfig guiding_config(const RenderSettings& settings);
+GuidingField guiding_field_of(const Film& film, const Scene& scene, const RenderSettings& settings);
 
 // The scene file's render settings at the camera's resolution.
 RenderSettings render_settings(const SceneDesc& desc);

@@ -106,8 +106,6 @@ struct PathSettings {
   // iterations of doubling sample counts and the path tracer samples from it where this says.
   // Off with deferred_nee > 0 (a deferred connection has no single incident direction to learn).
   GuidingMode guiding = GuidingMode::kOff;
-  // The guided density's share of the one-sample mixture with the BSDF or phase function.
-  float guiding_fraction = 0.5f;
 };
 
 }  // namespace caligo
