@@ -25,7 +25,7 @@
 namespace caligo {
 
 struct GuidingConfig {
-  int iterations = 9;                // training iterations: samples 0 .. 2^9 - 2 train, later ones use the last field
+  int iterations = 7;                // training iterations: samples 0 .. 2^7 - 2 train, later ones use the last field
   double spatial_threshold = 12000;  // c: a leaf splits past c sqrt(2^k) vertices in iteration k (Mueller's value)
   double split_fraction = 0.01;      // rho: a directional quadrant splits past this share of its tree's energy
   int max_depth = 20;                // of the directional trees

@@ -65,16 +65,16 @@ MixedPhaseSample guided_phase_sample(const PathContext& ctx, const DirectionalTr
 float phase_sampling_pdf(const PathContext& ctx, Vec3 x, std::span<const PhaseLobe> lobes, Vec3 wo, Vec3 wi) {
   const float native = mixed_phase_pdf(lobes, wo, wi);
   const DirectionalTree* guide = volume_guide(ctx, x);
-  if (!guide) return native;
-  const float alpha = guide->fraction(false);
+  const float alpha = guide ? guide->fraction(false) : 0.0f;
+  if (alpha == 0.0f) return native;
   return alpha * guide->pdf(wi) + (1.0f - alpha) * native;
 }
 
 float bsdf_sampling_pdf(const PathContext& ctx, Vec3 x, const Bsdf& bsdf, Vec3 n, Vec3 wo, Vec3 wi) {
   const float native = bsdf_pdf(bsdf, n, wo, wi);
   const DirectionalTree* guide = surface_guide(ctx, x, bsdf);
-  if (!guide) return native;
-  const float alpha = guide->fraction(true);
+  const float alpha = guide ? guide->fraction(true) : 0.0f;
+  if (alpha == 0.0f) return native;
   return alpha * guide->pdf(wi) + (1.0f - alpha) * native;
 }
 

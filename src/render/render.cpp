@@ -221,6 +221,7 @@ RenderStats render_up_to(Film& film, const Scene& scene, const RenderSettings& s
   if (!guided(settings)) return pass_up_to(film, scene, settings, target, stop, progress_style);
   // Path guiding: one pass per training iteration (guiding/guiding_schedule.h), the field refined
   // between them; the field goes back into the film, so a checkpoint holds it.
+  const auto start = std::chrono::steady_clock::now();
   GuidingField field = guiding_field_of(film, scene, settings);
   RenderStats stats;
   for (;;) {
@@ -238,6 +239,7 @@ RenderStats render_up_to(Film& film, const Scene& scene, const RenderSettings& s
   film.set_training_state(field.to_bytes());
   stats.guiding = {field.completed_iterations(), field.spatial_leaves(), field.directional_nodes(),
                    field.memory_bytes()};
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;
 }
 
