@@ -232,6 +232,12 @@ TEST_F(Cli, BadCommandLinesExitWithTwo) {
       {"render default -o " + (dir_ / "x.tiff").string(), ".exr"},
       {"compare " + (dir_ / "nope.exr").string() + " " + (dir_ / "nope.exr").string(), "nope.exr"},
       {"frobnicate", "unknown command \"frobnicate\""},
+      {"render default --guiding sometimes -o " + exr.string(), "--guiding: expected off, surface, volume or all"},
+      {"render default --adaptive-threshold 0 -o " + exr.string(), "--adaptive-threshold"},
+      {"render default --adaptive-threshold 2 -o " + exr.string(), "--adaptive-threshold"},
+      {"render default --adaptive-min-samples 8 -o " + exr.string(), "needs --adaptive-threshold"},
+      {"render default --clamp-indirect -1 -o " + exr.string(), "--clamp-indirect"},
+      {"render default --clamp-direct nan -o " + exr.string(), "--clamp-direct"},
   };
   for (const auto& [args, expected] : cases) {
     const RunResult r = run(args);
