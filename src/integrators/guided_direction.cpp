@@ -20,46 +20,55 @@ const DirectionalTree* volume_guide(const PathContext& ctx, Vec3 x) {
   return ctx.guide && ctx.guide_volumes ? ctx.guide->at(x) : nullptr;
 }
 
+namespace {
+
+// The one-sample choice both mixtures make: a direction from the guide with probability alpha
+// (nullopt otherwise: the caller samples its native density with the dimensions it always uses).
+std::optional<Vec3> guided_choice(const Sampler& sampler, const DirectionalTree& guide, float alpha, int vertex) {
+  if (!(alpha > 0.0f && sampler.get_1d(guiding(vertex, sample_dim::kGuideChoice)) < alpha)) return std::nullopt;
+  float unused = 0.0f;  // the evaluated density is used instead, so that both agree on a leaf's edge
+  return guide.sample(sampler.get_2d(guiding(vertex, sample_dim::kGuideDirection)), &unused);
+}
+
+// The mixture's density at wi: the guide's share of its evaluated density plus the native rest.
+float mixture_pdf(const DirectionalTree& guide, float alpha, Vec3 wi, float native) {
+  return alpha * guide.pdf(wi) + (1.0f - alpha) * native;
+}
+
+}  // namespace
+
 std::optional<BsdfSample> guided_bsdf_sample(const PathContext& ctx, const DirectionalTree& guide, const Bsdf& bsdf,
                                              Vec3 n, Vec3 wo, int vertex) {
   const Sampler& sampler = ctx.sampler;
   const float alpha = guide.fraction(true);
-  Vec3 wi;
-  if (alpha > 0.0f && sampler.get_1d(guiding(vertex, sample_dim::kGuideChoice)) < alpha) {
-    float unused = 0.0f;
-    wi = guide.sample(sampler.get_2d(guiding(vertex, sample_dim::kGuideDirection)), &unused);
-  } else {
+  std::optional<Vec3> wi = guided_choice(sampler, guide, alpha, vertex);
+  if (!wi) {
     const auto bs = bsdf_sample(bsdf, n, wo, sampler.get_1d(bounce(vertex, sample_dim::kBsdfLobe)),
                                 sampler.get_2d(bounce(vertex, sample_dim::kBsdfDirection)));
     if (!bs || alpha == 0.0f) return bs;
     wi = bs->wi;
   }
-  // Both densities evaluated at the direction, whichever drew it (the evaluated guide density,
-  // not the sampler's, so that the two agree on a leaf's edge).
-  const float pdf = alpha * guide.pdf(wi) + (1.0f - alpha) * bsdf_pdf(bsdf, n, wo, wi);
-  const RGB f = bsdf_eval(bsdf, n, wo, wi) * abs_dot(n, wi);
+  const float pdf = mixture_pdf(guide, alpha, *wi, bsdf_pdf(bsdf, n, wo, *wi));
+  const RGB f = bsdf_eval(bsdf, n, wo, *wi) * abs_dot(n, *wi);
   if (!(pdf > 0.0f) || f.is_black()) return std::nullopt;
-  return BsdfSample{wi, f / pdf, pdf, false};
+  return BsdfSample{*wi, f / pdf, pdf, false};
 }
 
 MixedPhaseSample guided_phase_sample(const PathContext& ctx, const DirectionalTree& guide,
                                      std::span<const PhaseLobe> lobes, Vec3 wo, int vertex) {
   const Sampler& sampler = ctx.sampler;
   const float alpha = guide.fraction(false);
-  Vec3 wi;
-  if (alpha > 0.0f && sampler.get_1d(guiding(vertex, sample_dim::kGuideChoice)) < alpha) {
-    float unused = 0.0f;
-    wi = guide.sample(sampler.get_2d(guiding(vertex, sample_dim::kGuideDirection)), &unused);
-  } else {
+  std::optional<Vec3> wi = guided_choice(sampler, guide, alpha, vertex);
+  if (!wi) {
     const MixedPhaseSample ps = sample_mixed_phase(
         lobes, wo, lobes.size() > 1 ? sampler.get_1d(bounce(vertex, sample_dim::kPhaseLobe)) : 0.0f,
         sampler.get_2d(bounce(vertex, sample_dim::kPhaseDirection)));
     if (alpha == 0.0f) return ps;
     wi = ps.wi;
   }
-  const float pdf = alpha * guide.pdf(wi) + (1.0f - alpha) * mixed_phase_pdf(lobes, wo, wi);
-  const RGB f = mixed_phase_eval(lobes, wo, wi);
-  return {wi, pdf > 0.0f ? f / pdf : RGB(0.0f), pdf};
+  const float pdf = mixture_pdf(guide, alpha, *wi, mixed_phase_pdf(lobes, wo, *wi));
+  const RGB f = mixed_phase_eval(lobes, wo, *wi);
+  return {*wi, pdf > 0.0f ? f / pdf : RGB(0.0f), pdf};
 }
 
 float phase_sampling_pdf(const PathContext& ctx, Vec3 x, std::span<const PhaseLobe> lobes, Vec3 wo, Vec3 wi) {
@@ -67,7 +76,7 @@ float phase_sampling_pdf(const PathContext& ctx, Vec3 x, std::span<const PhaseLo
   const DirectionalTree* guide = volume_guide(ctx, x);
   const float alpha = guide ? guide->fraction(false) : 0.0f;
   if (alpha == 0.0f) return native;
-  return alpha * guide->pdf(wi) + (1.0f - alpha) * native;
+  return mixture_pdf(*guide, alpha, wi, native);
 }
 
 float bsdf_sampling_pdf(const PathContext& ctx, Vec3 x, const Bsdf& bsdf, Vec3 n, Vec3 wo, Vec3 wi) {
@@ -75,7 +84,7 @@ float bsdf_sampling_pdf(const PathContext& ctx, Vec3 x, const Bsdf& bsdf, Vec3 n
   const DirectionalTree* guide = surface_guide(ctx, x, bsdf);
   const float alpha = guide ? guide->fraction(true) : 0.0f;
   if (alpha == 0.0f) return native;
-  return alpha * guide->pdf(wi) + (1.0f - alpha) * native;
+  return mixture_pdf(*guide, alpha, wi, native);
 }
 
 bool trains_surface(const PathContext& ctx, const Bsdf& bsdf) {

@@ -123,7 +123,8 @@ namespace {
 
 // The raw film file: a fixed header, then counts (u32 per pixel), depths (f32 per pixel, when the
 // film holds depth) and sums (16-byte little-endian integers, channels per pixel), in the host's
-// byte order (x86-64 and aarch64 alike: little-endian), then the CRC-32 of everything before it
+// byte order (x86-64 and aarch64 alike: little-endian), then the training state (Film::training_state,
+// header.training_bytes long: a guided render's field), then the CRC-32 of everything before it
 // (u32; core/checksum.h). The size must match the header exactly and the CRC the bytes: a
 // flipped bit in a sum, a count or the header is refused, not resumed into a wrong image.
 constexpr char kMagic[12] = {'C', 'A', 'L', 'I', 'G', 'O', '-', 'F', 'I', 'L', 'M', '\n'};
