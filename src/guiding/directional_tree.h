@@ -96,7 +96,10 @@ class DirectionalTree {
   mutable AtomicFixedSum vertices_;
   mutable std::array<AtomicFixedSum, kMoments> moments_;
   float total_ = 0.0f;  // the root's energy
-  std::array<float, 2> fraction_{0.5f, 0.5f};  // surface, medium
+  // Surface, medium. A new tree's share is 0: the first field comes from one sample per pixel, and a
+  // fixed 1/2 on it made `sss` 3x noisier per sample; its iteration still estimates every
+  // candidate's second moment (from the native samples), so the next iteration picks a share.
+  std::array<float, 2> fraction_{0.0f, 0.0f};
 };
 
 }  // namespace caligo

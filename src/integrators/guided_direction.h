@@ -27,6 +27,10 @@ namespace caligo {
 const DirectionalTree* surface_guide(const PathContext& ctx, Vec3 x, const Bsdf& bsdf);
 const DirectionalTree* volume_guide(const PathContext& ctx, Vec3 x);
 
+// After a vertex's guided sample and every MIS weight at the vertex: the path's growth
+// (PathScratch::guided_growth) by the sample's native over mixture density.
+void note_guided_sample(const PathContext& ctx, float pdf_native, float pdf);
+
 // The mixtures. `vertex` is the sampler's vertex index (PathState::vertex()).
 std::optional<BsdfSample> guided_bsdf_sample(const PathContext& ctx, const DirectionalTree& guide, const Bsdf& bsdf,
                                              Vec3 n, Vec3 wo, int vertex);

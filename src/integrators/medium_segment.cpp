@@ -40,11 +40,12 @@ SegmentOutcome scatter_in_medium(const PathContext& ctx, PathState& state, Ray& 
                                  sampler.get_2d(bounce(state.vertex(), sample_dim::kPhaseDirection)));
   if (ctx.emission)
     out.add(state.connected(true), beta * emission_direct_light(ctx, {x, ray.direction, lobes}, state.vertex()));
+  const float pdf_native = guide ? mixed_phase_pdf(lobes, ray.direction, ps.wi) : ps.pdf;
+  if (guide) note_guided_sample(ctx, pdf_native, ps.pdf);
   state.throughput *= ps.weight;
   if (state.throughput.is_black()) return SegmentOutcome::kAbsorbed;
   if (trains_volume(ctx))
-    remember_guided_vertex(ctx, x, false, ps.wi, ps.weight, ps.pdf,
-                           guide ? mixed_phase_pdf(lobes, ray.direction, ps.wi) : ps.pdf, state.throughput, out);
+    remember_guided_vertex(ctx, x, false, ps.wi, ps.weight, ps.pdf, pdf_native, state.throughput, out);
   state.emission_weight = emission_bounce_weight(ctx, x, ps.wi, ps.pdf);
   // Kept only on the scattered outcome, which is where trace_path stores its medium stack.
   PathScratch& scratch = ctx.scratch;

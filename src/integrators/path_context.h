@@ -57,6 +57,10 @@ struct PathScratch {
   // Path guiding's training: the path's guided vertices, whose incident radiance is what the
   // path adds to the image after them (integrators/guided_direction.h).
   std::vector<GuidedVertex> guided;
+  // The product, over the path's guided vertices so far, of native density / mixture density at
+  // the direction taken: how far guiding has raised the throughput above what native sampling
+  // would carry (guided_direction.h's kMaxGuidedGrowth bounds it).
+  float guided_growth = 1.0f;
 };
 
 struct PathContext {

@@ -223,10 +223,11 @@ bool surface_hit(const PathContext& ctx, PathState& state, Ray& ray, const Surfa
   const bool transmits = dot(si.ng, bs->wi) * dot(si.ng, wo) < 0.0f;
   if (transmits && !std::holds_alternative<DielectricBsdf>(*bsdf)) return false;
   if (transmits && entry) ctx.scratch.stack.cross(*entry);
+  const float pdf_native = guide ? bsdf_pdf(*bsdf, si.ns, wo, bs->wi) : bs->pdf;
+  if (guide) note_guided_sample(ctx, pdf_native, bs->pdf);
   state.throughput *= bs->weight;
   if (trains_surface(ctx, *bsdf))
-    remember_guided_vertex(ctx, si.p, true, bs->wi, bs->weight, bs->pdf,
-                           guide ? bsdf_pdf(*bsdf, si.ns, wo, bs->wi) : bs->pdf, state.throughput, out);
+    remember_guided_vertex(ctx, si.p, true, bs->wi, bs->weight, bs->pdf, pdf_native, state.throughput, out);
   state.specular_bounce = bs->specular;
   state.camera_view = state.camera_view && bs->specular;
   if (!bs->specular) state.count_nonspecular_event(false);
@@ -311,6 +312,7 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
     ctx.train = guiding.train;
   }
   scratch.guided.clear();
+  scratch.guided_growth = 1.0f;
   PathSample out;
   PathState state;
   state.deferred_nee = settings.deferred_nee > 0;

@@ -65,6 +65,9 @@ TEST(GuidedRender, NestedMediaConvergeToTheUnguidedMean) {
   expect_guided_mean_agrees("glass-of-water", {24, 18}, 32, 8);
 }
 
+// A dense, bright medium inside a dielectric: hundreds of guided medium events per path.
+TEST(GuidedRender, SubsurfaceConvergesToTheUnguidedMean) { expect_guided_mean_agrees("sss", {24, 18}, 32, 8); }
+
 TEST(GuidedRender, TheFieldLearnsAndIsReported) {
   Builtin b("lamp-in-fog", {32, 24}, 16);
   b.settings.path.guiding = GuidingMode::kVolume;
