@@ -186,7 +186,7 @@ TEST(SceneParser, MaxBounces) {
   const SceneDesc scene = parse_scene_text(
       R"({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]}, "render": {"max_bounces": 3}})", "b.json", "");
   EXPECT_EQ(scene.render.path.limits.max_bounces, 3);
-  EXPECT_EQ(scene.render.path.limits.max_volume_bounces, 128);
+  EXPECT_EQ(scene.render.path.limits.max_volume_bounces, 1024);  // the default
 }
 
 // "holdout" marks a shape as a matte; it is off unless given.

@@ -20,10 +20,12 @@ namespace caligo {
 //     (alias "max_depth"), CLI --max-bounces (alias --max-depth).
 //   - max_volume_bounces: every scattering event in media counts one, inside runs too; it
 //     bounds the length of the runs (scene key "max_volume_bounces", CLI --max-volume-bounces).
+//     1024 by default, the seed's "thousand and more": walks in dense bright media take
+//     hundreds of events (docs/techniques.md); paths that end sooner cost nothing more.
 // Null-surface and medium-boundary crossings count against neither.
 struct PathLimits {
   int max_bounces = 8;
-  int max_volume_bounces = 128;
+  int max_volume_bounces = 1024;
 };
 
 // How next-event estimation in media picks the distance along a ray segment.
