@@ -86,6 +86,28 @@ void BM_GuidingEqualTime(benchmark::State& state) {
 }
 BENCHMARK(BM_GuidingEqualTime)->DenseRange(0, 7)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
 
+// Guided distances (PathSettings::guided_distances) on top of directional guiding, against
+// directional guiding alone; cases 0 (lamp-in-fog) and 1 (cloud) of kGuided.
+void BM_GuidedDistancesEqualTime(benchmark::State& state) {
+  const Case& c = kGuided[state.range(0)];
+  const Image ref = reference(c);
+  Measured off, on;
+  for (auto _ : state) {
+    off = measure(c.scene, c.spp, ref, [](RenderSettings& s) { s.path.guiding = GuidingMode::kAll; });
+    on = measure(c.scene, c.spp, ref, [](RenderSettings& s) {
+      s.path.guiding = GuidingMode::kAll;
+      s.path.guided_distances = true;
+    });
+  }
+  state.SetLabel(c.scene);
+  state.counters["directions_MSE"] = off.mse;
+  state.counters["with_distances_MSE"] = on.mse;
+  state.counters["directions_s"] = off.seconds;
+  state.counters["with_distances_s"] = on.seconds;
+  state.counters["gain"] = (off.mse * off.seconds) / (on.mse * on.seconds);
+}
+BENCHMARK(BM_GuidedDistancesEqualTime)->DenseRange(0, 1)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
+
 // Adaptive sampling at threshold range(1) / 100 against every pixel taking every sample.
 const Case kAdaptive[] = {{"default", 256, 4096}, {"holdout", 256, 4096}};
 

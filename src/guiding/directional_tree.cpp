@@ -149,6 +149,7 @@ struct Refiner {
   const std::vector<DirectionalTree::Node>& old;
   const std::vector<std::array<double, 4>>& totals;
   double threshold;  // energy above which a quadrant is split
+  double scale;      // energy stored per unit of statistic (1 / the iteration's vertex count)
   int max_depth;
   std::vector<DirectionalTree::Node> out;
 
@@ -158,7 +159,7 @@ struct Refiner {
     out.emplace_back();
     for (int i = 0; i < 4; ++i) {
       const double e = n >= 0 ? totals[size_t(n)][i] : leaf * 0.25;
-      out[index].energy[i] = float(e);
+      out[index].energy[i] = float(e * scale);
       if (depth < max_depth && e > threshold) {
         const uint32_t old_child = n >= 0 ? old[size_t(n)].child[i] : 0;
         const uint32_t child = build(old_child ? int(old_child) : -1, e, depth + 1);
@@ -184,7 +185,8 @@ DirectionalTree DirectionalTree::refined(double split_fraction, int max_depth) c
     next.total_ = total_;
     return next;
   }
-  Refiner r{nodes_, totals, split_fraction * total, max_depth, {}};
+  const double vertices = vertices_.value();
+  Refiner r{nodes_, totals, split_fraction * total, vertices > 0.0 ? 1.0 / vertices : 1.0, max_depth, {}};
   r.build(0, 0.0, 1);
   next.nodes_ = std::move(r.out);
   next.stats_.assign(4 * next.nodes_.size(), AtomicFixedSum());

@@ -54,6 +54,10 @@ class DirectionalTree {
 
   // Whether the tree holds a distribution (some energy); a tree that is not must not be sampled.
   bool usable() const { return total_ > 0.0f; }
+  // The radiance integrated over all directions (the fluence) that the last iteration's vertices
+  // here saw, on average: refinement divides the energies by the vertex count, so the root's
+  // energy is Mueller's estimate of the integral per vertex (sampling uses only ratios).
+  float fluence() const { return total_; }
   // A direction and its solid-angle density, from two uniform numbers in [0, 1).
   Vec3 sample(Vec2 u, float* pdf) const;
   float pdf(Vec3 w) const;

@@ -36,6 +36,27 @@ const DirectionalTree* GuidingField::at(Vec3 x) const {
   return t.usable() ? &t : nullptr;
 }
 
+float GuidingField::fluence(Vec3 x, Bounds3* leaf) const {
+  float p[3] = {std::clamp((x.x - bounds_.lo.x) * inverse_extent_.x, 0.0f, 1.0f),
+                std::clamp((x.y - bounds_.lo.y) * inverse_extent_.y, 0.0f, 1.0f),
+                std::clamp((x.z - bounds_.lo.z) * inverse_extent_.z, 0.0f, 1.0f)};
+  float lo[3] = {0.0f, 0.0f, 0.0f}, size[3] = {1.0f, 1.0f, 1.0f};
+  uint32_t n = 0;
+  while (nodes_[n].child != 0) {
+    const SpatialNode& node = nodes_[n];
+    const int a = node.axis;
+    const uint32_t side = p[a] >= 0.5f ? 1u : 0u;  // the same descent as leaf_of
+    p[a] = 2.0f * p[a] - float(side);
+    size[a] *= 0.5f;
+    lo[a] += float(side) * size[a];
+    n = node.child + side;
+  }
+  const Vec3 d = bounds_.diagonal();
+  leaf->lo = bounds_.lo + Vec3(lo[0] * d.x, lo[1] * d.y, lo[2] * d.z);
+  leaf->hi = leaf->lo + Vec3(size[0] * d.x, size[1] * d.y, size[2] * d.z);
+  return trees_[nodes_[n].tree].fluence();
+}
+
 void GuidingField::record(Vec3 x, Vec3 w, double value) const { trees_[leaf_of(x)].record(w, value); }
 void GuidingField::record(Vec3 x, const GuidingRecord& r) const { trees_[leaf_of(x)].record(r); }
 

@@ -48,6 +48,9 @@ class GuidingField {
   // The directional distribution at x (points outside the bounds are clamped in), or null where
   // nothing has been learnt yet (the path tracer then samples the BSDF or phase function alone).
   const DirectionalTree* at(Vec3 x) const;
+  // DirectionalTree::fluence of the leaf at x (0 where nothing was learnt), and the leaf's box in
+  // world space (so that a caller walking a ray can skip the lookups of points inside it).
+  float fluence(Vec3 x, Bounds3* leaf) const;
   // Training: see DirectionalTree::record. From any number of threads at once.
   void record(Vec3 x, Vec3 w, double value) const;
   void record(Vec3 x, const GuidingRecord& r) const;

@@ -35,6 +35,10 @@ const DirectionalTree* volume_guide(const PathContext& ctx, Vec3 x) {
   return ctx.guide && ctx.guide_volumes && may_guide(ctx) ? ctx.guide->at(x) : nullptr;
 }
 
+bool volume_guides_distances(const PathContext& ctx) {
+  return ctx.guide && ctx.guide_volumes && may_guide(ctx) && ctx.guide->completed_iterations() > 0;
+}
+
 void note_guided_sample(const PathContext& ctx, float pdf_native, float pdf) {
   if (pdf > 0.0f) ctx.scratch.guided_growth *= pdf_native / pdf;
 }

@@ -26,6 +26,9 @@ namespace caligo {
 // field knows nothing at x.
 const DirectionalTree* surface_guide(const PathContext& ctx, Vec3 x, const Bsdf& bsdf);
 const DirectionalTree* volume_guide(const PathContext& ctx, Vec3 x);
+// Whether this path's distances in media are guided (integrators/guided_distance.h): volume
+// guiding on, a field with at least one iteration, and the path's growth within its bound.
+bool volume_guides_distances(const PathContext& ctx);
 
 // After a vertex's guided sample and every MIS weight at the vertex: the path's growth
 // (PathScratch::guided_growth) by the sample's native over mixture density.

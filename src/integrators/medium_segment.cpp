@@ -7,6 +7,7 @@
 
 #include "integrators/emission_direct.h"
 #include "integrators/guided_direction.h"
+#include "integrators/guided_distance.h"
 #include "integrators/visibility.h"
 #include "integrators/volume_direct.h"
 #include "tracking/tracking.h"
@@ -177,8 +178,15 @@ SegmentOutcome marched_segment(const PathContext& ctx, PathState& state, Ray& ra
       state.throughput *= p_scatter > 0.0f ? t_end * (survive / pass) : t_end;
       return state.throughput.is_black() ? SegmentOutcome::kAbsorbed : SegmentOutcome::kPassed;
     }
-    collision = record.sample_scatter_density(u_channel, u / p_scatter);
+    // Where in the segment: the record's density, or its mixture with the learnt fluence.
+    const std::optional<GuidedDistance> guided =
+        ctx.settings.guided_distances && volume_guides_distances(ctx) ? GuidedDistance::along(*ctx.guide, ray, record)
+                                                                      : std::nullopt;
+    float pdf_native = 0.0f;
+    collision = guided ? guided->sample(record, u / p_scatter, &pdf_native)
+                       : record.sample_scatter_density(u_channel, u / p_scatter);
     if (!collision) return SegmentOutcome::kAbsorbed;  // p_scatter > 0 implies a collision
+    if (guided) note_guided_sample(ctx, pdf_native, collision->pdf);
     // The collision's density is p_scatter x pdf = avg_c sigma_s,c(t) T_c(t) / survive.
     collision->pdf *= p_scatter;
   } else {

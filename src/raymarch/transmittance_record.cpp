@@ -164,6 +164,14 @@ RGB TransmittanceRecord::transmittance_end() const { return end_transmittance_; 
 
 float TransmittanceRecord::scatter_weight_total() const { return scatter_totals_.average(); }
 
+float TransmittanceRecord::scatter_up_to_grey(float t) const {
+  const int i = last_step_starting_by(steps_, t);
+  if (i < 0) return 0.0f;
+  const MarchStep& s = steps_[i];
+  const float to = std::min(t, s.t1);
+  return s.scatter_before.r + float(double(s.sigma_s.r) * s.transmittance.r * exp_integral(s.sigma_t.r, to - s.t0));
+}
+
 std::optional<DistanceSample> TransmittanceRecord::sample_scatter_density(float u_channel,
                                                                           float u_distance) const {
   const RGB w = scatter_totals_;

@@ -83,6 +83,9 @@ class TransmittanceRecord {
   float scatter_density_pdf(float t) const;
   // avg_c of the integral of sigma_s,c T_c over the whole record.
   float scatter_weight_total() const;
+  // The integral of sigma_s T from the record's start to t in the first channel (all of it in a
+  // grey record).
+  float scatter_up_to_grey(float t) const;
   // The integral of sigma_s,c T_c over the whole record, per channel.
   RGB scatter_totals() const { return scatter_totals_; }
   // t with pdf sigma_s,c(t) T_c(t) / scatter_totals()[c] in channel c alone (std::nullopt when

@@ -41,8 +41,9 @@ double image_mean(const Image& image) {
 // Guided and unguided renders of one scene: the image means over `seeds` independent renders
 // each (a guided render's field is trained afresh every time, so each seed is one draw of the
 // whole estimator) agree within 4 standard errors of their difference.
-void expect_guided_mean_agrees(const char* name, Vec2i resolution, int spp, int seeds) {
+void expect_guided_mean_agrees(const char* name, Vec2i resolution, int spp, int seeds, bool distances = false) {
   Builtin b(name, resolution, spp);
+  b.settings.path.guided_distances = distances;
   Stat guided, unguided;
   for (int seed = 0; seed < seeds; ++seed) {
     b.settings.seed = uint64_t(seed + 1);
@@ -59,6 +60,10 @@ void expect_guided_mean_agrees(const char* name, Vec2i resolution, int spp, int 
 }
 
 TEST(GuidedRender, LampInFogConvergesToTheUnguidedMean) { expect_guided_mean_agrees("lamp-in-fog", {24, 18}, 64, 10); }
+// Guided distances too (PathSettings::guided_distances): the fluence mixture along each segment.
+TEST(GuidedRender, GuidedDistancesConvergeToTheUnguidedMean) {
+  expect_guided_mean_agrees("lamp-in-fog", {24, 18}, 64, 10, true);
+}
 TEST(GuidedRender, CloudConvergesToTheUnguidedMean) { expect_guided_mean_agrees("cloud", {24, 18}, 32, 8); }
 TEST(GuidedRender, DefaultConvergesToTheUnguidedMean) { expect_guided_mean_agrees("default", {24, 18}, 64, 8); }
 TEST(GuidedRender, NestedMediaConvergeToTheUnguidedMean) {

@@ -108,6 +108,11 @@ struct PathSettings {
   // iterations of doubling sample counts and the path tracer samples from it where this says.
   // Off with deferred_nee > 0 (a deferred connection has no single incident direction to learn).
   GuidingMode guiding = GuidingMode::kOff;
+  // With volume guiding: where a path scatters in a grey marched segment is drawn from a mixture
+  // of the record's density and that density times the learnt fluence (integrators/
+  // guided_distance.h). Off: on `lamp-in-fog` it left the error per sample unchanged for 55 %
+  // more time (docs/benchmarks.md); kept, unexposed, for bench_noise to measure.
+  bool guided_distances = false;
 };
 
 }  // namespace caligo
