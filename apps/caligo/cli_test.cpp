@@ -343,7 +343,7 @@ TEST_F(Cli, LightSamplerOption) {
   const fs::path bad = dir_ / "bad.exr";
   const RunResult r = run(base + "--light-sampler bvh -o " + bad.string());
   EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_NE(r.err.find("--light-sampler: expected tree, power or uniform, got \"bvh\""), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--light-sampler: expected tree, power, uniform or tree-fixed-share, got \"bvh\""), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(bad));
 }
 

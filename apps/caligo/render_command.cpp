@@ -1,5 +1,5 @@
 // caligo render [SCENE.json | BUILTIN] [-o out.exr] [--spp N] [--res WxH] [--threads N] [--seed S]
-//               [--priority MATERIAL=LEVEL ...] [--light-sampler tree|power|uniform] [--aov LIST]
+//               [--priority MATERIAL=LEVEL ...] [--light-sampler tree|power|uniform|tree-fixed-share] [--aov LIST]
 #include <CLI/CLI.hpp>
 
 #include <cmath>
@@ -48,8 +48,9 @@ void add_path_options(CLI::App* cmd, RenderOptions& o) {
                   "off, surface, volume or all (overrides the scene's render.guiding)")
       ->default_str("off");
   cmd->add_option("--light-sampler", o.light_sampler,
-                  "How next-event estimation picks a light: tree (light tree: importance at the receiver), "
-                  "power (in proportion to power, the same everywhere) or uniform")
+                  "How next-event estimation picks a light: tree (light tree: importance at the receiver, "
+                  "lights at infinity weighed there too), power (in proportion to power, the same everywhere), "
+                  "uniform, or tree-fixed-share (the former tree: lights at infinity by a fixed share of power)")
       ->default_str(light_sampler_name(PathSettings{}.light_sampler));
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/math.h"
 #include "core/overloaded.h"
 
 namespace caligo {
@@ -20,6 +21,24 @@ DiscreteDistribution distribution_or_empty(std::span<const float> weights) {
   float total = 0.0f;
   for (float w : weights) total += w;
   return total > 0.0f ? DiscreteDistribution(weights) : DiscreteDistribution();
+}
+
+// How the receiver-side rule sees a light at infinity of power phi (and the scene's diameter,
+// which every light at infinity was given).
+LightSampler::Infinite infinite_at_receivers(const Light& light, int index, float phi, float* diameter) {
+  return std::visit(Overloaded{[&](const DirectionalLight& l) {
+                                 *diameter = 2.0f * l.scene_radius;
+                                 return LightSampler::Infinite{
+                                     index, phi / (kPi * sqr(l.scene_radius)), -normalize(l.direction),
+                                     std::sqrt(std::max(0.0f, 1.0f - sqr(l.cos_angular_radius)))};
+                               },
+                               [&](const EnvironmentLight& l) {
+                                 *diameter = 2.0f * l.scene_radius;
+                                 return LightSampler::Infinite{index, phi / (kPi * sqr(l.scene_radius)), Vec3(0.0f),
+                                                               0.0f};
+                               },
+                               [&](const auto&) { return LightSampler::Infinite{index, 0.0f, Vec3(0.0f), 0.0f}; }},
+                    light);
 }
 
 }  // namespace
@@ -42,7 +61,8 @@ LightSampler::LightSampler(LightSamplerKind kind, std::span<const Light> lights)
     case LightSamplerKind::kPower:
       strategy_ = Power{distribution_or_empty(power_weights(lights))};
       return;
-    case LightSamplerKind::kTree: break;
+    case LightSamplerKind::kTree:
+    case LightSamplerKind::kTreeFixedShare: break;
   }
   Tree t;
   std::vector<int> finite;
@@ -55,6 +75,7 @@ LightSampler::LightSampler(LightSamplerKind kind, std::span<const Light> lights)
     if (is_infinite(lights[i])) {
       t.infinite_slot[i] = int(t.infinite_lights.size());
       t.infinite_lights.push_back(int(i));
+      t.infinite_at.push_back(infinite_at_receivers(lights[i], int(i), phi, &t.scene_diameter));
       infinite_weights.push_back(phi);
       infinite_power += phi;
     } else {
@@ -66,9 +87,13 @@ LightSampler::LightSampler(LightSamplerKind kind, std::span<const Light> lights)
   if (!t.infinite_lights.empty()) t.infinite = DiscreteDistribution(infinite_weights);
   if (t.tree.empty())
     t.infinite_probability = t.infinite_lights.empty() ? 0.0f : 1.0f;
-  else if (!t.infinite_lights.empty())
+  else if (t.infinite_lights.empty())
+    t.infinite_probability = 0.0f;
+  else if (kind == LightSamplerKind::kTreeFixedShare)
     t.infinite_probability =
         std::clamp(infinite_power / (infinite_power + finite_power), kMinInfiniteShare, kMaxInfiniteShare);
+  else
+    t.infinite_probability = -1.0f;  // weighed at each receiver
   strategy_ = std::move(t);
 }
 
@@ -78,26 +103,79 @@ LightSamplerKind LightSampler::kind() const {
   return LightSamplerKind::kTree;
 }
 
-template <class TreeSample>
-LightChoice LightSampler::sample_tree(const Tree& t, float u, const TreeSample& tree_sample) const {
-  const float p_inf = t.infinite_probability;
+namespace {
+
+constexpr float kMinReceiverShare = 0.05f, kMaxReceiverShare = 0.95f;
+
+bool is_zero(Vec3 v) { return v.x == 0.0f && v.y == 0.0f && v.z == 0.0f; }
+
+}  // namespace
+
+// 4 pi times the irradiance (surface) or fluence (medium) a light at infinity gives the
+// receiver, integrated along a segment (see the header).
+float LightSampler::infinite_importance(const Infinite& l, const Receiver& r, float diameter) {
+  const float four_pi = 4.0f * kPi;
+  if (r.segment) {
+    const float length = std::min(r.segment->tmax - r.segment->tmin, diameter);
+    return four_pi * l.fluence * std::max(length, 0.0f);
+  }
+  if (is_zero(r.n)) return four_pi * l.fluence;
+  if (is_zero(l.towards)) return four_pi * 0.25f * l.fluence;  // an environment over a hemisphere
+  return four_pi * l.fluence * std::max(0.0f, dot(r.n, l.towards) + l.sin_radius);
+}
+
+// The probability of choosing among the lights at infinity, and their total importance.
+std::pair<float, float> LightSampler::infinite_share(const Tree& t, const Receiver& r) const {
+  if (t.infinite_probability >= 0.0f) return {t.infinite_probability, 0.0f};
+  float infinite = 0.0f;
+  for (const Infinite& l : t.infinite_at) infinite += infinite_importance(l, r, t.scene_diameter);
+  if (t.tree.empty()) return {1.0f, infinite};
+  const float finite = r.segment ? t.tree.root_importance(*r.segment) : t.tree.root_importance(r.p, r.n);
+  const float total = infinite + finite;
+  const float share = total > 0.0f ? infinite / total : 0.5f;
+  return {std::clamp(share, kMinReceiverShare, kMaxReceiverShare), infinite};
+}
+
+LightChoice LightSampler::sample_tree(const Tree& t, float u, const Receiver& r) const {
+  const auto [p_inf, importance] = infinite_share(t, r);
   if (u < p_inf) {
-    float pmf = 0.0f;
-    const int k = t.infinite.sample(std::min(u / p_inf, kOneMinusEpsilon), &pmf);
-    return {t.infinite_lights[size_t(k)], p_inf * pmf};
+    const float v = std::min(u / p_inf, kOneMinusEpsilon);
+    if (!(importance > 0.0f)) {  // the fixed share, or nothing lit: by power
+      float pmf = 0.0f;
+      const int k = t.infinite.sample(v, &pmf);
+      return {t.infinite_lights[size_t(k)], p_inf * pmf};
+    }
+    const float target = v * importance;
+    float cumulative = 0.0f;
+    size_t k = 0;
+    float w = 0.0f;
+    for (; k < t.infinite_at.size(); ++k) {
+      w = infinite_importance(t.infinite_at[k], r, t.scene_diameter);
+      cumulative += w;
+      if (target < cumulative && w > 0.0f) break;
+    }
+    if (k == t.infinite_at.size()) {  // rounding at the top: the last light of positive weight
+      for (k = t.infinite_at.size(); k-- > 0;)
+        if ((w = infinite_importance(t.infinite_at[k], r, t.scene_diameter)) > 0.0f) break;
+    }
+    return {t.infinite_at[k].light, p_inf * (w / importance)};
   }
   if (t.tree.empty()) return {};
-  LightChoice c = tree_sample(std::min((u - p_inf) / (1.0f - p_inf), kOneMinusEpsilon));
+  const float v = std::min((u - p_inf) / (1.0f - p_inf), kOneMinusEpsilon);
+  LightChoice c = r.segment ? t.tree.sample_segment(*r.segment, v) : t.tree.sample(r.p, r.n, v);
   c.pmf = (1.0f - p_inf) * c.pmf;
   return c;
 }
 
-template <class TreePmf>
-float LightSampler::pmf_tree(const Tree& t, int light, const TreePmf& tree_pmf) const {
+float LightSampler::pmf_tree(const Tree& t, int light, const Receiver& r) const {
   const int slot = t.infinite_slot[size_t(light)];
-  if (slot >= 0) return t.infinite_probability * t.infinite.pmf(slot);
+  const auto [p_inf, importance] = infinite_share(t, r);
+  if (slot >= 0) {
+    if (!(importance > 0.0f)) return p_inf * t.infinite.pmf(slot);
+    return p_inf * (infinite_importance(t.infinite_at[size_t(slot)], r, t.scene_diameter) / importance);
+  }
   if (t.tree.empty()) return 0.0f;
-  return (1.0f - t.infinite_probability) * tree_pmf();
+  return (1.0f - p_inf) * (r.segment ? t.tree.pmf_segment(*r.segment, light) : t.tree.pmf(r.p, r.n, light));
 }
 
 // Power and uniform: the receiver does not matter.
@@ -127,7 +205,7 @@ LightChoice LightSampler::sample(Vec3 p, Vec3 n, float u) const {
   return std::visit(Overloaded{[&](const Power& s) { return sample_power(s.distribution, u); },
                                [&](const Uniform& s) { return sample_uniform(s.count, u); },
                                [&](const Tree& t) {
-                                 return sample_tree(t, u, [&](float v) { return t.tree.sample(p, n, v); });
+                                 return sample_tree(t, u, Receiver{p, n});
                                }},
                     strategy_);
 }
@@ -137,7 +215,7 @@ float LightSampler::pmf(Vec3 p, Vec3 n, int light) const {
   return std::visit(Overloaded{[&](const Power& s) { return pmf_power(s.distribution, light); },
                                [&](const Uniform& s) { return pmf_uniform(s.count); },
                                [&](const Tree& t) {
-                                 return pmf_tree(t, light, [&] { return t.tree.pmf(p, n, light); });
+                                 return pmf_tree(t, light, Receiver{p, n});
                                }},
                     strategy_);
 }
@@ -147,7 +225,7 @@ LightChoice LightSampler::sample_segment(const Ray& segment, float u) const {
   return std::visit(Overloaded{[&](const Power& s) { return sample_power(s.distribution, u); },
                                [&](const Uniform& s) { return sample_uniform(s.count, u); },
                                [&](const Tree& t) {
-                                 return sample_tree(t, u, [&](float v) { return t.tree.sample_segment(segment, v); });
+                                 return sample_tree(t, u, Receiver{Vec3(0.0f), Vec3(0.0f), &segment});
                                }},
                     strategy_);
 }
@@ -157,7 +235,7 @@ float LightSampler::pmf_segment(const Ray& segment, int light) const {
   return std::visit(Overloaded{[&](const Power& s) { return pmf_power(s.distribution, light); },
                                [&](const Uniform& s) { return pmf_uniform(s.count); },
                                [&](const Tree& t) {
-                                 return pmf_tree(t, light, [&] { return t.tree.pmf_segment(segment, light); });
+                                 return pmf_tree(t, light, Receiver{Vec3(0.0f), Vec3(0.0f), &segment});
                                }},
                     strategy_);
 }

@@ -5,11 +5,19 @@
 //   tree     the light tree (lights/light_tree.h) for finite lights, importance at the
 //            receiver; lights at infinity (directional, environment) beside it
 //
-// Rule for lights at infinity under `tree`: they are chosen with a fixed probability
-// P_inf = their share of the total power, clamped to [0.1, 0.9] when both kinds exist
-// (1 when only lights at infinity have power, 0 when none do), and among themselves in
-// proportion to power; the tree gets 1 - P_inf. Lights of zero power are never chosen (by
-// power and tree).
+// Rule for lights at infinity under `tree`: they are weighed at the receiver like the tree's
+// nodes. A node's importance is power x cosines / d^2, which for a point light is 4 pi times
+// the irradiance it gives; a light at infinity gives 4 pi times its own: a sun E cos (E alone
+// in a medium), an environment of fluence F = integral of L over the sphere F / 4 on a surface
+// (its cosine-weighted hemisphere, were it uniform) and F in a medium. For a segment both are
+// integrated along it (the tree by theta_d / h, a light at infinity times the segment's length,
+// at most the scene's diameter). P_inf = I_inf / (I_inf + I_tree) clamped to [0.05, 0.95]
+// when both kinds exist (1 when only lights at infinity have power, 0 when none do), and among
+// themselves by their importance (by fluence where none has any); the tree gets 1 - P_inf.
+// The former rule, a fixed P_inf = their share of the total power clamped to [0.1, 0.9], is
+// `tree-fixed-share`: an environment's power grows with the scene's bounds (pi r^2 F), so a
+// large ground plane handed the sky up to 90 % of the samples. Lights of zero power are never
+// chosen (by power and tree).
 //
 // pmf() and pmf_segment() return exactly the probability with which sample() and
 // sample_segment() choose a light at that receiver (the MIS weight of a BSDF- or
@@ -21,6 +29,7 @@
 #include <optional>
 #include <span>
 #include <string_view>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -60,17 +69,34 @@ class LightSampler {
   struct Power {
     DiscreteDistribution distribution;  // empty when no light has power
   };
+  // A light at infinity as the receiver-side rule sees it (public for the builder).
+ public:
+  struct Infinite {
+    int light;
+    float fluence;      // power / (pi r^2): irradiance of a sun, integral of L of an environment
+    Vec3 towards;       // a sun's direction towards it; zero for an environment
+    float sin_radius;   // a sun's angular radius (a margin on its cosine)
+  };
+
+ private:
   struct Tree {
     LightTree tree;
-    DiscreteDistribution infinite;  // over infinite_lights, by power
+    DiscreteDistribution infinite;  // over infinite_lights, by power (the fixed-share rule)
     std::vector<int> infinite_lights;
     std::vector<int> infinite_slot;  // per light: its index in infinite_lights, or -1
-    float infinite_probability = 0.0f;
+    std::vector<Infinite> infinite_at;  // beside infinite_lights, for the receiver-side rule
+    float infinite_probability = 0.0f;  // the fixed share; < 0: weighed at the receiver
+    float scene_diameter = 2.0f;
   };
-  template <class TreeSample>
-  LightChoice sample_tree(const Tree& t, float u, const TreeSample& tree_sample) const;
-  template <class TreePmf>
-  float pmf_tree(const Tree& t, int light, const TreePmf& tree_pmf) const;
+  // A receiver: a point with its normal (zero: none), or a segment.
+  struct Receiver {
+    Vec3 p, n;
+    const Ray* segment = nullptr;
+  };
+  static float infinite_importance(const Infinite& l, const Receiver& r, float diameter);
+  std::pair<float, float> infinite_share(const Tree& t, const Receiver& r) const;
+  LightChoice sample_tree(const Tree& t, float u, const Receiver& r) const;
+  float pmf_tree(const Tree& t, int light, const Receiver& r) const;
 
   std::variant<Power, Uniform, Tree> strategy_;
   int single_ = -1;  // the only light, when there is exactly one of positive power

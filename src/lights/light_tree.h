@@ -84,6 +84,9 @@ class LightTree {
   struct Node;
   static float importance(const Node& node, Vec3 p, Vec3 n);
   static float importance(const Node& node, const Ray& segment);
+  // The root's: what all the tree's lights together bound at a receiver (0 when empty).
+  float root_importance(Vec3 p, Vec3 n) const { return empty() ? 0.0f : importance(nodes_[0], p, n); }
+  float root_importance(const Ray& segment) const { return empty() ? 0.0f : importance(nodes_[0], segment); }
 
   struct Node {
     Vec3 centre;

@@ -103,22 +103,47 @@ void check_sampling(size_t light_count, const Sample& sample, const Pmf& pmf, co
   EXPECT_GT(test_stats::chi2_p_value(observed, expected), kMinPValue) << what;
 }
 
+// Both tree rules for lights at infinity: weighed at the receiver (the default) and the former
+// fixed share.
 TEST(LightTree, SurfacePointsChooseLightsWithThePmfTheyReport) {
-  const std::vector<Light> lights = mixed_lights();
-  const LightSampler tree(LightSamplerKind::kTree, lights);
-  for (const PointQuery& q : point_queries())
-    check_sampling(
-        lights.size(), [&](float u) { return tree.sample(q.p, q.n, u); },
-        [&](int l) { return tree.pmf(q.p, q.n, l); }, "point");
+  std::vector<Light> lights = mixed_lights();
+  lights.push_back(DirectionalLight{normalize(Vec3(-0.5f, -0.2f, 0.4f)), RGB(0.3f), 0.999f, 10.0f});  // a second sun
+  for (LightSamplerKind kind : {LightSamplerKind::kTree, LightSamplerKind::kTreeFixedShare}) {
+    const LightSampler tree(kind, lights);
+    for (const PointQuery& q : point_queries())
+      check_sampling(
+          lights.size(), [&](float u) { return tree.sample(q.p, q.n, u); },
+          [&](int l) { return tree.pmf(q.p, q.n, l); }, light_sampler_name(kind));
+  }
 }
 
 TEST(LightTree, SegmentsChooseLightsWithThePmfTheyReport) {
-  const std::vector<Light> lights = mixed_lights();
-  const LightSampler tree(LightSamplerKind::kTree, lights);
-  for (const Ray& s : segment_queries())
-    check_sampling(
-        lights.size(), [&](float u) { return tree.sample_segment(s, u); },
-        [&](int l) { return tree.pmf_segment(s, l); }, "segment");
+  std::vector<Light> lights = mixed_lights();
+  lights.push_back(DirectionalLight{normalize(Vec3(-0.5f, -0.2f, 0.4f)), RGB(0.3f), 0.999f, 10.0f});
+  for (LightSamplerKind kind : {LightSamplerKind::kTree, LightSamplerKind::kTreeFixedShare}) {
+    const LightSampler tree(kind, lights);
+    for (const Ray& s : segment_queries())
+      check_sampling(
+          lights.size(), [&](float u) { return tree.sample_segment(s, u); },
+          [&](int l) { return tree.pmf_segment(s, l); }, light_sampler_name(kind));
+  }
+}
+
+// A faint sky over a large scene (a 1 km ground plane) beside a lamp a metre away: the sky's
+// power grows as the scene's radius squared, so a share by power gave it 90 % of the samples;
+// weighed at the receiver the lamp gets at least 90 % (its irradiance is ~25x the sky's).
+TEST(LightSampler, ALargeScenesSkyDoesNotStarveANearLamp) {
+  std::vector<Light> lights{PointLight{{0, 1, 0}, RGB(8.0f)}, EnvironmentLight{RGB(0.1f), 1000.0f}};
+  const LightSampler tree(LightSamplerKind::kTree, lights), fixed(LightSamplerKind::kTreeFixedShare, lights);
+  const Vec3 p(0, 0, 0), n(0, 1, 0);
+  EXPECT_GE(tree.pmf(p, n, 0), 0.9f);
+  EXPECT_LE(fixed.pmf(p, n, 0), 0.1f + 1e-6f);  // the former rule, for the record
+  EXPECT_NEAR(tree.pmf(p, n, 0) + tree.pmf(p, n, 1), 1.0f, 1e-6f);
+  // Far from the lamp the sky takes over again.
+  EXPECT_GE(tree.pmf({300, 0, 0}, n, 1), 0.9f);
+  // In a medium, along a segment passing the lamp, the lamp still leads.
+  const Ray past{{-2, 1.2f, 0}, {1, 0, 0}, 0.0f, 4.0f};
+  EXPECT_GE(tree.pmf_segment(past, 0), 0.5f);
 }
 
 TEST(LightTree, UniformAndPowerFollowTheirPmfs) {
@@ -226,14 +251,13 @@ TEST(LightTree, SpotConeBoundsTheImportance) {
 }
 
 TEST(LightSampler, NamesRoundTrip) {
-  for (LightSamplerKind k : {LightSamplerKind::kUniform, LightSamplerKind::kPower, LightSamplerKind::kTree})
-    EXPECT_EQ(light_sampler_from_name(light_sampler_name(k)), k);
+  for (const auto& [k, name] : kLightSamplerNames) EXPECT_EQ(light_sampler_from_name(light_sampler_name(k)), k);
   EXPECT_FALSE(light_sampler_from_name("bvh"));
 }
 
 TEST(LightSampler, NoLightsChoosesNothing) {
   const std::vector<Light> none;
-  for (LightSamplerKind k : {LightSamplerKind::kUniform, LightSamplerKind::kPower, LightSamplerKind::kTree}) {
+  for (const auto& [k, name] : kLightSamplerNames) {
     const LightSampler s(k, none);
     EXPECT_LT(s.sample({}, {}, 0.5f).light, 0);
     EXPECT_LT(s.sample_segment(Ray{{}, {1, 0, 0}, 0, 1}, 0.5f).light, 0);

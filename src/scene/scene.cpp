@@ -214,8 +214,7 @@ void Scene::finish_lights() {
     set_scene_radius(light, radius);
     if (is_infinite(light)) infinite_lights_.push_back(int(i));
   }
-  for (LightSamplerKind kind : {LightSamplerKind::kUniform, LightSamplerKind::kPower, LightSamplerKind::kTree})
-    light_samplers_[size_t(kind)] = LightSampler(kind, lights_);
+  for (const auto& [kind, name] : kLightSamplerNames) light_samplers_[size_t(kind)] = LightSampler(kind, lights_);
 }
 
 SurfaceInteraction Scene::interaction(const Ray& ray, const SurfaceHit& hit) const {

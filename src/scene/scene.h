@@ -106,7 +106,7 @@ class Scene {
   std::vector<GeometryInfo> geometry_;  // indexed by Embree geometry id
   std::vector<Light> lights_;
   std::vector<int> infinite_lights_;
-  std::array<LightSampler, 3> light_samplers_;  // indexed by LightSamplerKind
+  std::array<LightSampler, kLightSamplerNames.size()> light_samplers_;  // indexed by LightSamplerKind
   std::vector<int> interior_slot_;  // per SceneDesc medium: its slot in volumes_' media, or -1
   std::array<std::vector<uint8_t>, 2> shadow_deferred_;  // without, with priority_shadows
   bool has_priority_objects_ = false;

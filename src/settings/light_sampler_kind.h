@@ -6,9 +6,14 @@
 
 namespace caligo {
 
-enum class LightSamplerKind { kUniform, kPower, kTree };
+// kTreeFixedShare is the tree as it was before lights at infinity were weighed at the receiver
+// (a fixed share by power), kept to measure against.
+enum class LightSamplerKind { kUniform, kPower, kTree, kTreeFixedShare };
 // --light-sampler (the checkpoint key stores the enumerator).
-inline constexpr std::array<EnumName<LightSamplerKind>, 3> kLightSamplerNames{
-    {{LightSamplerKind::kTree, "tree"}, {LightSamplerKind::kPower, "power"}, {LightSamplerKind::kUniform, "uniform"}}};
+inline constexpr std::array<EnumName<LightSamplerKind>, 4> kLightSamplerNames{
+    {{LightSamplerKind::kTree, "tree"},
+     {LightSamplerKind::kPower, "power"},
+     {LightSamplerKind::kUniform, "uniform"},
+     {LightSamplerKind::kTreeFixedShare, "tree-fixed-share"}}};
 
 }  // namespace caligo
