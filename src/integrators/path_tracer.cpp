@@ -20,9 +20,9 @@ using sample_dim::bounce;
 
 // The probability that next-event estimation at the previous vertex chose `light`.
 float light_choice_pmf(const PathContext& ctx, const PathState& state, int light) {
-  if (!state.scattered_in_medium) return ctx.lights.pmf(state.scatter_origin, state.scatter_normal, light);
-  return state.light_choice_at_point ? ctx.lights.pmf(state.scatter_origin, Vec3(0.0f), light)
-                                     : ctx.lights.pmf_segment(state.scatter_segment, light);
+  if (!state.scattered_in_medium) return ctx.lights.choice_pmf(state.scatter_origin, state.scatter_normal, light);
+  return state.light_choice_at_point ? ctx.lights.choice_pmf(state.scatter_origin, Vec3(0.0f), light)
+                                     : ctx.lights.choice_pmf_segment(state.scatter_segment, light);
 }
 
 float mis_weight_for_hit(const PathContext& ctx, const PathState& state, int light, Vec3 wi, Vec3 p, Vec3 n) {
@@ -52,16 +52,12 @@ RGB emitted(const PathContext& ctx, const PathState& state, const SurfaceInterac
 // geometric test below), so lights behind the surface get no share.
 Vec3 light_choice_normal(const SurfaceInteraction& si, Vec3 wo) { return face_forward(si.ng, wo); }
 
-// Light connection at a surface: one light chosen by the light sampler, one point on it. Its
-// shadow ray is secondary (PathSettings::secondary) unless the camera ray found this surface.
-RGB surface_direct_light(const PathContext& ctx, const PathState& state, const SurfaceInteraction& si, Vec3 wo) {
+// Light connection at a surface to one chosen light, one point on it. Its shadow ray is
+// secondary (PathSettings::secondary) unless the camera ray found this surface.
+RGB connect_surface(const PathContext& ctx, const PathState& state, const SurfaceInteraction& si, Vec3 wo,
+                    LightChoice choice) {
   const Sampler& sampler = ctx.sampler;
   const int depth = state.vertex();
-  // Random numbers that would not be used are not drawn (one light, a delta light's position).
-  const LightChoice choice =
-      ctx.lights.sample(si.p, light_choice_normal(si, wo),
-                        ctx.lights.needs_random() ? sampler.get_1d(bounce(depth, sample_dim::kLightSelect)) : 0.0f);
-  if (choice.light < 0) return RGB(0.0f);
   const Light& light = ctx.scene.lights()[size_t(choice.light)];
   const auto ls = sample_light(
       light, si.p, is_delta(light) ? Vec2{0.5f, 0.0f} : sampler.get_2d(bounce(depth, sample_dim::kLightPosition)));
@@ -80,6 +76,17 @@ RGB surface_direct_light(const PathContext& ctx, const PathState& state, const S
                            : power_heuristic(1, light_pdf_sa, 1,
                                              bsdf_sampling_pdf(ctx, si.p, si.material->bsdf, si.ns, wo, ls->wi));
   return f * tr * ls->radiance * (weight / light_pdf_sa);
+}
+
+// Light connection at a surface: the lights the light sampler chooses (one, or several where the
+// light tree splits), each at one point. Random numbers that would not be used are not drawn
+// (one light, a delta light's position).
+RGB surface_direct_light(const PathContext& ctx, const PathState& state, const SurfaceInteraction& si, Vec3 wo) {
+  const float u = ctx.lights.needs_random() ? ctx.sampler.get_1d(bounce(state.vertex(), sample_dim::kLightSelect)) : 0.0f;
+  RGB sum(0.0f);
+  for (const LightChoice& choice : ctx.lights.choose(si.p, light_choice_normal(si, wo), u))
+    sum += connect_surface(ctx, state, si, wo, choice);
+  return sum;
 }
 
 // Returns false when the path ends (absorbed or rouletted).

@@ -92,17 +92,14 @@ MixedPhaseSample sample_mixed_phase(std::span<const PhaseLobe> lobes, Vec3 wo, f
   return {wi, pdf > 0.0f ? mixed_phase_eval(lobes, wo, wi) / pdf : RGB(0.0f), pdf};
 }
 
-RGB volume_direct_light(const PathContext& ctx, const Ray& ray, const TransmittanceRecord& record, int depth,
-                        bool secondary) {
-  if (record.scatter_weight_total() <= 0.0f) return RGB(0.0f);
+namespace {
+
+// In-scattered light along a marched segment from one chosen light (volume_direct_light).
+RGB connect_segment(const PathContext& ctx, const Ray& ray, const TransmittanceRecord& record, int depth,
+                    bool secondary, LightChoice choice) {
   const Scene& scene = ctx.scene;
-  const LightSampler& lights = ctx.lights;
   const Sampler& sampler = ctx.sampler;
   const DistanceSampling strategy = ctx.settings.distance_sampling;
-  const LightChoice choice = lights.sample_segment(
-      light_choice_segment(ray, record),
-      lights.needs_random() ? sampler.get_1d(bounce(depth, sample_dim::kVolumeLightSelect)) : 0.0f);
-  if (choice.light < 0) return RGB(0.0f);
   const int light_index = choice.light;
   const float pick_pmf = choice.pmf;
   const Light& light = scene.lights()[size_t(light_index)];
@@ -150,12 +147,24 @@ RGB volume_direct_light(const PathContext& ctx, const Ray& ray, const Transmitta
          pdf;
 }
 
-RGB point_volume_direct_light(const PathContext& ctx, Vec3 x, Vec3 direction, std::span<const PhaseLobe> lobes,
-                              int vertex, float segment_t) {
+}  // namespace
+
+RGB volume_direct_light(const PathContext& ctx, const Ray& ray, const TransmittanceRecord& record, int depth,
+                        bool secondary) {
+  if (record.scatter_weight_total() <= 0.0f) return RGB(0.0f);
+  const LightSampler& lights = ctx.lights;
+  const float u = lights.needs_random() ? ctx.sampler.get_1d(bounce(depth, sample_dim::kVolumeLightSelect)) : 0.0f;
+  RGB sum(0.0f);
+  for (const LightChoice& choice : lights.choose_segment(light_choice_segment(ray, record), u))
+    sum += connect_segment(ctx, ray, record, depth, secondary, choice);
+  return sum;
+}
+
+namespace {
+
+RGB connect_point(const PathContext& ctx, Vec3 x, Vec3 direction, std::span<const PhaseLobe> lobes, int vertex,
+                  float segment_t, LightChoice choice) {
   const Sampler& sampler = ctx.sampler;
-  const LightChoice choice = ctx.lights.sample(
-      x, Vec3(0.0f), ctx.lights.needs_random() ? sampler.get_1d(bounce(vertex, sample_dim::kVolumeLightSelect)) : 0.0f);
-  if (choice.light < 0) return RGB(0.0f);
   const Light& light = ctx.scene.lights()[size_t(choice.light)];
   const auto ls = sample_light(
       light, x, is_delta(light) ? Vec2{0.5f, 0.0f} : sampler.get_2d(bounce(vertex, sample_dim::kVolumeLightPosition)));
@@ -172,6 +181,18 @@ RGB point_volume_direct_light(const PathContext& ctx, Vec3 x, Vec3 direction, st
                       ? 1.0f
                       : power_heuristic(1, light_pdf_sa, 1, phase_sampling_pdf(ctx, x, lobes, direction, ls->wi));
   return phase * tr * ls->radiance * (w / light_pdf_sa);
+}
+
+}  // namespace
+
+RGB point_volume_direct_light(const PathContext& ctx, Vec3 x, Vec3 direction, std::span<const PhaseLobe> lobes,
+                              int vertex, float segment_t) {
+  const float u =
+      ctx.lights.needs_random() ? ctx.sampler.get_1d(bounce(vertex, sample_dim::kVolumeLightSelect)) : 0.0f;
+  RGB sum(0.0f);
+  for (const LightChoice& choice : ctx.lights.choose(x, Vec3(0.0f), u))
+    sum += connect_point(ctx, x, direction, lobes, vertex, segment_t, choice);
+  return sum;
 }
 
 }  // namespace caligo

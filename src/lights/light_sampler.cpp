@@ -94,6 +94,7 @@ LightSampler::LightSampler(LightSamplerKind kind, std::span<const Light> lights)
         std::clamp(infinite_power / (infinite_power + finite_power), kMinInfiniteShare, kMaxInfiniteShare);
   else
     t.infinite_probability = -1.0f;  // weighed at each receiver
+  t.split = kind == LightSamplerKind::kTree;
   strategy_ = std::move(t);
 }
 
@@ -167,7 +168,7 @@ LightChoice LightSampler::sample_tree(const Tree& t, float u, const Receiver& r)
   return c;
 }
 
-float LightSampler::pmf_tree(const Tree& t, int light, const Receiver& r) const {
+float LightSampler::pmf_tree(const Tree& t, int light, const Receiver& r, bool split) const {
   const int slot = t.infinite_slot[size_t(light)];
   const auto [p_inf, importance] = infinite_share(t, r);
   if (slot >= 0) {
@@ -175,7 +176,26 @@ float LightSampler::pmf_tree(const Tree& t, int light, const Receiver& r) const 
     return p_inf * (infinite_importance(t.infinite_at[size_t(slot)], r, t.scene_diameter) / importance);
   }
   if (t.tree.empty()) return 0.0f;
+  if (split)
+    return (1.0f - p_inf) *
+           (r.segment ? t.tree.split_pmf_segment(*r.segment, light) : t.tree.split_pmf(r.p, r.n, light));
   return (1.0f - p_inf) * (r.segment ? t.tree.pmf_segment(*r.segment, light) : t.tree.pmf(r.p, r.n, light));
+}
+
+// The lights at infinity against the whole split tree, by one choice as in sample_tree.
+LightChoices LightSampler::choose_tree(const Tree& t, float u, const Receiver& r) const {
+  LightChoices out;
+  const float p_inf = infinite_share(t, r).first;
+  if (u < p_inf || t.tree.empty()) {
+    out.add(sample_tree(t, u, r));
+    return out;
+  }
+  const float v = std::min((u - p_inf) / (1.0f - p_inf), kOneMinusEpsilon);
+  if (r.segment)
+    t.tree.sample_split_segment(*r.segment, v, 1.0f - p_inf, out);
+  else
+    t.tree.sample_split(r.p, r.n, v, 1.0f - p_inf, out);
+  return out;
 }
 
 // Power and uniform: the receiver does not matter.
@@ -238,6 +258,33 @@ float LightSampler::pmf_segment(const Ray& segment, int light) const {
                                  return pmf_tree(t, light, Receiver{Vec3(0.0f), Vec3(0.0f), &segment});
                                }},
                     strategy_);
+}
+
+LightChoices LightSampler::choose(Vec3 p, Vec3 n, float u) const {
+  if (const auto* t = std::get_if<Tree>(&strategy_); t && t->split && single_ < 0) return choose_tree(*t, u, {p, n});
+  LightChoices out;
+  out.add(sample(p, n, u));
+  return out;
+}
+
+float LightSampler::choice_pmf(Vec3 p, Vec3 n, int light) const {
+  if (const auto* t = std::get_if<Tree>(&strategy_); t && t->split && single_ < 0)
+    return pmf_tree(*t, light, {p, n}, true);
+  return pmf(p, n, light);
+}
+
+LightChoices LightSampler::choose_segment(const Ray& segment, float u) const {
+  if (const auto* t = std::get_if<Tree>(&strategy_); t && t->split && single_ < 0)
+    return choose_tree(*t, u, {Vec3(0.0f), Vec3(0.0f), &segment});
+  LightChoices out;
+  out.add(sample_segment(segment, u));
+  return out;
+}
+
+float LightSampler::choice_pmf_segment(const Ray& segment, int light) const {
+  if (const auto* t = std::get_if<Tree>(&strategy_); t && t->split && single_ < 0)
+    return pmf_tree(*t, light, {Vec3(0.0f), Vec3(0.0f), &segment}, true);
+  return pmf_segment(segment, light);
 }
 
 }  // namespace caligo

@@ -59,6 +59,14 @@ class LightSampler {
   // One light for a whole ray segment in a medium: origin, unit direction, [tmin, tmax].
   LightChoice sample_segment(const Ray& segment, float u) const;
   float pmf_segment(const Ray& segment, int light) const;
+  // Next-event estimation's choice: the lights one estimate connects to, each with the
+  // probability that it is among them (the light tree's adaptive splitting, LightTree::
+  // sample_split, may choose several; every other strategy chooses one, as sample() does), and
+  // that probability for any light at the receiver (what MIS weights a hit on it by).
+  LightChoices choose(Vec3 p, Vec3 n, float u) const;
+  float choice_pmf(Vec3 p, Vec3 n, int light) const;
+  LightChoices choose_segment(const Ray& segment, float u) const;
+  float choice_pmf_segment(const Ray& segment, int light) const;
   // False when the choice does not depend on u (one light): callers skip drawing it.
   bool needs_random() const { return single_ < 0; }
 
@@ -86,6 +94,7 @@ class LightSampler {
     std::vector<int> infinite_slot;  // per light: its index in infinite_lights, or -1
     std::vector<Infinite> infinite_at;  // beside infinite_lights, for the receiver-side rule
     float infinite_probability = 0.0f;  // the fixed share; < 0: weighed at the receiver
+    bool split = false;                 // choose() splits the tree (LightTree::sample_split)
     float scene_diameter = 2.0f;
   };
   // A receiver: a point with its normal (zero: none), or a segment.
@@ -96,7 +105,8 @@ class LightSampler {
   static float infinite_importance(const Infinite& l, const Receiver& r, float diameter);
   std::pair<float, float> infinite_share(const Tree& t, const Receiver& r) const;
   LightChoice sample_tree(const Tree& t, float u, const Receiver& r) const;
-  float pmf_tree(const Tree& t, int light, const Receiver& r) const;
+  float pmf_tree(const Tree& t, int light, const Receiver& r, bool split = false) const;
+  LightChoices choose_tree(const Tree& t, float u, const Receiver& r) const;
 
   std::variant<Power, Uniform, Tree> strategy_;
   int single_ = -1;  // the only light, when there is exactly one of positive power

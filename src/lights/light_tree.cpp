@@ -329,9 +329,10 @@ LightChoice LightTree::descend(float u, const Importance& importance) const {
   return {nodes_[size_t(node)].child[0], pmf};
 }
 
-// The same products as descend(), from the root down to the light's leaf.
-template <class Importance>
-float LightTree::path_pmf(int light, const Importance& importance) const {
+// The same products as descend(), from the root down to the light's leaf; a node that
+// `split(node, depth)` says is split contributes 1 (both children are taken).
+template <class Importance, class Split>
+float LightTree::path_pmf(int light, const Importance& importance, const Split& split) const {
   if (light < 0 || size_t(light) >= leaf_of_.size() || leaf_of_[size_t(light)] < 0) return 0.0f;
   std::array<int, kMaxDepth + 1> path;
   int length = 0;
@@ -339,6 +340,7 @@ float LightTree::path_pmf(int light, const Importance& importance) const {
   float pmf = 1.0f;
   for (int k = length - 1; k > 0; --k) {
     const Node& n = nodes_[size_t(path[size_t(k)])];
+    if (split(n, length - 1 - k)) continue;
     const float i0 = importance(nodes_[size_t(n.child[0])]), i1 = importance(nodes_[size_t(n.child[1])]);
     if (!(i0 + i1 > 0.0f)) return 0.0f;
     const float p0 = i0 / (i0 + i1);
@@ -347,12 +349,57 @@ float LightTree::path_pmf(int light, const Importance& importance) const {
   return pmf;
 }
 
+// descend() from `node` at `depth`, taking both children of every split node.
+template <class Importance, class Split>
+void LightTree::descend_split(int node, int depth, float u, float pmf, float scale, const Importance& importance,
+                              const Split& split, LightChoices& out) const {
+  while (!nodes_[size_t(node)].leaf()) {
+    const Node& n = nodes_[size_t(node)];
+    if (split(n, depth)) {
+      descend_split(n.child[0], depth + 1, u, pmf, scale, importance, split, out);
+      node = n.child[1];
+      ++depth;
+      continue;
+    }
+    const float i0 = importance(nodes_[size_t(n.child[0])]), i1 = importance(nodes_[size_t(n.child[1])]);
+    if (!(i0 + i1 > 0.0f)) return;
+    const float p0 = i0 / (i0 + i1);
+    if (u < p0) {
+      u = std::min(u / p0, kOneMinusEpsilon);
+      pmf *= p0;
+      node = n.child[0];
+    } else {
+      u = std::min((u - p0) / (1.0f - p0), kOneMinusEpsilon);
+      pmf *= 1.0f - p0;
+      node = n.child[1];
+    }
+    ++depth;
+  }
+  out.add({nodes_[size_t(node)].child[0], scale * pmf});  // in the order pmf_tree multiplies
+}
+
+namespace {
+
+constexpr auto kNoSplit = [](const LightTree::Node&, int) { return false; };
+
+// Whether a node is split for a receiving point or segment (see the header).
+bool split_at(const LightTree::Node& n, int depth, float distance) {
+  return depth < LightTree::kSplitDepth && !n.leaf() && n.radius > LightTree::kSplitRatio * distance;
+}
+
+float distance_to_segment(Vec3 c, const Ray& s) {
+  const float t = std::clamp(dot(c - s.origin, s.direction), s.tmin, s.tmax);
+  return length(c - s.at(t));
+}
+
+}  // namespace
+
 LightChoice LightTree::sample(Vec3 p, Vec3 n, float u) const {
   return descend(u, [&](const Node& node) { return importance(node, p, n); });
 }
 
 float LightTree::pmf(Vec3 p, Vec3 n, int light) const {
-  return path_pmf(light, [&](const Node& node) { return importance(node, p, n); });
+  return path_pmf(light, [&](const Node& node) { return importance(node, p, n); }, kNoSplit);
 }
 
 LightChoice LightTree::sample_segment(const Ray& segment, float u) const {
@@ -360,7 +407,34 @@ LightChoice LightTree::sample_segment(const Ray& segment, float u) const {
 }
 
 float LightTree::pmf_segment(const Ray& segment, int light) const {
-  return path_pmf(light, [&](const Node& node) { return importance(node, segment); });
+  return path_pmf(light, [&](const Node& node) { return importance(node, segment); }, kNoSplit);
+}
+
+void LightTree::sample_split(Vec3 p, Vec3 n, float u, float scale, LightChoices& out) const {
+  if (nodes_.empty()) return;
+  descend_split(
+      0, 0, u, 1.0f, scale, [&](const Node& node) { return importance(node, p, n); },
+      [&](const Node& node, int depth) { return split_at(node, depth, length(node.centre - p)); }, out);
+}
+
+float LightTree::split_pmf(Vec3 p, Vec3 n, int light) const {
+  return path_pmf(
+      light, [&](const Node& node) { return importance(node, p, n); },
+      [&](const Node& node, int depth) { return split_at(node, depth, length(node.centre - p)); });
+}
+
+void LightTree::sample_split_segment(const Ray& segment, float u, float scale, LightChoices& out) const {
+  if (nodes_.empty()) return;
+  descend_split(
+      0, 0, u, 1.0f, scale, [&](const Node& node) { return importance(node, segment); },
+      [&](const Node& node, int depth) { return split_at(node, depth, distance_to_segment(node.centre, segment)); },
+      out);
+}
+
+float LightTree::split_pmf_segment(const Ray& segment, int light) const {
+  return path_pmf(
+      light, [&](const Node& node) { return importance(node, segment); },
+      [&](const Node& node, int depth) { return split_at(node, depth, distance_to_segment(node.centre, segment)); });
 }
 
 }  // namespace caligo

@@ -27,6 +27,7 @@
 // threads may sample it concurrently.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <initializer_list>
 #include <optional>
@@ -65,6 +66,19 @@ struct LightChoice {
   float pmf = 0.0f;
 };
 
+// The lights one next-event estimate connects to under adaptive splitting: at most one per
+// subtree the split reached, each with the probability that it is among them.
+struct LightChoices {
+  static constexpr int kMax = 9;  // 2^LightTree::kSplitDepth from the tree, one at infinity
+  std::array<LightChoice, kMax> choice{};
+  int count = 0;
+  void add(LightChoice c) {
+    if (c.light >= 0 && count < kMax) choice[size_t(count++)] = c;
+  }
+  const LightChoice* begin() const { return choice.data(); }
+  const LightChoice* end() const { return choice.data() + count; }
+};
+
 class LightTree {
  public:
   LightTree() = default;
@@ -79,6 +93,21 @@ class LightTree {
   // segment: origin, unit direction and [tmin, tmax] (tmax may be infinite).
   LightChoice sample_segment(const Ray& segment, float u) const;
   float pmf_segment(const Ray& segment, int light) const;
+
+  // Adaptive splitting (Conty Estevez & Kulla 2017, section 5.3): a node whose bounding sphere is
+  // large against its distance from the receiver (radius > kSplitRatio x distance: its
+  // importance, ~ 1 / d^2 over the sphere, then spans a factor of 9 or more) is not chosen
+  // between but descended on both sides, to depth kSplitDepth; below a node that is not
+  // split the descent is the stochastic one above, with the same u rescaled. The pmf of a
+  // light is the probability that it is among the choices: the product of the stochastic
+  // choices on its path (a split counts 1), recomputed by split_pmf exactly. The split depends
+  // on the node and the receiver alone, so that pmf needs no other branch.
+  static constexpr int kSplitDepth = 3;
+  static constexpr float kSplitRatio = 0.5f;
+  void sample_split(Vec3 p, Vec3 n, float u, float scale, LightChoices& out) const;
+  float split_pmf(Vec3 p, Vec3 n, int light) const;
+  void sample_split_segment(const Ray& segment, float u, float scale, LightChoices& out) const;
+  float split_pmf_segment(const Ray& segment, int light) const;
 
   // The importance of a bounds at a point or for a segment (exposed for tests).
   struct Node;
@@ -105,8 +134,11 @@ class LightTree {
   int build(std::vector<std::pair<int, LightBounds>>& items, size_t begin, size_t end, int depth);
   template <class Importance>
   LightChoice descend(float u, const Importance& importance) const;
-  template <class Importance>
-  float path_pmf(int light, const Importance& importance) const;
+  template <class Importance, class Split>
+  float path_pmf(int light, const Importance& importance, const Split& split) const;
+  template <class Importance, class Split>
+  void descend_split(int node, int depth, float u, float pmf, float scale, const Importance& importance,
+                     const Split& split, LightChoices& out) const;
 
   std::vector<Node> nodes_;      // nodes_[0] is the root
   std::vector<int> parent_;      // per node; -1 for the root

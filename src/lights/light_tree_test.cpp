@@ -129,6 +129,66 @@ TEST(LightTree, SegmentsChooseLightsWithThePmfTheyReport) {
   }
 }
 
+// Adaptive splitting: over many u, each light is among the choices as often as choice_pmf says
+// (a Bernoulli count: within 5 standard errors), every choice reports that pmf exactly, no light
+// is chosen twice, and near the lights (receivers inside the tree's nodes) it does split.
+template <class Choose, class Pmf>
+void check_split(size_t light_count, const Choose& choose, const Pmf& pmf, const char* what, int* most) {
+  constexpr int kDraws = 20000;
+  std::vector<double> included(light_count, 0.0);
+  Pcg32 rng(3, 9);
+  int mismatches = 0;
+  for (int s = 0; s < kDraws; ++s) {
+    const LightChoices cs = choose(rng.next_float());
+    *most = std::max(*most, cs.count);
+    std::vector<bool> seen(light_count, false);
+    for (const LightChoice& c : cs) {
+      ASSERT_FALSE(seen[size_t(c.light)]) << what;
+      seen[size_t(c.light)] = true;
+      included[size_t(c.light)] += 1.0 / kDraws;
+      if (c.pmf != pmf(c.light)) ++mismatches;
+    }
+  }
+  EXPECT_EQ(mismatches, 0) << what;
+  for (size_t i = 0; i < light_count; ++i) {
+    const double p = pmf(int(i));
+    EXPECT_LE(p, 1.0 + 1e-6) << what;
+    EXPECT_NEAR(included[i], p, 5.0 * std::sqrt(p * (1.0 - std::min(p, 1.0)) / kDraws) + 1e-6)
+        << what << " light " << i;
+  }
+}
+
+TEST(LightTree, SplitChoicesFollowTheirPmfs) {
+  const std::vector<Light> lights = mixed_lights();
+  const LightSampler tree(LightSamplerKind::kTree, lights);
+  int most = 0;
+  for (const PointQuery& q : point_queries())
+    check_split(
+        lights.size(), [&](float u) { return tree.choose(q.p, q.n, u); },
+        [&](int l) { return tree.choice_pmf(q.p, q.n, l); }, "point", &most);
+  for (const Ray& s : segment_queries())
+    check_split(
+        lights.size(), [&](float u) { return tree.choose_segment(s, u); },
+        [&](int l) { return tree.choice_pmf_segment(s, l); }, "segment", &most);
+  EXPECT_GT(most, 1);  // the receivers sit among the lights: some nodes split
+  EXPECT_LE(most, 1 << LightTree::kSplitDepth);
+}
+
+// 64 lamps spread over 100 m and a receiver half a metre from one: the tree must find it (with
+// splitting it is among the choices with probability 0.5 or more; uniform choice gives 1/64).
+TEST(LightTree, ANearLampIsFoundAmongMany) {
+  std::vector<Light> lights;
+  Pcg32 rng(5, 1);
+  for (int i = 0; i < 64; ++i) lights.push_back(PointLight{random_point(rng, 50), RGB(1.0f + rng.next_float())});
+  const Vec3 lamp = std::get<PointLight>(lights[17]).position;
+  const LightSampler tree(LightSamplerKind::kTree, lights);
+  const Vec3 p = lamp + Vec3(0.5f, 0, 0);
+  const float split = tree.choice_pmf(p, Vec3(0.0f), 17), single = tree.pmf(p, Vec3(0.0f), 17);
+  EXPECT_GE(split, 0.5f);
+  EXPECT_GE(single, 10.0f / 64.0f);  // one choice (no splitting): still 10x uniform's
+  EXPECT_GT(split, single);          // the split finds it more often (0.28 for one choice)
+}
+
 // A faint sky over a large scene (a 1 km ground plane) beside a lamp a metre away: the sky's
 // power grows as the scene's radius squared, so a share by power gave it 90 % of the samples;
 // weighed at the receiver the lamp gets at least 90 % (its irradiance is ~25x the sky's).
