@@ -357,6 +357,12 @@ void LightTree::descend_split(int node, int depth, float u, float pmf, float sca
     const Node& n = nodes_[size_t(node)];
     if (split(n, depth)) {
       descend_split(n.child[0], depth + 1, u, pmf, scale, importance, split, out);
+      // The other side takes u shifted by the golden ratio (mod 1): still uniform, so its choice
+      // is unbiased, but not the same choice as this side's (with one u for both, small u picked
+      // the first light of every subtree at once, and the correlated sum was noisier).
+      u += 0.618034f;
+      if (u >= 1.0f) u -= 1.0f;
+      u = std::min(u, kOneMinusEpsilon);
       node = n.child[1];
       ++depth;
       continue;

@@ -18,9 +18,9 @@
 // Sampling descends from the root, choosing a child in proportion to its importance with
 // one uniform number (rescaled at each level); the pmf is the product of the choices, and
 // pmf() recomputes exactly that product for any light (the same operations in the same order,
-// so equal bit for bit). Deviations from the paper: one light per leaf and no adaptive
-// splitting (one light per next-event estimate, so the estimator and MIS stay as they were);
-// the build uses the paper's SAOH cost with 12 bins per axis, falling back to median splits
+// so equal bit for bit). Adaptive splitting (sample_split, below) takes both children of nodes
+// that are close to the receiver. Deviations from the paper: one light per leaf, a split
+// criterion on the node's size over its distance alone (not its emission variance); the build uses the paper's SAOH cost with 12 bins per axis, falling back to median splits
 // from depth 40 on, so paths stay short (at most 40 + log2(lights) nodes).
 //
 // Units: positions in metres, powers in W. Immutable after construction; any number of
