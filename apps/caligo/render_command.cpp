@@ -21,6 +21,7 @@
 #include "scene/builtins.h"
 #include "scene/material_priority.h"
 #include "scene/scene_parser.h"
+#include "scene/scene_warnings.h"
 
 namespace caligo {
 
@@ -437,6 +438,7 @@ int run_render(const RenderOptions& o) {
   const RenderOutputs outputs(o, desc);  // every output is checked before any work
   check_memory(settings);
   const auto scene = Scene::build(desc);  // meshes load here: their errors come first, located
+  for (const std::string& w : priority_shadow_warnings(desc)) std::fprintf(stderr, "caligo: warning: %s\n", w.c_str());
   // The key re-reads every file the scene names (for their CRC-32s): only when a checkpoint is
   // read, saved or shared between ranks; an interrupt's own checkpoint takes it then.
   const auto key_now = [&] { return checkpoint_key(scene_source(o.scene), desc.files, settings, o.time, o.priorities); };
