@@ -2,7 +2,9 @@
 // over a ground plane with an 81,920-triangle icosphere occluder, at 256² and 1024². The
 // hybrid marches 50 steps only where the shadow volumes cover the pixel; the brute force 150
 // steps everywhere (the paper's settings). Counters: shadow-map lookups per pixel and the
-// fraction of pixels marched. Run: build/release/bench/caligo_bench --benchmark_filter=Scatter
+// fraction of pixels marched. The second argument: lit runs by the closed-form tail (0, the former
+// behaviour) or by the per-frame table (1, HybridSettings::frame_table, the default).
+// Run: build/release/bench/caligo_bench --benchmark_filter=Scatter
 #include <benchmark/benchmark.h>
 
 #include <memory>
@@ -47,6 +49,12 @@ const BenchScene& scene(int res) {
   return *cache.back();
 }
 
+HybridSettings settings_of(const benchmark::State& state) {
+  HybridSettings h;
+  h.frame_table = state.range(1) != 0;
+  return h;
+}
+
 void report(benchmark::State& state, const ScatterResult& r) {
   const double pixels = double(r.lookups.size());
   state.counters["lookups_per_pixel"] = double(r.total_lookups) / pixels;
@@ -57,10 +65,11 @@ void BM_HybridScatter(benchmark::State& state) {
   const BenchScene& s = scene(int(state.range(0)));
   ScatterResult r;
   for (auto _ : state)
-    r = scatter_hybrid(s.view, s.depth, s.buffers, s.shadow, AirlightTable::shared(), s.medium, s.light);
+    r = scatter_hybrid(s.view, s.depth, s.buffers, s.shadow, AirlightTable::shared(), s.medium, s.light,
+                       settings_of(state));
   report(state, r);
 }
-BENCHMARK(BM_HybridScatter)->Arg(256)->Arg(1024)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_HybridScatter)->ArgsProduct({{256, 1024}, {0, 1}})->Unit(benchmark::kMillisecond);
 
 // The hybrid with its eye pass: what a frame pays when the camera moves.
 void BM_HybridScatterWithEyePass(benchmark::State& state) {
@@ -68,28 +77,29 @@ void BM_HybridScatterWithEyePass(benchmark::State& state) {
   ScatterResult r;
   for (auto _ : state) {
     const ShadowVolumeBuffers b = rasterize_shadow_volumes({&s.volume, 1}, s.view, s.depth);
-    r = scatter_hybrid(s.view, s.depth, b, s.shadow, AirlightTable::shared(), s.medium, s.light);
+    r = scatter_hybrid(s.view, s.depth, b, s.shadow, AirlightTable::shared(), s.medium, s.light, settings_of(state));
   }
   report(state, r);
 }
-BENCHMARK(BM_HybridScatterWithEyePass)->Arg(256)->Arg(1024)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_HybridScatterWithEyePass)->ArgsProduct({{256, 1024}, {0, 1}})->Unit(benchmark::kMillisecond);
 
 void BM_BruteScatter(benchmark::State& state) {
   const BenchScene& s = scene(int(state.range(0)));
   ScatterResult r;
   for (auto _ : state)
-    r = scatter_brute(s.view, s.depth, s.shadow, AirlightTable::shared(), s.medium, s.light);
+    r = scatter_brute(s.view, s.depth, s.shadow, AirlightTable::shared(), s.medium, s.light, settings_of(state));
   report(state, r);
 }
-BENCHMARK(BM_BruteScatter)->Arg(256)->Arg(1024)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_BruteScatter)->ArgsProduct({{256, 1024}, {0, 1}})->Unit(benchmark::kMillisecond);
 
 void BM_UnshadowedScatter(benchmark::State& state) {
   const BenchScene& s = scene(int(state.range(0)));
   for (auto _ : state)
     benchmark::DoNotOptimize(
-        scatter_unshadowed(s.view, s.depth, AirlightTable::shared(), s.medium, s.light).r.data.data());
+        scatter_unshadowed(s.view, s.depth, AirlightTable::shared(), s.medium, s.light, settings_of(state))
+            .r.data.data());
 }
-BENCHMARK(BM_UnshadowedScatter)->Arg(256)->Arg(1024)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_UnshadowedScatter)->ArgsProduct({{256, 1024}, {0, 1}})->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace caligo

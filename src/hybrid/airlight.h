@@ -133,7 +133,8 @@ inline float airlight(const AirlightTable& table, const AirlightRay& ray, float 
 // per pixel. Built from the AirlightTable in ~1 ms per light per frame. Error against the closed
 // form, relative to the pixel's whole-ray airlight: <= 0.3% for σ_t D <= 1, 0.6% at 5, 4% at 20,
 // 15% at 50 (the in-scattering then hugs the eye, w ≈ 0): past σ_t D ≈ 5 use airlight_tail.
-// Not used by the scattering passes yet: they call airlight_tail, accurate at every σ_t D.
+// The scattering passes use it with HybridSettings::frame_table (off by default: slower than
+// airlight_tail on a CPU, docs/techniques.md).
 class FrameAirlight {
  public:
   struct Options {

@@ -59,7 +59,17 @@ struct HybridSettings {
   // Dither trades the banding of a fixed step pattern for noise.
   float jitter = 0.5f;
   float max_distance = 1000.0f;  // metres; the march ends here (see above)
+  // Lit runs by Wyman & Ramsey's per-frame table (FrameAirlight: one lookup per end) where it
+  // is accurate, σ_t D <= kFrameTableMaxDepth for the light at distance D from the eye, in a
+  // perspective view; by the closed-form tail (airlight_tail) elsewhere, and everywhere when
+  // false, the default: on this CPU the table's per-pixel setup and its lookup (an atan2 and a
+  // fourth root) cost more than the tail's (bench_hybrid: the hybrid pass 22 % slower at 1024²).
+  bool frame_table = false;
 };
+
+// FrameAirlight's error relative to a pixel's whole-ray airlight is 0.6 % at σ_t D = 5 and 4 %
+// at 20 (hybrid/airlight.h); past 5 the tail is the accurate choice.
+inline constexpr float kFrameTableMaxDepth = 5.0f;
 
 struct ScatterResult {
   ColorPlanes radiance;
