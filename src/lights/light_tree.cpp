@@ -304,31 +304,6 @@ int LightTree::build(std::vector<std::pair<int, LightBounds>>& items, size_t beg
   return index;
 }
 
-// One uniform number picks a child per level in proportion to importance, rescaled to [0, 1)
-// within the chosen share. Returns light -1 when both children of a node have importance 0.
-template <class Importance>
-LightChoice LightTree::descend(float u, const Importance& importance) const {
-  if (nodes_.empty()) return {};
-  int node = 0;
-  float pmf = 1.0f;
-  while (!nodes_[size_t(node)].leaf()) {
-    const Node& n = nodes_[size_t(node)];
-    const float i0 = importance(nodes_[size_t(n.child[0])]), i1 = importance(nodes_[size_t(n.child[1])]);
-    if (!(i0 + i1 > 0.0f)) return {};
-    const float p0 = i0 / (i0 + i1);
-    if (u < p0) {
-      u = std::min(u / p0, kOneMinusEpsilon);
-      pmf *= p0;
-      node = n.child[0];
-    } else {
-      u = std::min((u - p0) / (1.0f - p0), kOneMinusEpsilon);
-      pmf *= 1.0f - p0;
-      node = n.child[1];
-    }
-  }
-  return {nodes_[size_t(node)].child[0], pmf};
-}
-
 // The same products as descend(), from the root down to the light's leaf; a node that
 // `split(node, depth)` says is split contributes 1 (both children are taken).
 template <class Importance, class Split>
@@ -349,7 +324,9 @@ float LightTree::path_pmf(int light, const Importance& importance, const Split& 
   return pmf;
 }
 
-// descend() from `node` at `depth`, taking both children of every split node.
+// From `node` at `depth` to a leaf: one uniform number picks a child per level in proportion to
+// importance, rescaled to [0, 1) within the chosen share; both children of every node `split`
+// names are taken. Nothing is added below a node whose children both have importance 0.
 template <class Importance, class Split>
 void LightTree::descend_split(int node, int depth, float u, float pmf, float scale, const Importance& importance,
                               const Split& split, LightChoices& out) const {
@@ -385,8 +362,19 @@ void LightTree::descend_split(int node, int depth, float u, float pmf, float sca
 }
 
 namespace {
-
 constexpr auto kNoSplit = [](const LightTree::Node&, int) { return false; };
+}  // namespace
+
+// One light: the descent without splits (light -1 when both children of a node have importance 0).
+template <class Importance>
+LightChoice LightTree::descend(float u, const Importance& importance) const {
+  if (nodes_.empty()) return {};
+  LightChoices out;
+  descend_split(0, 0, u, 1.0f, 1.0f, importance, kNoSplit, out);
+  return out.count > 0 ? out.choice[0] : LightChoice{};
+}
+
+namespace {
 
 // Whether a node is split for a receiving point or segment (see the header).
 bool split_at(const LightTree::Node& n, int depth, float distance) {
