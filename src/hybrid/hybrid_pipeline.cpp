@@ -24,7 +24,8 @@ struct HybridScatterer::CachedVolumes {
   float extrusion = 0.0f;
   std::vector<ShadowVolume> volumes;
   // A textured spot's blurred gobo, built once per gobo image rather than every frame.
-  std::shared_ptr<const GoboImage> gobo_source, gobo_blurred;
+  std::shared_ptr<const GoboImage> gobo_source;
+  GoboMips gobo_mips;  // of gobo_source, built once
 };
 
 namespace {
@@ -299,20 +300,19 @@ bool HybridScatterer::scatter_spot(size_t index, const SpotLight& spot, const Fr
   const bool grey =
       sigma_s.r == sigma_s.g && sigma_s.g == sigma_s.b && sigma_t.r == sigma_t.g && sigma_t.g == sigma_t.b;
   const float gain = frame_light.options.volumetric_intensity;
-  SpotLight lit = spot;
-  TexturedSpotSettings settings = spot_settings_;
-  if (spot.gobo.image && settings.blur_level > 0) {
+  const GoboMips* mips = nullptr;
+  if (spot.gobo.image) {
     CachedVolumes& cache = cache_[index];
     if (cache.gobo_source != spot.gobo.image) {
-      cache.gobo_blurred = blurred_gobo(*spot.gobo.image, settings.blur_level);
+      cache.gobo_mips = gobo_mips(spot.gobo.image);
       cache.gobo_source = spot.gobo.image;
     }
-    lit.gobo.image = cache.gobo_blurred;
-    settings.blur_level = 0;
+    mips = &cache.gobo_mips;
   }
   for (int c = 0; c < (grey ? 1 : 3); ++c) {
-    const ScatterResult r = scatter_textured_spot(low_view, clipped.depth, frame_light.shadow, table,
-                                                  AirlightMedium{sigma_s[c], sigma_t[c]}, lit, settings, buffers);
+    const ScatterResult r =
+        scatter_textured_spot(low_view, clipped.depth, frame_light.shadow, table, AirlightMedium{sigma_s[c], sigma_t[c]},
+                              spot, spot_settings_, buffers, mips);
     const RGB w = grey ? RGB(gain) : RGB(c == 0 ? gain : 0.0f, c == 1 ? gain : 0.0f, c == 2 ? gain : 0.0f);
     accum.add(r.radiance, w);
   }

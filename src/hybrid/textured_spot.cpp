@@ -33,25 +33,53 @@ GoboImage half_size(const GoboImage& src) {
   return GoboImage(w, h, std::move(out));
 }
 
-// The spot's emitted intensity towards a point (W/sr, no 1/d²), with the volumetric gobo.
+// The spot's emitted intensity towards a point (W/sr, no 1/d²), with the volumetric gobo at a
+// mip level: the `blur_level` one, or a coarser one where a step's footprint asks for it.
 struct Emitter {
   const SpotLight& light;
-  Gobo gobo;  // the light's gobo with its image swapped for the blurred level
+  std::vector<Gobo> levels;  // the light's gobo with each level of its mip chain (one: no image)
+  int base = 0;              // the blur_level, clamped to the chain
+  float tan_outer = 1.0f;
+  float texels = 1.0f;       // the gobo's larger side
 
-  RGB towards(Vec3 p) const {
+  RGB towards(Vec3 p, int level) const {
     const Vec3 v = p - light.position;
     const float dist = length(v);
     if (!(dist > 0.0f)) return RGB(0.0f);
     const Vec3 w = v / dist;
     const float scale = spot_cone(light, w) * range_window(dist, light.range) * ies_factor(light.ies, w);
     if (!(scale > 0.0f)) return RGB(0.0f);
+    const Gobo& gobo = levels[size_t(std::clamp(level, base, int(levels.size()) - 1))];
     return light.intensity * gobo_filter(gobo, spot_gobo_uv(light, w)) * scale;
   }
 
-  // The volumetric term reads the gobo's `blur_level` mip (multiple scattering's stand-in).
-  static Emitter blurred(const SpotLight& light, int blur_level) {
-    Emitter e{light, light.gobo};
-    if (light.gobo.image && blur_level > 0) e.gobo.image = blurred_gobo(*light.gobo.image, blur_level);
+  // The level a step of length `step` along `dir` at p reads: the angle it subtends at the light
+  // over the angle a texel spans (uv = 1/2 + tan / (2 tan_outer) about the axis), as log2.
+  int level_for(Vec3 p, Vec3 dir, float step) const {
+    if (levels.size() < 2) return base;
+    const Vec3 v = p - light.position;
+    const float dist = length(v);
+    const float z = dist > 0.0f ? dot(v, light.direction) / dist : 0.0f;
+    if (!(z > 1e-3f)) return base;
+    const float angle = step * length(cross(dir, v / dist)) / dist;
+    const float footprint = angle / (2.0f * tan_outer * z * z) * texels;
+    return footprint > 2.0f ? std::max(base, int(std::log2(footprint))) : base;
+  }
+
+  static Emitter make(const SpotLight& light, const TexturedSpotSettings& settings, const GoboMips* mips) {
+    Emitter e{light, {light.gobo}};
+    if (!light.gobo.image) return e;
+    const float c = std::clamp(light.cos_outer, 1e-6f, 1.0f);
+    e.tan_outer = std::max(std::sqrt(std::max(0.0f, 1.0f - c * c)) / c, 1e-6f);
+    e.texels = float(std::max(light.gobo.image->width(), light.gobo.image->height()));
+    const GoboMips own = mips ? GoboMips{} : gobo_mips(light.gobo.image);
+    const GoboMips& chain = mips ? *mips : own;
+    const int wanted = settings.blur_per_interval ? int(chain.size()) : std::max(settings.blur_level, 0) + 1;
+    for (int k = 1; k < std::min(wanted, int(chain.size())); ++k) {
+      e.levels.push_back(light.gobo);
+      e.levels.back().image = chain[size_t(k)];
+    }
+    e.base = std::clamp(settings.blur_level, 0, int(e.levels.size()) - 1);
     return e;
   }
 };
@@ -65,9 +93,12 @@ std::vector<GoboImage> gobo_mip_chain(const GoboImage& image, int max_levels) {
   return chain;
 }
 
-std::shared_ptr<const GoboImage> blurred_gobo(const GoboImage& image, int level) {
-  std::vector<GoboImage> chain = gobo_mip_chain(image, std::max(level, 0) + 1);
-  return std::make_shared<const GoboImage>(std::move(chain.back()));
+GoboMips gobo_mips(const std::shared_ptr<const GoboImage>& image) {
+  GoboMips mips{image};
+  if (!image) return mips;
+  std::vector<GoboImage> chain = gobo_mip_chain(*image);
+  for (size_t k = 1; k < chain.size(); ++k) mips.push_back(std::make_shared<const GoboImage>(std::move(chain[k])));
+  return mips;
 }
 
 int textured_spot_steps(float abs_cos_axis, const TexturedSpotSettings& settings) {
@@ -97,10 +128,10 @@ void check_buffers(const View& view, const Plane& opaque_depth, const ShadowVolu
 ScatterResult scatter_textured_spot(const View& view, const Plane& opaque_depth, const ShadowMap* shadow,
                                     const AirlightTable& table, const AirlightMedium& medium,
                                     const SpotLight& light, const TexturedSpotSettings& settings,
-                                    const ShadowVolumeBuffers* volumes) {
+                                    const ShadowVolumeBuffers* volumes, const GoboMips* mips) {
   check_buffers(view, opaque_depth, volumes);
   if (!shadow) volumes = nullptr;  // nothing casts a shadow: every step is lit
-  const Emitter emitter = Emitter::blurred(light, settings.blur_level);
+  const Emitter emitter = Emitter::make(light, settings, mips);
   const ShadedLight as_light{light};
   const float max_distance = std::max(settings.max_distance, 0.0f);
   const float jitter = std::clamp(settings.jitter, 0.0f, 1.0f), lit_rate = std::clamp(settings.lit_rate, 0.0f, 1.0f);
@@ -131,7 +162,8 @@ ScatterResult scatter_textured_spot(const View& view, const Plane& opaque_depth,
         const float tail1 = airlight_tail(table, air, t1);
         const Vec3 p = o + dir * (a + step * (float(i) + offset));
         const float lit = shadowed ? shadow->visibility(p) : 1.0f;
-        if (lit > 0.0f) sum += emitter.towards(p) * (lit * std::max(tail0 - tail1, 0.0f));
+        if (lit > 0.0f)
+          sum += emitter.towards(p, emitter.level_for(p, dir, step)) * (lit * std::max(tail0 - tail1, 0.0f));
         tail0 = tail1;
       }
       lookups += k;

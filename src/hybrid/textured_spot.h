@@ -43,7 +43,10 @@
 // with a blurred copy of the texture (in-scattered light has been spread over neighbouring
 // directions). We build a box-filtered mip chain of the gobo image and use level `blur_level`
 // (clamped to the coarsest) for the volumetric term; bilinear lookup with the gobo's own
-// rotation and offset. blur_level 0 is the exact single-scattering texture, the one the path
+// rotation and offset. With `blur_per_interval` (the default, the paper's per-interval blur) a
+// step reads the level its own footprint asks for when that is coarser: the angle the step
+// subtends at the light, in texels of the gobo (log2, rounded down), so a coarse step reads the
+// texture's average over what it spans instead of one point of it (which aliases). blur_level 0 is the exact single-scattering texture, the one the path
 // tracer uses; any level > 0 is NOT what the path tracer computes (it keeps total flux close,
 // since a box filter preserves the mean, but moves colour between shafts).
 //
@@ -72,6 +75,7 @@ struct TexturedSpotSettings {
   int max_steps = 150;  // rays across the axis (clamped to >= min_steps)
   float jitter = 0.5f;  // 0 = step midpoints; 1 = anywhere in the step
   int blur_level = 2;   // mip level of the gobo for the volumetric term; 0 = exact
+  bool blur_per_interval = true;  // coarser where a step spans more than a texel (see above)
   float max_distance = 1000.0f;
   // With shadow volumes: the rate of the stretches outside them (before the front-most surface
   // and, when lit, after the back-most), relative to the stretch inside. Those stretches need
@@ -84,8 +88,10 @@ struct TexturedSpotSettings {
 // the source: even sizes keep the mean exactly, odd ones nearly), down to 1x1 or `max_levels` levels.
 std::vector<GoboImage> gobo_mip_chain(const GoboImage& image, int max_levels = 16);
 
-// Level `level` of that chain (clamped to the coarsest): the volumetric term's gobo.
-std::shared_ptr<const GoboImage> blurred_gobo(const GoboImage& image, int level);
+// The whole chain as shared images (level 0 the image itself), for a caller that keeps it
+// between frames.
+using GoboMips = std::vector<std::shared_ptr<const GoboImage>>;
+GoboMips gobo_mips(const std::shared_ptr<const GoboImage>& image);
 
 // The steps the pass takes for a ray at |cos α| = abs_cos_axis (the rule above).
 int textured_spot_steps(float abs_cos_axis, const TexturedSpotSettings& settings);
@@ -98,6 +104,7 @@ int textured_spot_steps(float abs_cos_axis, const TexturedSpotSettings& settings
 ScatterResult scatter_textured_spot(const View& view, const Plane& opaque_depth, const ShadowMap* shadow,
                                     const AirlightTable& table, const AirlightMedium& medium,
                                     const SpotLight& light, const TexturedSpotSettings& settings = {},
-                                    const ShadowVolumeBuffers* volumes = nullptr);
+                                    const ShadowVolumeBuffers* volumes = nullptr,
+                                    const GoboMips* mips = nullptr);
 
 }  // namespace caligo
