@@ -3,7 +3,7 @@
 // hybrid marches 50 steps only where the shadow volumes cover the pixel; the brute force 150
 // steps everywhere (the paper's settings). Counters: shadow-map lookups per pixel and the
 // fraction of pixels marched. The second argument: lit runs by the closed-form tail (0, the former
-// behaviour) or by the per-frame table (1, HybridSettings::frame_table, the default).
+// behaviour and the default) or by the per-frame table (1, HybridSettings::frame_table).
 // Run: build/release/bench/caligo_bench --benchmark_filter=Scatter
 #include <benchmark/benchmark.h>
 

@@ -22,12 +22,14 @@ namespace caligo {
 
 namespace {
 
-// The textured spotlight runs with the exact gobo (blur level 0): the path tracer computes
-// single scattering through the sharp texture, and the blur is the paper's stand-in for
-// multiple scattering, an approximation the error column would otherwise mostly measure.
+// The textured spotlight runs with the exact gobo (blur level 0, no per-interval blur): the path
+// tracer computes single scattering through the sharp texture, and the blur is the paper's
+// stand-in for multiple scattering, an approximation the error column would otherwise mostly
+// measure.
 TexturedSpotSettings bench_spot_settings(const WymanVariant& v) {
   TexturedSpotSettings s;
   s.blur_level = 0;
+  s.blur_per_interval = false;
   if (v.spot_steps > 0) {
     s.min_steps = s.max_steps = v.spot_steps;
     s.lit_rate = 1.0f;

@@ -63,7 +63,8 @@ struct Emitter {
     if (!(z > 1e-3f)) return base;
     const float angle = step * length(cross(dir, v / dist)) / dist;
     const float footprint = angle / (2.0f * tan_outer * z * z) * texels;
-    return footprint > 2.0f ? std::max(base, int(std::log2(footprint))) : base;
+    if (!(footprint > 2.0f)) return base;  // also NaN
+    return std::max(base, int(std::log2(std::min(footprint, 0x1p30f))));
   }
 
   static Emitter make(const SpotLight& light, const TexturedSpotSettings& settings, const GoboMips* mips) {

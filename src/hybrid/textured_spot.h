@@ -46,9 +46,10 @@
 // rotation and offset. With `blur_per_interval` (the default, the paper's per-interval blur) a
 // step reads the level its own footprint asks for when that is coarser: the angle the step
 // subtends at the light, in texels of the gobo (log2, rounded down), so a coarse step reads the
-// texture's average over what it spans instead of one point of it (which aliases). blur_level 0 is the exact single-scattering texture, the one the path
-// tracer uses; any level > 0 is NOT what the path tracer computes (it keeps total flux close,
-// since a box filter preserves the mean, but moves colour between shafts).
+// texture's average over what it spans instead of one point of it (which aliases). blur_level 0
+// without per-interval blur is the exact single-scattering texture, the one the path tracer
+// uses; any blur is NOT what the path tracer computes (it keeps total flux close, since a box
+// filter preserves the mean, but moves colour between shafts).
 //
 // Sky pixels and far surfaces: the march ends at max_distance; the spot's light beyond it is
 // dropped (a finite range bounds it anyway). Units: metres, W/sr, 1/m. `opaque_depth` is LINEAR

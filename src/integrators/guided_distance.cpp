@@ -30,14 +30,17 @@ std::optional<GuidedDistance> GuidedDistance::along(const GuidingField& field, c
   }
   if (!(guided > 0.0) || !std::isfinite(guided)) return std::nullopt;
   double cumulative = 0.0;
+  int last = 0;  // the last cell with guided mass
   for (int k = 0; k < kCells; ++k) {
+    if (mass[size_t(k)] > 0.0) last = k;
     const float w = g.scatter_at_[size_t(k) + 1] - g.scatter_at_[size_t(k)];
     // The guided density over the record's is fluence_k x total / guided inside cell k.
     g.ratio_[size_t(k)] = w > 0.0f ? 0.5f + 0.5f * float(mass[size_t(k)] * total / (double(w) * guided)) : 0.5f;
     cumulative += mass[size_t(k)] / guided;
     g.cdf_[size_t(k) + 1] = float(cumulative);
   }
-  g.cdf_[kCells] = 1.0f;
+  // Cells after the last with mass end at exactly 1, so no rounding slice of u reaches them.
+  for (int k = last + 1; k <= kCells; ++k) g.cdf_[size_t(k)] = 1.0f;
   return g;
 }
 

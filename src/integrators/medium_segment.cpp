@@ -182,11 +182,11 @@ SegmentOutcome marched_segment(const PathContext& ctx, PathState& state, Ray& ra
     const std::optional<GuidedDistance> guided =
         ctx.settings.guided_distances && volume_guides_distances(ctx) ? GuidedDistance::along(*ctx.guide, ray, record)
                                                                       : std::nullopt;
-    float pdf_native = 0.0f;
-    collision = guided ? guided->sample(record, u / p_scatter, &pdf_native)
+    // Not counted in the path's guided growth: the segment's light connection, made above, has
+    // already read it, and the vertex's own MIS weights below must read what it read.
+    collision = guided ? guided->sample(record, u / p_scatter, nullptr)
                        : record.sample_scatter_density(u_channel, u / p_scatter);
     if (!collision) return SegmentOutcome::kAbsorbed;  // p_scatter > 0 implies a collision
-    if (guided) note_guided_sample(ctx, pdf_native, collision->pdf);
     // The collision's density is p_scatter x pdf = avg_c sigma_s,c(t) T_c(t) / survive.
     collision->pdf *= p_scatter;
   } else {

@@ -27,9 +27,10 @@ struct PathState {
   float emission_weight = 1.0f;
   Vec3 scatter_origin;          // where that direction was sampled
   // The light choice next-event estimation made at that vertex, whose pmf the MIS weight of a
-  // light hit needs: at a surface, pmf(scatter_origin, scatter_normal); after a marched
-  // scattering event, pmf_segment(scatter_segment), the segment volume NEE chose its light for;
-  // after a tracked one, pmf(scatter_origin) (light_choice_at_point).
+  // light hit needs (LightSampler::choice_pmf: the light's probability of being among the
+  // choices): at a surface, choice_pmf(scatter_origin, scatter_normal); after a marched
+  // scattering event, choice_pmf_segment(scatter_segment), the segment volume NEE chose its lights
+  // for; after a tracked one, choice_pmf(scatter_origin) (light_choice_at_point).
   bool deferred_nee = false;  // PathSettings::deferred_nee > 0
   Vec3 scatter_normal;
   bool scattered_in_medium = false;

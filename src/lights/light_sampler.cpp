@@ -98,12 +98,6 @@ LightSampler::LightSampler(LightSamplerKind kind, std::span<const Light> lights)
   strategy_ = std::move(t);
 }
 
-LightSamplerKind LightSampler::kind() const {
-  if (std::holds_alternative<Uniform>(strategy_)) return LightSamplerKind::kUniform;
-  if (std::holds_alternative<Power>(strategy_)) return LightSamplerKind::kPower;
-  return LightSamplerKind::kTree;
-}
-
 namespace {
 
 constexpr float kMinReceiverShare = 0.05f, kMaxReceiverShare = 0.95f;
@@ -169,6 +163,7 @@ LightChoice LightSampler::sample_tree(const Tree& t, float u, const Receiver& r)
 }
 
 float LightSampler::pmf_tree(const Tree& t, int light, const Receiver& r, bool split) const {
+  if (light < 0 || size_t(light) >= t.infinite_slot.size()) return 0.0f;
   const int slot = t.infinite_slot[size_t(light)];
   const auto [p_inf, importance] = infinite_share(t, r);
   if (slot >= 0) {

@@ -50,8 +50,6 @@ class LightSampler {
   LightSampler() = default;  // no lights: sample() chooses nothing
   LightSampler(LightSamplerKind kind, std::span<const Light> lights);
 
-  LightSamplerKind kind() const;
-
   // A receiving point; n is the unit normal facing the side light may arrive from, or zero
   // (media, transmitting surfaces). u in [0, 1).
   LightChoice sample(Vec3 p, Vec3 n, float u) const;

@@ -69,7 +69,7 @@ struct LightChoice {
 // The lights one next-event estimate connects to under adaptive splitting: at most one per
 // subtree the split reached, each with the probability that it is among them.
 struct LightChoices {
-  static constexpr int kMax = 9;  // 2^LightTree::kSplitDepth from the tree, one at infinity
+  static constexpr int kMax = 8;  // 2^LightTree::kSplitDepth (a light at infinity is chosen instead)
   std::array<LightChoice, kMax> choice{};
   int count = 0;
   void add(LightChoice c) {
@@ -104,6 +104,7 @@ class LightTree {
   // on the node and the receiver alone, so that pmf needs no other branch.
   static constexpr int kSplitDepth = 3;
   static constexpr float kSplitRatio = 0.5f;
+  static_assert(LightChoices::kMax >= 1 << kSplitDepth, "a split may reach every subtree");
   void sample_split(Vec3 p, Vec3 n, float u, float scale, LightChoices& out) const;
   float split_pmf(Vec3 p, Vec3 n, int light) const;
   void sample_split_segment(const Ray& segment, float u, float scale, LightChoices& out) const;

@@ -110,7 +110,7 @@ struct PathSettings {
   GuidingMode guiding = GuidingMode::kOff;
   // With volume guiding: where a path scatters in a grey marched segment is drawn from a mixture
   // of the record's density and that density times the learnt fluence (integrators/
-  // guided_distance.h). Off: on `lamp-in-fog` it left the error per sample unchanged for 55 %
+  // guided_distance.h). Off: on `lamp-in-fog` it left the error per sample unchanged for 18 %
   // more time (docs/benchmarks.md); kept, unexposed, for bench_noise to measure.
   bool guided_distances = false;
 };
