@@ -126,9 +126,10 @@ std::pair<float, float> LightSampler::infinite_share(const Tree& t, const Receiv
   for (const Infinite& l : t.infinite_at) infinite += infinite_importance(l, r, t.scene_diameter);
   if (t.tree.empty()) return {1.0f, infinite};
   const float finite = r.segment ? t.tree.root_importance(*r.segment) : t.tree.root_importance(r.p, r.n);
-  const float total = infinite + finite;
-  const float share = total > 0.0f ? infinite / total : 0.5f;
-  return {std::clamp(share, kMinReceiverShare, kMaxReceiverShare), infinite};
+  // Where one kind cannot light the receiver at all, the other takes every sample.
+  if (!(infinite > 0.0f)) return {finite > 0.0f ? 0.0f : 0.5f, infinite};
+  if (!(finite > 0.0f)) return {1.0f, infinite};
+  return {std::clamp(infinite / (infinite + finite), kMinReceiverShare, kMaxReceiverShare), infinite};
 }
 
 LightChoice LightSampler::sample_tree(const Tree& t, float u, const Receiver& r) const {

@@ -315,7 +315,10 @@ float LightTree::path_pmf(int light, const Importance& importance, const Split& 
   float pmf = 1.0f;
   for (int k = length - 1; k > 0; --k) {
     const Node& n = nodes_[size_t(path[size_t(k)])];
-    if (split(n, length - 1 - k)) continue;
+    if (split(n, length - 1 - k)) {
+      if (!(importance(nodes_[size_t(path[size_t(k - 1)])]) > 0.0f)) return 0.0f;  // skipped by descend_split
+      continue;
+    }
     const float i0 = importance(nodes_[size_t(n.child[0])]), i1 = importance(nodes_[size_t(n.child[1])]);
     if (!(i0 + i1 > 0.0f)) return 0.0f;
     const float p0 = i0 / (i0 + i1);
@@ -333,7 +336,17 @@ void LightTree::descend_split(int node, int depth, float u, float pmf, float sca
   while (!nodes_[size_t(node)].leaf()) {
     const Node& n = nodes_[size_t(node)];
     if (split(n, depth)) {
-      descend_split(n.child[0], depth + 1, u, pmf, scale, importance, split, out);
+      // A side of importance 0 cannot light the receiver (the bounds are conservative): skipped,
+      // as path_pmf skips it, so it costs no shadow ray.
+      const bool left = importance(nodes_[size_t(n.child[0])]) > 0.0f;
+      const bool right = importance(nodes_[size_t(n.child[1])]) > 0.0f;
+      if (!right) {
+        if (!left) return;
+        node = n.child[0];
+        ++depth;
+        continue;
+      }
+      if (left) descend_split(n.child[0], depth + 1, u, pmf, scale, importance, split, out);
       // The other side takes u shifted by the golden ratio (mod 1): still uniform, so its choice
       // is unbiased, but not the same choice as this side's (with one u for both, small u picked
       // the first light of every subtree at once, and the correlated sum was noisier).
