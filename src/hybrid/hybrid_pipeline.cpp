@@ -145,22 +145,37 @@ HybridScatterer::HybridScatterer(const Scene& scene, VolumetricMethod method, Hy
     hit.geom_id = g;
     // Null surfaces cast no shadow (the raster scene leaves them out of the shadow maps too).
     if (std::holds_alternative<NullBsdf>(scene.material(hit).bsdf)) continue;
-    MeshEdges edges(surfaces.is_sphere(g) ? circumscribed_sphere(surfaces.sphere(g)) : surfaces.mesh(g));
+    const TriangleMesh mesh = surfaces.is_sphere(g) ? circumscribed_sphere(surfaces.sphere(g)) : surfaces.mesh(g);
+    MeshEdges edges(mesh);
     if (!edges.closed()) {
       if (open_occluder_.empty()) open_occluder_ = "geometry " + std::to_string(g) + ": " + edges.problem();
+      // Its bounding box stands in (a closed proxy whose shadow holds the mesh's): the
+      // scattering pass then marches every ray whose end lies in a shadow volume up to its
+      // surface, since inside a proxy's volume is not necessarily in shadow.
+      occluders_.push_back(MeshEdges(bounding_box_proxy(mesh)));
+      settings_.conservative_tails = true;
       continue;
     }
     occluders_.push_back(std::move(edges));
   }
   if (!open_occluder_.empty())
     std::fprintf(stderr,
-                 "caligo realtime: warning: --method %s: occluder %s; shadow volumes need closed meshes, "
-                 "so point lights use brute-force marching (the shadow map alone)%s\n",
+                 "caligo realtime: warning: --method %s: occluder %s; its shadow volume is its bounding box's, "
+                 "and rays ending in a shadow volume are marched to their surface%s\n",
                  volumetric_method_name(method_), open_occluder_.c_str(),
-                 method_ == VolumetricMethod::kTextured ? " and spot lights read the shadow map at every step" : "");
+                 method_ == VolumetricMethod::kTextured ? "; spot lights read the shadow map at every step" : "");
 }
 
 HybridScatterer::~HybridScatterer() = default;
+
+TriangleMesh bounding_box_proxy(const TriangleMesh& mesh) {
+  Bounds3 b;
+  for (Vec3 p : mesh.positions) b.extend(p);
+  if (b.empty()) return {};
+  // Grown a little so that a flat mesh (a card, a ground plane) still bounds a volume.
+  const Vec3 margin = b.diagonal() * 1e-3f + Vec3(1e-4f);
+  return box_mesh(b.lo - margin, b.hi + margin);
+}
 
 VolumetricMethod HybridScatterer::used(size_t index) const {
   return index < used_.size() ? used_[index] : VolumetricMethod::kMarch;
@@ -219,7 +234,6 @@ bool HybridScatterer::scatter(size_t index, const FrameLight& frame_light, const
   const VolumePrimitive& medium = volumes.primitive(0);
 
   VolumetricMethod method = method_ == VolumetricMethod::kTextured ? VolumetricMethod::kHybrid : method_;
-  if (method == VolumetricMethod::kHybrid && !open_occluder_.empty()) method = VolumetricMethod::kBrute;
   if (!frame_light.shadow) method = VolumetricMethod::kNone;  // casts no shadow: the airlight is exact
 
   const float density = medium.shader.density;

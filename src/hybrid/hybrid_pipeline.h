@@ -28,9 +28,10 @@
 // once at construction. Analytic spheres are tessellated as icospheres (4 subdivisions,
 // 5,120 triangles) scaled to CIRCUMSCRIBE the sphere: the volume may then only be larger
 // than the shadow the shadow map holds, and inside it the shadow map decides, so the result
-// stays exact. An open or non-manifold mesh cannot bound a volume: with any such occluder
-// the hybrid light falls back to kBrute (the shadow map alone), with a warning on stderr
-// naming the geometry and its problem (mesh_edges.h). Shadow volumes are rebuilt when the
+// stays exact. An open or non-manifold mesh cannot bound a volume: its bounding box stands in
+// (bounding_box_proxy; its shadow holds the mesh's), rays ending inside a volume are then
+// marched to their surface (HybridSettings::conservative_tails), and a warning on stderr names
+// the geometry and its problem (mesh_edges.h). Shadow volumes are rebuilt when the
 // light moves (cached by position).
 //
 // Thread safety: one scatterer per pipeline; scatter() is called from the pipeline's thread
@@ -58,6 +59,10 @@ enum class VolumetricMethod { kMarch, kNone, kBrute, kHybrid, kTextured };
 std::optional<VolumetricMethod> parse_volumetric_method(std::string_view name);
 const char* volumetric_method_name(VolumetricMethod method);
 
+// A closed box around `mesh` (slightly larger: a flat mesh still bounds a volume), whose shadow
+// volume holds the mesh's own; empty for an empty mesh.
+TriangleMesh bounding_box_proxy(const TriangleMesh& mesh);
+
 class HybridScatterer : public LightScatterer {
  public:
   // settings: samples (hybrid, 50) and brute_samples (150) as in the paper.
@@ -69,9 +74,10 @@ class HybridScatterer : public LightScatterer {
                const Plane& low_depth, ColorPlanes& accum) override;
 
   // The method light `index` used in the last frame (kMarch for lights left to the march or
-  // never seen); kHybrid may have become kBrute for open occluders.
+  // never seen).
   VolumetricMethod used(size_t index) const;
-  // Non-empty when some occluder is open or non-manifold (kHybrid then runs as kBrute).
+  // Non-empty when some occluder is open or non-manifold: its bounding box then stands in for
+  // its shadow volume (bounding_box_proxy), with HybridSettings::conservative_tails.
   const std::string& open_occluder() const { return open_occluder_; }
 
  private:

@@ -129,8 +129,8 @@ ScatterResult scatter_hybrid(const View& view, const Plane& opaque_depth, const 
     if (eye_lit && !volumes.covered(x, y)) return light.color * lit(p, 0.0f, p.t_opaque);
     // The buffers hold t along the same unit ray; clamp them into the marched range.
     const float a = eye_lit ? std::clamp(volumes.front.at(x, y), 0.0f, p.t_end) : 0.0f;
-    const float b = std::clamp(volumes.back.at(x, y), a, p.t_end);
     const bool tail_lit = volumes.tail(x, y) == 0;
+    const float b = settings.conservative_tails && !tail_lit ? p.t_end : std::clamp(volumes.back.at(x, y), a, p.t_end);
     // Beyond b: lit to the surface when no volume holds the tail (or b is already t_end, beyond
     // which the ray counts as lit); else shadowed up to t_end and lit after it.
     float extra = 0.0f;

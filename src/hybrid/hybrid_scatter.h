@@ -65,6 +65,10 @@ struct HybridSettings {
   // false, the default: on this CPU the table's per-pixel setup and its lookup (an atan2 and a
   // fourth root) cost more than the tail's (bench_hybrid: the hybrid pass 22 % slower at 1024²).
   bool frame_table = false;
+  // Set by the pipeline when some shadow volume is a proxy's (an open occluder's bounding box):
+  // a ray whose end lies in a volume is then marched with the shadow map up to its surface, not
+  // taken as shadowed beyond the last volume surface (true only of exact volumes).
+  bool conservative_tails = false;
 };
 
 // FrameAirlight's error relative to a pixel's whole-ray airlight is 0.6 % at σ_t D = 5 and 4 %
