@@ -42,29 +42,24 @@ struct Emitter {
   float tan_outer = 1.0f;
   float texels = 1.0f;       // the gobo's larger side
 
-  RGB towards(Vec3 p, int level) const {
+  // Towards p, for a step of length `step` along `dir` there: the level read is the one the
+  // step's footprint asks for (at least `base`): the angle it subtends at the light over the
+  // angle a texel spans (uv = 1/2 + tan / (2 tan_outer) about the axis), as log2.
+  RGB towards(Vec3 p, Vec3 dir, float step) const {
     const Vec3 v = p - light.position;
     const float dist = length(v);
     if (!(dist > 0.0f)) return RGB(0.0f);
     const Vec3 w = v / dist;
     const float scale = spot_cone(light, w) * range_window(dist, light.range) * ies_factor(light.ies, w);
     if (!(scale > 0.0f)) return RGB(0.0f);
-    const Gobo& gobo = levels[size_t(std::clamp(level, base, int(levels.size()) - 1))];
+    int level = base;
+    const float z = dot(w, light.direction);
+    if (levels.size() > 1 && z > 1e-3f) {
+      const float footprint = step * length(cross(dir, w)) / dist / (2.0f * tan_outer * z * z) * texels;
+      if (footprint > 2.0f) level = std::max(base, int(std::log2(std::min(footprint, 0x1p30f))));  // not NaN
+    }
+    const Gobo& gobo = levels[size_t(std::min(level, int(levels.size()) - 1))];
     return light.intensity * gobo_filter(gobo, spot_gobo_uv(light, w)) * scale;
-  }
-
-  // The level a step of length `step` along `dir` at p reads: the angle it subtends at the light
-  // over the angle a texel spans (uv = 1/2 + tan / (2 tan_outer) about the axis), as log2.
-  int level_for(Vec3 p, Vec3 dir, float step) const {
-    if (levels.size() < 2) return base;
-    const Vec3 v = p - light.position;
-    const float dist = length(v);
-    const float z = dist > 0.0f ? dot(v, light.direction) / dist : 0.0f;
-    if (!(z > 1e-3f)) return base;
-    const float angle = step * length(cross(dir, v / dist)) / dist;
-    const float footprint = angle / (2.0f * tan_outer * z * z) * texels;
-    if (!(footprint > 2.0f)) return base;  // also NaN
-    return std::max(base, int(std::log2(std::min(footprint, 0x1p30f))));
   }
 
   static Emitter make(const SpotLight& light, const TexturedSpotSettings& settings, const GoboMips* mips) {
@@ -163,8 +158,7 @@ ScatterResult scatter_textured_spot(const View& view, const Plane& opaque_depth,
         const float tail1 = airlight_tail(table, air, t1);
         const Vec3 p = o + dir * (a + step * (float(i) + offset));
         const float lit = shadowed ? shadow->visibility(p) : 1.0f;
-        if (lit > 0.0f)
-          sum += emitter.towards(p, emitter.level_for(p, dir, step)) * (lit * std::max(tail0 - tail1, 0.0f));
+        if (lit > 0.0f) sum += emitter.towards(p, dir, step) * (lit * std::max(tail0 - tail1, 0.0f));
         tail0 = tail1;
       }
       lookups += k;

@@ -132,6 +132,17 @@ std::optional<DistanceSample> chromatic_fate(const TransmittanceRecord& record, 
   return std::nullopt;
 }
 
+// Where a grey segment's scattering event lies: by the record's density, or by its mixture
+// with the learnt fluence (integrators/guided_distance.h). Not counted in the path's guided
+// growth: the segment's light connection has already read it, and the vertex's own MIS weights
+// must read what it read.
+std::optional<DistanceSample> scatter_distance(const PathContext& ctx, const Ray& ray, const TransmittanceRecord& record,
+                                               float u_channel, float u) {
+  if (ctx.settings.guided_distances && volume_guides_distances(ctx))
+    if (const auto guided = GuidedDistance::along(*ctx.guide, ray, record)) return guided->sample(record, u, nullptr);
+  return record.sample_scatter_density(u_channel, u);
+}
+
 // Event: a marched medium segment (phases 2 and 3 of the seed) over the spans already collected.
 // Absorption by weight, not by chance (PathSettings::absorption_by_weight; implicit capture): of
 // the three fates of a path in the segment -- scatter (probability S = avg_c of the integral of
@@ -178,14 +189,7 @@ SegmentOutcome marched_segment(const PathContext& ctx, PathState& state, Ray& ra
       state.throughput *= p_scatter > 0.0f ? t_end * (survive / pass) : t_end;
       return state.throughput.is_black() ? SegmentOutcome::kAbsorbed : SegmentOutcome::kPassed;
     }
-    // Where in the segment: the record's density, or its mixture with the learnt fluence.
-    const std::optional<GuidedDistance> guided =
-        ctx.settings.guided_distances && volume_guides_distances(ctx) ? GuidedDistance::along(*ctx.guide, ray, record)
-                                                                      : std::nullopt;
-    // Not counted in the path's guided growth: the segment's light connection, made above, has
-    // already read it, and the vertex's own MIS weights below must read what it read.
-    collision = guided ? guided->sample(record, u / p_scatter, nullptr)
-                       : record.sample_scatter_density(u_channel, u / p_scatter);
+    collision = scatter_distance(ctx, ray, record, u_channel, u / p_scatter);
     if (!collision) return SegmentOutcome::kAbsorbed;  // p_scatter > 0 implies a collision
     // The collision's density is p_scatter x pdf = avg_c sigma_s,c(t) T_c(t) / survive.
     collision->pdf *= p_scatter;

@@ -73,8 +73,7 @@ LightSampler::LightSampler(LightSamplerKind kind, std::span<const Light> lights)
     const float phi = std::max(0.0f, power(lights[i]));
     if (!(phi > 0.0f)) continue;
     if (is_infinite(lights[i])) {
-      t.infinite_slot[i] = int(t.infinite_lights.size());
-      t.infinite_lights.push_back(int(i));
+      t.infinite_slot[i] = int(t.infinite_at.size());
       t.infinite_at.push_back(infinite_at_receivers(lights[i], int(i), phi, &t.scene_diameter));
       infinite_weights.push_back(phi);
       infinite_power += phi;
@@ -84,10 +83,10 @@ LightSampler::LightSampler(LightSamplerKind kind, std::span<const Light> lights)
     }
   }
   t.tree = LightTree(lights, finite);
-  if (!t.infinite_lights.empty()) t.infinite = DiscreteDistribution(infinite_weights);
+  if (!t.infinite_at.empty()) t.infinite = DiscreteDistribution(infinite_weights);
   if (t.tree.empty())
-    t.infinite_probability = t.infinite_lights.empty() ? 0.0f : 1.0f;
-  else if (t.infinite_lights.empty())
+    t.infinite_probability = t.infinite_at.empty() ? 0.0f : 1.0f;
+  else if (t.infinite_at.empty())
     t.infinite_probability = 0.0f;
   else if (kind == LightSamplerKind::kTreeFixedShare)
     t.infinite_probability =
@@ -139,7 +138,7 @@ LightChoice LightSampler::sample_tree(const Tree& t, float u, const Receiver& r)
     if (!(importance > 0.0f)) {  // the fixed share, or nothing lit: by power
       float pmf = 0.0f;
       const int k = t.infinite.sample(v, &pmf);
-      return {t.infinite_lights[size_t(k)], p_inf * pmf};
+      return {t.infinite_at[size_t(k)].light, p_inf * pmf};
     }
     const float target = v * importance;
     float cumulative = 0.0f;

@@ -87,10 +87,9 @@ class LightSampler {
  private:
   struct Tree {
     LightTree tree;
-    DiscreteDistribution infinite;  // over infinite_lights, by power (the fixed-share rule)
-    std::vector<int> infinite_lights;
-    std::vector<int> infinite_slot;  // per light: its index in infinite_lights, or -1
-    std::vector<Infinite> infinite_at;  // beside infinite_lights, for the receiver-side rule
+    std::vector<Infinite> infinite_at;  // the lights at infinity of positive power
+    DiscreteDistribution infinite;      // over infinite_at, by power (the fixed-share rule)
+    std::vector<int> infinite_slot;     // per light: its index in infinite_at, or -1
     float infinite_probability = 0.0f;  // the fixed share; < 0: weighed at the receiver
     bool split = false;                 // choose() splits the tree (LightTree::sample_split)
     float scene_diameter = 2.0f;

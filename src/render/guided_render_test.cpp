@@ -161,7 +161,9 @@ TEST(AdaptiveSampling, ConvergedPixelsStopAtTheMinimumAndTheMeanHolds) {
         EXPECT_GE(n, 16.0f);
         EXPECT_LE(n, 256.0f);
         const bool sees_sky = std::abs(image.rgb(x, y, 0).r - sky) < 1e-6f;
-        if (sees_sky) EXPECT_EQ(n, 16.0f) << x << ", " << y;
+        if (sees_sky) {
+          EXPECT_EQ(n, 16.0f) << x << ", " << y;
+        }
         at_minimum += sees_sky && n == 16.0f;
         above += n > 64.0f;
       }
