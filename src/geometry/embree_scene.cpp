@@ -75,6 +75,7 @@ void defer_hit(const RTCFilterFunctionNArguments* args) {
   h.t = RTCRayN_tfar(args->ray, args->N, 0);
   h.geom_id = geom;
   h.prim_id = RTCHitN_primID(args->hit, args->N, 0);
+  h.uv = {RTCHitN_u(args->hit, args->N, 0), RTCHitN_v(args->hit, args->N, 0)};  // opacity textures read them
   h.ng = {RTCHitN_Ng_x(args->hit, args->N, 0), RTCHitN_Ng_y(args->hit, args->N, 0),
           RTCHitN_Ng_z(args->hit, args->N, 0)};
   ctx->out->push_back(h);

@@ -27,6 +27,7 @@ TriangleMesh rectangle_mesh(Vec3 corner, Vec3 edge1, Vec3 edge2) {
   TriangleMesh mesh;
   mesh.positions = {corner, corner + edge1, corner + edge1 + edge2, corner + edge2};
   mesh.indices = {0, 1, 2, 0, 2, 3};
+  mesh.uvs = {{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f}};  // u along edge1, v along edge2
   return mesh;
 }
 

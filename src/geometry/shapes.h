@@ -14,7 +14,8 @@ namespace caligo {
 
 // Twelve outward-facing triangles of an axis-aligned box (before any transform).
 TriangleMesh box_mesh(Vec3 min, Vec3 max);
-// Two triangles of the parallelogram corner + s*edge1 + t*edge2; normal along cross(edge1, edge2).
+// Two triangles of the parallelogram corner + s*edge1 + t*edge2, texture coordinates (s, t);
+// normal along cross(edge1, edge2).
 TriangleMesh rectangle_mesh(Vec3 corner, Vec3 edge1, Vec3 edge2);
 
 // A sphere placed by an arbitrary affine transform of the unit sphere (so non-uniform

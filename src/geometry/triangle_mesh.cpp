@@ -25,6 +25,17 @@ std::string check_positions(const TriangleMesh& mesh) {
   return {};
 }
 
+std::string check_uvs(const TriangleMesh& mesh) {
+  if (mesh.uvs.empty()) return {};
+  if (mesh.uvs.size() != mesh.positions.size())
+    return "mesh has " + std::to_string(mesh.uvs.size()) + " texture coordinates for " +
+           std::to_string(mesh.positions.size()) + " vertices";
+  for (size_t v = 0; v < mesh.uvs.size(); ++v)
+    if (!std::isfinite(mesh.uvs[v].x) || !std::isfinite(mesh.uvs[v].y))
+      return "texture coordinate " + std::to_string(v) + " is not finite";
+  return {};
+}
+
 std::string check_normals(const TriangleMesh& mesh) {
   if (mesh.normals.empty()) return {};
   if (mesh.normals.size() != mesh.positions.size())
@@ -106,6 +117,7 @@ std::string validate_mesh(const TriangleMesh& mesh) {
   // Embree silently drops primitives with NaN/Inf vertices, so they must be rejected here.
   if (std::string error = check_positions(mesh); !error.empty()) return error;
   if (std::string error = check_normals(mesh); !error.empty()) return error;
+  if (std::string error = check_uvs(mesh); !error.empty()) return error;
   for (size_t t = 0; t < mesh.triangle_count(); ++t)
     if (std::string error = check_triangle(mesh, t); !error.empty()) return error;
   return {};

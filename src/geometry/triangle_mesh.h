@@ -15,6 +15,7 @@ struct TriangleMesh {
   std::vector<Vec3> positions;
   std::vector<uint32_t> indices;  // 3 per triangle
   std::vector<Vec3> normals;      // optional per-vertex shading normals (empty or one per position)
+  std::vector<Vec2> uvs;          // optional per-vertex texture coordinates (empty or one per position)
 
   size_t triangle_count() const { return indices.size() / 3; }
 };

@@ -18,6 +18,12 @@ namespace caligo {
 // A missing, unreadable or oversized file throws caligo::InputError naming the file.
 Image read_image_rgb(const std::string& path);
 
+// The first subimage of `path` as a one-channel Image of data in [0, 1] (masks: opacity), read as
+// stored, without sRGB decoding (Cycles' "Non-Color"): the alpha channel where the file has one
+// (two or four or more channels), otherwise the grey value (one channel, or the mean of R, G, B).
+// Errors as read_image_rgb.
+Image read_image_grey(const std::string& path);
+
 // The sRGB transfer function inverted (IEC 61966-2-1): encoded [0, 1] -> linear [0, 1].
 float srgb_to_linear(float encoded);
 

@@ -49,10 +49,26 @@ RGB emission_direct_light(const PathContext& ctx, const EmissionVertex& v, int v
   if (!(p_e > 0.0f)) return RGB(0.0f);
   // The line's emission up to the first surface that is not null, as the bounce ray would see it.
   Ray line{s.origin, wi, 0.0f, kInfinity};
-  if (const auto hit = nearest_non_null_hit(ctx.scene, line, kMaxNullCrossings, &ctx.counters.rays))
+  std::vector<SurfaceHit>& layers = ctx.scratch.line_layers;
+  layers.clear();
+  if (const auto hit = nearest_non_null_hit(ctx.scene, line, kMaxNullCrossings, &ctx.counters.rays,
+                                            ctx.scene.has_transparent_surfaces() ? &layers : nullptr))
     line.tmax = hit->t;
-  const RGB gathered = march_emission(ctx.scene.volumes(), line, sampler.get_1d(emission(vertex, sample_dim::kEmissionJitter)),
-                                      ctx.scratch.march_settings, ctx.scratch.march);
+  // Partly transparent surfaces on the way pass 1 - opacity of what lies behind them.
+  const float jitter = sampler.get_1d(emission(vertex, sample_dim::kEmissionJitter));
+  RGB gathered;
+  float through = 1.0f;
+  Ray piece = line;
+  for (size_t i = 0; i <= layers.size() && through > 0.0f; ++i) {
+    piece.tmax = i < layers.size() ? layers[i].t : line.tmax;
+    if (piece.tmax > piece.tmin)
+      gathered += march_emission(ctx.scene.volumes(), piece, jitter, ctx.scratch.march_settings, ctx.scratch.march) *
+                  through;
+    if (i < layers.size()) {
+      through *= 1.0f - ctx.scene.opacity(layers[i]);
+      piece.tmin = layers[i].t;
+    }
+  }
   if (gathered.is_black()) return RGB(0.0f);
   return s.f * gathered * (power_heuristic(1, p_e, 1, s.pdf) / p_e);
 }

@@ -94,13 +94,15 @@ void connect_marched_segment(const PathContext& ctx, const PathState& state, con
 // each channel is weighted by the balance heuristic over the three, f_k / avg_k' pdf_k'(path),
 // so in an albedo-1 medium no channel's weight exceeds 3. Choosing fates by the channel average
 // instead made the densest channel of an albedo-1 furnace 6-8x noisier than the others, with
-// fireflies that kept its mean from converging. Returns the collision with its pdf set so that
-// the caller's sigma_s T / pdf is the balance-heuristic weight, or std::nullopt with
-// *pass_weight the factor on the throughput of passing (0: absorbed).
+// fireflies that kept its mean from converging. Surface layers are a fourth fate, met with
+// density opacity x T_h in front. Returns the collision (or layer) with its pdf set so that the
+// caller's sigma_s T / pdf (opacity T / pdf) is the balance-heuristic weight, or std::nullopt
+// with *pass_weight the factor on the throughput of passing (0: absorbed).
 std::optional<DistanceSample> chromatic_fate(const TransmittanceRecord& record, PathState& state, bool may_scatter,
                                              float u_channel, float u, RGB* pass_weight) {
   const RGB scatter = may_scatter ? record.scatter_totals() : RGB(0.0f), pass = record.transmittance_end();
-  const RGB survive = scatter + pass;
+  const RGB layers = record.layer_totals();
+  const RGB survive = scatter + layers + pass;
   *pass_weight = RGB(0.0f);
   if (state.hero_channel < 0) state.hero_channel = std::min(int(u_channel * 3.0f), 2);
   const int h = state.hero_channel;
@@ -125,6 +127,15 @@ std::optional<DistanceSample> chromatic_fate(const TransmittanceRecord& record, 
     const MarchStep& step = record.steps()[size_t(collision->step)];
     collision->pdf = advance(per_channel(step.sigma_s * record.transmittance(collision->t)));
     if (collision->pdf > 0.0f) return collision;
+    return std::nullopt;
+  }
+  const float p_layer = layers[h] / survive[h];
+  if (u < p_scatter + p_layer) {
+    auto layer = record.sample_layer(h, std::min((u - p_scatter) / p_layer, kOneMinusEpsilon));
+    if (!layer) return std::nullopt;
+    const SurfaceLayer& l = record.layers()[size_t(layer->layer)];
+    layer->pdf = advance(per_channel(l.before * l.opacity));
+    if (layer->pdf > 0.0f) return layer;
     return std::nullopt;
   }
   const float p_pass = advance(per_channel(pass));
@@ -154,58 +165,109 @@ std::optional<DistanceSample> scatter_distance(const PathContext& ctx, const Ray
 // alone (pass weight T / (1 - S)) was worse in dense, bright media: its passes carry tiny weights
 // that Russian roulette then turns into noise (3x the standard error on `sss`). A path that may
 // not scatter again just takes T.
-SegmentOutcome marched_segment(const PathContext& ctx, PathState& state, Ray& ray, float t_surface,
-                               PathSample& out, float* event_t) {
+// The partly transparent surfaces in front of the segment's end as layers of the record.
+void record_layers(const PathContext& ctx, TransmittanceRecord& record) {
+  PathScratch& scratch = ctx.scratch;
+  if (scratch.layer_hits.empty()) return;
+  scratch.layers.clear();
+  for (const SurfaceHit& h : scratch.layer_hits) scratch.layers.push_back({h.t, ctx.scene.opacity(h), RGB(0.0f)});
+  record.insert_layers(scratch.layers);
+}
+
+// The fate of a path in a grey record (absorption by weight): scatter, meet a layer or pass, in
+// proportion S : H : P, each carrying S + H + P. Returns the collision or layer (its pdf the density
+// of the choice), or std::nullopt with the throughput already weighted for passing.
+std::optional<DistanceSample> grey_fate(const PathContext& ctx, PathState& state, const Ray& ray,
+                                        const TransmittanceRecord& record, bool may_scatter, float u_channel, float u) {
+  const RGB t_end = record.transmittance_end();
+  const float scatter = may_scatter ? record.scatter_weight_total() : 0.0f;
+  const float layers = record.layer_totals().average(), pass = t_end.average();
+  const float survive = scatter + layers + pass;
+  const float p_scatter = survive > 0.0f ? scatter / survive : 0.0f;
+  const float p_layer = survive > 0.0f ? layers / survive : 0.0f;
+  if (u < p_scatter) {
+    auto collision = scatter_distance(ctx, ray, record, u_channel, u / p_scatter);
+    // The collision's density is p_scatter x pdf = avg_c sigma_s,c(t) T_c(t) / survive.
+    if (collision) collision->pdf *= p_scatter;
+    else state.throughput = RGB(0.0f);  // p_scatter > 0 implies a collision
+    return collision;
+  }
+  if (u < p_scatter + p_layer) {
+    auto layer = record.sample_layer(-1, std::min((u - p_scatter) / p_layer, kOneMinusEpsilon));
+    if (layer) layer->pdf *= p_layer;
+    else state.throughput = RGB(0.0f);
+    return layer;
+  }
+  state.throughput *= pass > 0.0f ? t_end * (survive / pass) : RGB(0.0f);
+  return std::nullopt;
+}
+
+// The path's fate over a filled record (the absorption-by-weight fates or free flight); returns
+// the collision or layer, or std::nullopt when it passed (throughput weighted) or was absorbed
+// (throughput black).
+std::optional<DistanceSample> segment_fate(const PathContext& ctx, PathState& state, const Ray& ray,
+                                           const TransmittanceRecord& record, bool may_scatter) {
   const Sampler& sampler = ctx.sampler;
+  const float u = sampler.get_1d(bounce(state.vertex(), sample_dim::kFreeFlightDistance));
+  // A grey record samples the same distance whichever channel is picked.
+  const float u_channel =
+      record.grey() ? 0.0f : sampler.get_1d(bounce(state.vertex(), sample_dim::kFreeFlightChannel));
+  if (ctx.settings.absorption_by_weight && !record.grey()) {
+    RGB pass_weight;
+    auto collision = chromatic_fate(record, state, may_scatter, u_channel, u, &pass_weight);
+    if (!collision) state.throughput *= pass_weight;
+    return collision;
+  }
+  if (ctx.settings.absorption_by_weight) return grey_fate(ctx, state, ray, record, may_scatter, u_channel, u);
+  auto collision = record.sample_free_flight(u_channel, u);
+  if (!collision) {
+    const RGB t_end = record.transmittance_end();
+    state.throughput *= t_end / t_end.average();
+  } else if (!may_scatter && collision->layer < 0) {
+    state.throughput = RGB(0.0f);
+    return std::nullopt;
+  }
+  return collision;
+}
+
+// Event: a marched medium segment (phases 2 and 3 of the seed) over the spans already collected,
+// with the partly transparent surfaces on the way as layers of the record.
+// Absorption by weight, not by chance (PathSettings::absorption_by_weight; implicit capture): of
+// the three fates of a path in the segment -- scatter (probability S = avg_c of the integral of
+// sigma_s,c T_c), pass (P = avg_c T_c at the end) or be absorbed (the rest) -- only the first two
+// are sampled, in proportion S : P, and both carry the surviving fraction S + P as weight (layers
+// add a fate H, the probability of meeting one). A
+// collision is drawn with density proportional to avg_c sigma_s,c T_c (the sampler light
+// connections use); passing carries the record's exact T. A purely absorbing medium (S = 0) has
+// zero variance; albedo 1 (S + P = 1) is exactly free-flight sampling. Sampling pass against S
+// alone (pass weight T / (1 - S)) was worse in dense, bright media: its passes carry tiny weights
+// that Russian roulette then turns into noise (3x the standard error on `sss`). A path that may
+// not scatter again just takes T.
+SegmentOutcome marched_segment(const PathContext& ctx, PathState& state, Ray& ray, float t_surface,
+                               PathSample& out, SegmentEvent* event) {
   TransmittanceRecord& record = ctx.scratch.record;
   Ray segment = ray;
   segment.tmax = t_surface;
-  march_collected(ctx.scene.volumes(), segment, march_jitter(ctx.scene, sampler, state.vertex()),
+  march_collected(ctx.scene.volumes(), segment, march_jitter(ctx.scene, ctx.sampler, state.vertex()),
                   ctx.scratch.march_settings, ctx.scratch.march, record);
+  record_layers(ctx, record);
   if (record.empty()) return SegmentOutcome::kPassed;
   if (state.events == 0) ctx.counters.camera_march_steps += record.steps().size();
   out.add(state.arriving(LightKind::kVolumeEmission), state.throughput * record.emission() * state.emission_weight);
   const bool may_scatter = may_scatter_in_medium(ctx, state);
   if (may_scatter && ctx.settings.deferred_nee <= 0) connect_marched_segment(ctx, state, ray, record, out);
-
-  const float u = sampler.get_1d(bounce(state.vertex(), sample_dim::kFreeFlightDistance));
-  // A grey record samples the same distance whichever channel is picked.
-  const float u_channel =
-      record.grey() ? 0.0f : sampler.get_1d(bounce(state.vertex(), sample_dim::kFreeFlightChannel));
-  std::optional<DistanceSample> collision;
-  if (ctx.settings.absorption_by_weight && !record.grey()) {
-    RGB pass_weight;
-    collision = chromatic_fate(record, state, may_scatter, u_channel, u, &pass_weight);
-    if (!collision) {
-      state.throughput *= pass_weight;
-      return state.throughput.is_black() ? SegmentOutcome::kAbsorbed : SegmentOutcome::kPassed;
-    }
-  } else if (ctx.settings.absorption_by_weight) {
-    const RGB t_end = record.transmittance_end();
-    const float scatter = may_scatter ? record.scatter_weight_total() : 0.0f, pass = t_end.average();
-    const float survive = scatter + pass;
-    const float p_scatter = survive > 0.0f ? scatter / survive : 0.0f;
-    if (!(u < p_scatter)) {
-      state.throughput *= p_scatter > 0.0f ? t_end * (survive / pass) : t_end;
-      return state.throughput.is_black() ? SegmentOutcome::kAbsorbed : SegmentOutcome::kPassed;
-    }
-    collision = scatter_distance(ctx, ray, record, u_channel, u / p_scatter);
-    if (!collision) return SegmentOutcome::kAbsorbed;  // p_scatter > 0 implies a collision
-    // The collision's density is p_scatter x pdf = avg_c sigma_s,c(t) T_c(t) / survive.
-    collision->pdf *= p_scatter;
-  } else {
-    collision = record.sample_free_flight(u_channel, u);
-    if (!collision) {
-      const RGB t_end = record.transmittance_end();
-      state.throughput *= t_end / t_end.average();
-      return SegmentOutcome::kPassed;
-    }
-    if (!may_scatter) return SegmentOutcome::kAbsorbed;
+  const std::optional<DistanceSample> collision = segment_fate(ctx, state, ray, record, may_scatter);
+  if (!collision) return state.throughput.is_black() ? SegmentOutcome::kAbsorbed : SegmentOutcome::kPassed;
+  if (collision->layer >= 0) {
+    const SurfaceLayer& l = record.layers()[size_t(collision->layer)];
+    state.throughput *= l.before * (l.opacity / collision->pdf);
+    *event = {l.t, collision->layer};
+    return state.throughput.is_black() ? SegmentOutcome::kAbsorbed : SegmentOutcome::kLayer;
   }
   const MarchStep& step = record.steps()[size_t(collision->step)];
   state.throughput *= step.sigma_s * record.transmittance(collision->t) / collision->pdf;
   if (state.throughput.is_black()) return SegmentOutcome::kAbsorbed;
-  *event_t = collision->t;
+  event->t = collision->t;
   const Ray choice_segment = light_choice_segment(ray, record);
   return scatter_in_medium(ctx, state, ray, collision->t, record.lobes(step), &choice_segment, out);
 }
@@ -215,7 +277,7 @@ SegmentOutcome marched_segment(const PathContext& ctx, PathState& state, Ray& ra
 // connection at the event itself (the light sampler's point form), as the reference ladder and
 // most production renderers connect.
 SegmentOutcome tracked_segment(const PathContext& ctx, PathState& state, Ray& ray, float t_surface, int medium,
-                               PathSample& out, float* event_t) {
+                               PathSample& out, SegmentEvent* event) {
   ctx.scratch.record.clear();  // no record: nothing may read a stale one
   const bool may_scatter = may_scatter_in_medium(ctx, state);
   Pcg32 rng(ctx.sampler.stream_key(bounce(state.vertex(), sample_dim::kFreeFlightDistance)), 0);
@@ -230,7 +292,7 @@ SegmentOutcome tracked_segment(const PathContext& ctx, PathState& state, Ray& ra
     return SegmentOutcome::kAbsorbed;
   if (seg.outcome == TrackedSegment::Outcome::kPassed) return SegmentOutcome::kPassed;
   const Vec3 x = ray.at(seg.t);
-  *event_t = seg.t;
+  event->t = seg.t;
   // The lobes stay in scratch.march.lobes: shadow rays shade without lobes.
   const std::span<const PhaseLobe> lobes(ctx.scratch.march.lobes);
   if (ctx.settings.deferred_nee <= 0)
@@ -249,32 +311,33 @@ float march_jitter(const Scene& scene, const Sampler& sampler, int depth) {
 // tracked by PathSettings::secondary. `medium`: the scene medium the stack puts the segment in
 // (-1: none). On kScattered, *event_t is the event's distance along the old ray.
 SegmentOutcome medium_segment(const PathContext& ctx, PathState& state, Ray& ray, float t_surface, int medium,
-                              PathSample& out, float* event_t) {
+                              PathSample& out, SegmentEvent* event) {
   Ray segment = ray;
   segment.tmax = t_surface;
   const VolumeScene& volumes = ctx.scene.volumes();
   MarchScratch& scratch = ctx.scratch.march;
   const SecondarySegments policy = ctx.settings.secondary;
+  // Layers need the record: a segment with partly transparent surfaces is marched.
+  const bool layers = !ctx.scratch.layer_hits.empty();
   // After the first event the coarse spans decide (homogeneous ones are the fine spans too, and a
   // tracked segment collects its fine spans chunk by chunk); the camera segment is marched.
-  const bool coarse = state.events > 0 && policy != SecondarySegments::kMarch;
+  const bool coarse = state.events > 0 && policy != SecondarySegments::kMarch && !layers;
   const bool any = coarse ? collect_coarse_spans(volumes, segment, ctx.scratch.march_settings, scratch, medium)
                           : collect_spans(volumes, segment, ctx.scratch.march_settings, scratch, medium);
-  if (!any) {
+  if (!any && !layers) {
     ctx.scratch.record.clear();
     return SegmentOutcome::kPassed;
   }
   const bool homogeneous = collected_spans_homogeneous(scratch);
   const bool track = coarse && (policy == SecondarySegments::kTrack ||
                                 (!homogeneous && !collected_spans_emissive(volumes, scratch)));
-  if (track) return tracked_segment(ctx, state, ray, t_surface, medium, out, event_t);
+  if (track) return tracked_segment(ctx, state, ray, t_surface, medium, out, event);
   if (coarse && !homogeneous &&
       !collect_spans(volumes, segment, ctx.scratch.march_settings, scratch, medium)) {
     ctx.scratch.record.clear();
     return SegmentOutcome::kPassed;
   }
-  return marched_segment(ctx, state, ray, t_surface, out, event_t);
+  return marched_segment(ctx, state, ray, t_surface, out, event);
 }
-
 
 }  // namespace caligo

@@ -10,13 +10,21 @@
 
 namespace caligo {
 
-enum class SegmentOutcome { kScattered, kPassed, kAbsorbed };
+// kLayer: the path meets a partly transparent surface in front of the segment's end (one of
+// scratch.layer_hits, which the march recorded as layers of the TransmittanceRecord).
+enum class SegmentOutcome { kScattered, kPassed, kAbsorbed, kLayer };
 
-// The medium in front of the next surface (at t_surface, or infinity). `medium`: the scene medium
-// the stack puts the segment in (-1: none). On kScattered, `ray` is the new ray and *event_t the
-// event's distance along the old one; on kPassed the throughput carries the transmittance.
+struct SegmentEvent {
+  float t = kInfinity;  // the event's distance along the segment's ray
+  int layer = -1;       // kLayer: the index in scratch.layer_hits
+};
+
+// The medium in front of the next surface (at t_surface, or infinity), and the partly transparent
+// surfaces in scratch.layer_hits before it. `medium`: the scene medium the stack puts the segment
+// in (-1: none). On kScattered, `ray` is the new ray; on kScattered and kLayer *event says where;
+// on kPassed and kLayer the throughput carries what the path met on the way.
 SegmentOutcome medium_segment(const PathContext& ctx, PathState& state, Ray& ray, float t_surface, int medium,
-                              PathSample& out, float* event_t);
+                              PathSample& out, SegmentEvent* event);
 
 // The position of heterogeneous march steps for this path vertex (constant when no primitive is
 // heterogeneous, which saves a sample).

@@ -43,6 +43,11 @@ struct PathScratch {
   std::vector<PendingCrossing> pending;
   MediumStack work;
   std::vector<SurfaceHit> shadow_hits;
+  // Partly transparent surfaces in front of the current segment's end, in order, and the layers
+  // the march records for them (one per hit, same order); line_layers: an emission line's.
+  std::vector<SurfaceHit> layer_hits;
+  std::vector<SurfaceLayer> layers;
+  std::vector<SurfaceHit> line_layers;
   // Deferred next-event estimation (PathSettings::deferred_nee): the path's scattering vertices
   // in media, their phase lobes and (with nested media) their medium stacks.
   struct DeferredVertex {

@@ -113,6 +113,7 @@ void record_first_hit(PathSample& out, const SurfaceInteraction& si, float t) {
 std::optional<SurfaceHit> nearest_visible_hit(const PathContext& ctx, const Ray& ray) {
   PathScratch& scratch = ctx.scratch;
   scratch.pending.clear();
+  scratch.layer_hits.clear();
   scratch.work.assign(scratch.stack);
   Ray probe = ray;
   for (int crossings = 0; crossings <= ctx.settings.max_null_crossings; ++crossings) {
@@ -123,6 +124,8 @@ std::optional<SurfaceHit> nearest_visible_hit(const PathContext& ctx, const Ray&
       if (scratch.work.peek(*entry).real) return hit;
       scratch.work.cross(*entry);
       scratch.pending.push_back({hit->t, *entry});
+    } else if (ctx.scene.is_transparent(hit->geom_id)) {
+      scratch.layer_hits.push_back(*hit);
     } else if (!std::holds_alternative<NullBsdf>(ctx.scene.material(*hit).bsdf)) {
       return hit;
     }
@@ -131,10 +134,13 @@ std::optional<SurfaceHit> nearest_visible_hit(const PathContext& ctx, const Ray&
   return std::nullopt;
 }
 
-// Phase 1: where the segment ends (the medium stack's rules in nested scenes).
+// Phase 1: where the segment ends (the medium stack's rules in nested scenes), with the partly
+// transparent surfaces in front of it in scratch.layer_hits.
 std::optional<SurfaceHit> segment_end(const PathContext& ctx, const Ray& ray) {
   if (ctx.nested) return nearest_visible_hit(ctx, ray);
-  return nearest_non_null_hit(ctx.scene, ray, ctx.settings.max_null_crossings, &ctx.counters.rays);
+  ctx.scratch.layer_hits.clear();
+  return nearest_non_null_hit(ctx.scene, ray, ctx.settings.max_null_crossings, &ctx.counters.rays,
+                              ctx.scene.has_transparent_surfaces() ? &ctx.scratch.layer_hits : nullptr);
 }
 
 // The queued false crossings before t_limit join the path's stack; the queue empties.
@@ -264,24 +270,26 @@ std::optional<SurfaceInteraction> camera_first_hit(const PathContext& ctx, PathS
   return si;
 }
 
-enum class Next { kContinue, kSurface, kStop };
+enum class Next { kContinue, kSurface, kLayer, kStop };
 
 // The camera ray itself (no event yet; null boundaries are not events) sees the background, or a
 // holdout, at the end of this segment: its share joins the visibility (1 - alpha) whether or not
 // the path then scatters on the way, so alpha behind a medium is exact, not 0 or 1. Glass and
 // mirrors are opaque to alpha, as in Arnold and Cycles by default: what is seen in them is part
-// of the render, not a hole onto the plate. The medium segment in front of the hit comes next.
+// of the render, not a hole onto the plate; partly transparent surfaces pass their share (layers of
+// the record). The medium segment in front of the hit comes next; on kLayer, *layer is the
+// surface of scratch.layer_hits the path meets.
 Next medium_in_front(const PathContext& ctx, PathState& state, Ray& ray, const std::optional<SurfaceHit>& hit,
-                     bool holdout_hit, PathSample& out) {
+                     bool holdout_hit, PathSample& out, int* layer) {
   const bool camera_ray = state.events == 0;
-  if (!ctx.has_volumes) {
+  if (!ctx.has_volumes && ctx.scratch.layer_hits.empty()) {
     if (camera_ray && (!hit || holdout_hit)) state.visibility += state.throughput.average();
     return Next::kSurface;
   }
   const RGB throughput_in = state.throughput;  // the segment changes it
-  float event_t = kInfinity;
+  SegmentEvent event;
   const SegmentOutcome outcome = medium_segment(ctx, state, ray, hit ? hit->t : kInfinity,
-                                                ctx.nested ? ctx.scratch.stack.current().medium : -1, out, &event_t);
+                                                ctx.nested ? ctx.scratch.stack.current().medium : -1, out, &event);
   if (camera_ray) {
     // The throughput carries earlier segments' (coloured) transmittance: the channel average
     // of the product, not the product of averages.
@@ -292,7 +300,11 @@ Next medium_in_front(const PathContext& ctx, PathState& state, Ray& ray, const s
   if (outcome == SegmentOutcome::kAbsorbed) return Next::kStop;
   if (outcome == SegmentOutcome::kPassed) return Next::kSurface;
   PathScratch& scratch = ctx.scratch;
-  if (ctx.nested) apply_pending(scratch, event_t);
+  if (ctx.nested) apply_pending(scratch, event.t);
+  if (outcome == SegmentOutcome::kLayer) {
+    *layer = event.layer;
+    return Next::kLayer;
+  }
   if (ctx.nested && state.deferred_nee) {
     if (scratch.deferred_stacks.size() < scratch.deferred.size()) scratch.deferred_stacks.resize(scratch.deferred.size());
     scratch.deferred_stacks[scratch.deferred.size() - 1].assign(scratch.stack);
@@ -337,9 +349,16 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
     const bool holdout_hit = hit && scene.is_holdout(hit->geom_id);
     const bool camera_ray = state.events == 0;
     const std::optional<SurfaceInteraction> hit_si = camera_first_hit(ctx, state, ray, hit, out);
-    const Next next = medium_in_front(ctx, state, ray, hit, holdout_hit, out);
+    int layer = -1;
+    const Next next = medium_in_front(ctx, state, ray, hit, holdout_hit, out, &layer);
     if (next == Next::kStop) break;
     if (next == Next::kContinue) continue;
+    if (next == Next::kLayer) {
+      // A partly transparent surface (its share of the path was chosen in the record's fates).
+      const SurfaceInteraction si = scene.interaction(ray, scratch.layer_hits[size_t(layer)]);
+      if (!surface_hit(ctx, state, ray, si, std::nullopt, out)) break;
+      continue;
+    }
     if (ctx.nested) apply_pending(scratch, kInfinity);
     if (!hit) {
       escape(ctx, state, ray.direction, out);

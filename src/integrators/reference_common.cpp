@@ -25,7 +25,7 @@ Vec2 next_2d(Pcg32& rng) {
 }
 
 std::optional<std::vector<MediumRun>> medium_runs(const Scene& scene, const Ray& ray, MediumStack stack,
-                                                  Blocking blocking) {
+                                                  Blocking blocking, float* through) {
   thread_local std::vector<SurfaceHit> hits;
   scene.surfaces().all_hits(ray, hits);
   std::vector<MediumRun> runs;
@@ -33,6 +33,10 @@ std::optional<std::vector<MediumRun>> medium_runs(const Scene& scene, const Ray&
   for (const SurfaceHit& h : hits) {
     const bool null = std::holds_alternative<NullBsdf>(scene.material(h).bsdf);
     const auto entry = scene.medium_entry(h.geom_id);
+    if (blocking == Blocking::kShadow && through && scene.is_transparent(h.geom_id)) {
+      *through *= 1.0f - scene.opacity(h);
+      continue;
+    }
     if (blocking == Blocking::kShadow &&
         ((!entry && !null) || (entry && !null && !scene.desc().render.path.priority_shadows)))
       return std::nullopt;
@@ -46,9 +50,9 @@ std::optional<std::vector<MediumRun>> medium_runs(const Scene& scene, const Ray&
 }
 
 std::optional<std::vector<MediumRun>> shadow_runs(const Scene& scene, const Ray& ray, bool casts_shadows,
-                                                  const MediumStack& stack) {
+                                                  const MediumStack& stack, float* through) {
   if (!casts_shadows) return std::vector<MediumRun>{{ray.tmin, ray.tmax, stack.current().medium}};
-  return medium_runs(scene, ray, stack, Blocking::kShadow);
+  return medium_runs(scene, ray, stack, Blocking::kShadow, through);
 }
 
 Ray shadow_ray(Vec3 origin, Vec3 sampled_from, const LightSample& ls) {

@@ -40,11 +40,12 @@ void cross_before(MediumStack& stack, const std::vector<Crossed>& crossed, float
 }
 
 // The surface a path in the media of `stack` sees next along `ray`, walking every crossing in
-// order (EmbreeScene::all_hits): Off null surfaces are invisible; priority surfaces whose
+// order (EmbreeScene::all_hits): Off null surfaces are invisible, partly transparent ones seen by
+// chance; priority surfaces whose
 // crossing the rules call false are passed and listed in `crossed` (not applied to `stack`).
 // The seen surface's own crossing is not applied either: a dielectric may reflect.
 std::optional<SurfaceHit> nearest_seen_hit(const Scene& scene, const Ray& ray, const MediumStack& stack,
-                                           std::vector<Crossed>& crossed) {
+                                           std::vector<Crossed>& crossed, Pcg32& rng) {
   thread_local std::vector<SurfaceHit> hits;
   crossed.clear();
   scene.surfaces().all_hits(ray, hits);
@@ -52,6 +53,9 @@ std::optional<SurfaceHit> nearest_seen_hit(const Scene& scene, const Ray& ray, c
   for (const SurfaceHit& h : hits) {
     const auto entry = scene.medium_entry(h.geom_id);
     if (!entry) {
+      // A partly transparent surface is met with probability its opacity (unlike production's
+      // layers in the record: an independent check).
+      if (scene.is_transparent(h.geom_id) && !(rng.next_float() < scene.opacity(h))) continue;
       if (!std::holds_alternative<NullBsdf>(scene.material(h).bsdf)) return h;
       continue;
     }
@@ -121,9 +125,9 @@ float ratio_tracking(const Segment& seg, int channel, Pcg32& rng) {
 float light_transmittance(const Scene& scene, int light, Vec3 origin, Vec3 sampled_from, const LightSample& ls,
                           const MediumStack& stack, int channel, Pcg32& rng) {
   const Ray shadow = shadow_ray(origin, sampled_from, ls);
-  const auto runs = shadow_runs(scene, shadow, scene.casts_shadows(light), stack);
-  if (!runs) return 0.0f;
-  float tr = 1.0f;
+  float tr = 1.0f;  // starts with what partly transparent surfaces let through
+  const auto runs = shadow_runs(scene, shadow, scene.casts_shadows(light), stack, &tr);
+  if (!runs || tr == 0.0f) return 0.0f;
   for (const MediumRun& run : *runs) {
     if (!(run.t1 > run.t0)) continue;
     tr *= ratio_tracking(make_segment(scene, Ray{origin, shadow.direction, run.t0, kInfinity}, run.t1, channel, run.medium),
@@ -297,7 +301,7 @@ RGB reference_delta_tracking(const Scene& scene, const Ray& camera_ray, PathLimi
   p.stack = scene.camera_stack();
   p.ray = camera_ray;
   while (p.throughput > 0.0f) {
-    const auto hit = nearest_seen_hit(scene, p.ray, p.stack, p.crossed);
+    const auto hit = nearest_seen_hit(scene, p.ray, p.stack, p.crossed, rng);
     const Segment seg = make_segment(scene, p.ray, hit ? hit->t : kInfinity, p.channel, p.stack.current().medium);
     if (const auto t = sample_collision(seg, p.channel, rng)) {
       if (!ladder_collision(scene, seg, *t, limits, p, rng)) break;

@@ -32,13 +32,15 @@ enum class Blocking {
 // The stretches of `ray` within [ray.tmin, ray.tmax) starting in the media of `stack`, or
 // nullopt when a surface blocks it. Each crossing of a priority surface updates the stack (no
 // Fresnel, no refraction); each stretch lies in the medium the rules give it.
+// A shadow ray passes partly transparent surfaces: *through (when given; otherwise they block)
+// is multiplied by 1 - opacity for each.
 std::optional<std::vector<MediumRun>> medium_runs(const Scene& scene, const Ray& ray, MediumStack stack,
-                                                  Blocking blocking);
+                                                  Blocking blocking, float* through = nullptr);
 
 // A shadow ray's stretches (Blocking::kShadow). A light that casts no shadows sees the
 // origin's medium along the whole ray, as in production.
 std::optional<std::vector<MediumRun>> shadow_runs(const Scene& scene, const Ray& ray, bool casts_shadows,
-                                                  const MediumStack& stack);
+                                                  const MediumStack& stack, float* through = nullptr);
 
 // The shadow ray from `origin` (possibly offset off the surface the sample was taken at,
 // `sampled_from`) to a light sample: unit direction, aimed at the sampled point and stopping

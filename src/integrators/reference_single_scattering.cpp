@@ -99,6 +99,9 @@ RGB scattered_once(const Scene& scene, const Segment& seg, float t, const Medium
 }  // namespace
 
 RGB reference_single_scattering(const Scene& scene, const Ray& ray, int samples, Pcg32& rng) {
+  if (scene.has_transparent_surfaces())
+    throw std::invalid_argument(
+        "the single-scattering reference does not model partly transparent surfaces; use the delta-tracking rung");
   const MediumStack& camera_stack = scene.camera_stack();
   const Segment seg = single_scattering_segment(scene, ray, camera_stack);
   if (seg.empty() || samples <= 0) return RGB(0.0f);

@@ -31,6 +31,34 @@ RGB stretch_transmittance(const Scene& scene, const Ray& stretch, const ShadowMe
                                      medium.residual);
 }
 
+// Sorts the deferred hits of a shadow ray by t. One crossing can come back twice: the same
+// primitive split across BVH leaves, or a ray through the edge two triangles share. Two hits on one
+// surface at the same t facing the same way are one crossing; facing opposite ways (grazing a
+// silhouette) they stay two, in and out.
+void sort_unique_crossings(std::vector<SurfaceHit>& hits, Vec3 d) {
+  std::sort(hits.begin(), hits.end(), [](const SurfaceHit& a, const SurfaceHit& b) {
+    return a.t != b.t ? a.t < b.t : a.geom_id < b.geom_id;
+  });
+  hits.erase(std::unique(hits.begin(), hits.end(),
+                         [&](const SurfaceHit& a, const SurfaceHit& b) {
+                           return a.geom_id == b.geom_id && std::abs(b.t - a.t) <= 1e-6f * (1.0f + std::abs(a.t)) &&
+                                  (dot(a.ng, d) < 0.0f) == (dot(b.ng, d) < 0.0f);
+                         }),
+             hits.end());
+}
+
+// What partly transparent surfaces let through along a shadow ray (the product of 1 - opacity);
+// 0 when an opaque surface blocks it.
+float surface_transparency(const Scene& scene, const Ray& shadow, PathScratch& scratch) {
+  std::vector<SurfaceHit>& hits = scratch.shadow_hits;
+  hits.clear();
+  if (scene.surfaces().occluded(shadow, scene.transparent_geometry(), hits)) return 0.0f;
+  sort_unique_crossings(hits, shadow.direction);
+  float through = 1.0f;
+  for (const SurfaceHit& h : hits) through *= 1.0f - scene.opacity(h);
+  return through;
+}
+
 RGB nested_transmittance(const Scene& scene, const Ray& shadow, bool casts_shadows, const ShadowMedium& medium,
                          float segment_t, PathScratch& scratch, PathCounters& counters, bool* through_interface) {
   Pcg32 rng(medium.tracking_key, 0);
@@ -44,19 +72,7 @@ RGB nested_transmittance(const Scene& scene, const Ray& shadow, bool casts_shado
     ++counters.rays;
     if (scene.surfaces().occluded(shadow, scene.shadow_deferred(medium.priority_shadows), hits)) return RGB(0.0f);
   }
-  std::sort(hits.begin(), hits.end(), [](const SurfaceHit& a, const SurfaceHit& b) {
-    return a.t != b.t ? a.t < b.t : a.geom_id < b.geom_id;
-  });
-  // One crossing can come back twice: the same primitive split across BVH leaves, or a ray
-  // through the edge two triangles share. Two hits on one surface at the same t facing the same
-  // way are one crossing; facing opposite ways (grazing a silhouette) they stay two, in and out.
-  const Vec3 d = shadow.direction;
-  hits.erase(std::unique(hits.begin(), hits.end(),
-                         [&](const SurfaceHit& a, const SurfaceHit& b) {
-                           return a.geom_id == b.geom_id && std::abs(b.t - a.t) <= 1e-6f * (1.0f + std::abs(a.t)) &&
-                                  (dot(a.ng, d) < 0.0f) == (dot(b.ng, d) < 0.0f);
-                         }),
-             hits.end());
+  sort_unique_crossings(hits, shadow.direction);
   RGB tr(1.0f);
   Ray stretch = shadow;
   for (size_t i = 0; i <= hits.size(); ++i) {
@@ -64,7 +80,10 @@ RGB nested_transmittance(const Scene& scene, const Ray& shadow, bool casts_shado
     if (stretch.tmax > stretch.tmin)
       tr *= stretch_transmittance(scene, stretch, medium, stack.current().medium, scratch, rng);
     if (tr.is_black()) return RGB(0.0f);
-    if (i < hits.size()) {
+    if (i < hits.size() && scene.is_transparent(hits[i].geom_id)) {
+      tr *= 1.0f - scene.opacity(hits[i]);
+      stretch.tmin = hits[i].t;
+    } else if (i < hits.size()) {
       // Only a REAL dielectric crossing bends the paths MIS would pair this sample with; a
       // hidden one (a false hit) is crossed straight by BSDF and phase samples too.
       bool real = false;
@@ -101,13 +120,16 @@ RGB light_transmittance(const Scene& scene, Vec3 origin, Vec3 sampled_from, cons
   }
   if (scene.has_priority_objects())
     return nested_transmittance(scene, shadow, casts_shadows, medium, segment_t, scratch, counters, through_interface);
+  float through = 1.0f;
   if (casts_shadows) {
     ++counters.rays;
-    if (scene.surfaces().occluded(shadow)) return RGB(0.0f);
+    through = scene.has_transparent_surfaces() ? surface_transparency(scene, shadow, scratch)
+                                               : (scene.surfaces().occluded(shadow) ? 0.0f : 1.0f);
+    if (!(through > 0.0f)) return RGB(0.0f);
   }
-  if (scene.volumes().empty()) return RGB(1.0f);
+  if (scene.volumes().empty()) return RGB(through);
   Pcg32 rng(medium.tracking_key, 0);
-  return stretch_transmittance(scene, shadow, medium, -1, scratch, rng);
+  return stretch_transmittance(scene, shadow, medium, -1, scratch, rng) * through;
 }
 
 }  // namespace caligo

@@ -5,10 +5,12 @@
 // To add a BSDF: define its struct, add it to `Bsdf`, and overload the functions in bsdf.h.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <variant>
 
 #include "core/rgb.h"
+#include "materials/opacity_map.h"
 
 namespace caligo {
 
@@ -46,6 +48,13 @@ struct Material {
   int priority = 0;
   int interior = -1;
   float ior = 1.0f;  // relative to vacuum; a dielectric's equals its DielectricBsdf::ior
+  // Partly transparent surfaces (materials/opacity_map.h): opacity times the map's value at the
+  // hit's texture coordinates. Only for non-emitting surfaces of priority off.
+  float opacity = 1.0f;
+  std::shared_ptr<const OpacityMap> opacity_map;
 };
+
+// The surface is a layer the path tracer's march records (its opacity may be below 1).
+inline bool partly_transparent(const Material& m) { return m.opacity < 1.0f || m.opacity_map != nullptr; }
 
 }  // namespace caligo

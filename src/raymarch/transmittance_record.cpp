@@ -114,6 +114,8 @@ void TransmittanceRecord::clear() {
   end_transmittance_ = RGB(1.0f);
   scatter_totals_ = RGB(0.0f);
   grey_ = true;
+  layers_.clear();
+  layer_totals_ = RGB(0.0f);
 }
 
 // A start that overlaps the previous step by rounding only (a marcher computing step ends as
@@ -129,13 +131,85 @@ void TransmittanceRecord::push(float t0, float t1, RGB sigma_t, RGB sigma_s,
     t0 = previous_end;
   }
   if (!(t1 > t0)) return;
-  const MarchStep step{t0,         t1, sigma_t, sigma_s, end_transmittance_, scatter_totals_, uint32_t(lobes_.size()),
-                       uint32_t(lobes.size())};
+  const MarchStep step{t0, t1, sigma_t, sigma_s, {}, {}, uint32_t(lobes_.size()), uint32_t(lobes.size())};
   lobes_.insert(lobes_.end(), lobes.begin(), lobes.end());
+  append(step);
+}
+
+void TransmittanceRecord::append(const MarchStep& coefficients) {
+  MarchStep step = coefficients;
+  step.transmittance = end_transmittance_;
+  step.scatter_before = scatter_totals_;
   steps_.push_back(step);
   end_transmittance_ = transmittance_after_step(step);
   scatter_totals_ = step.scatter_before + scatter_in_step(step);
-  grey_ = grey_ && is_grey(sigma_t) && is_grey(sigma_s);
+  grey_ = grey_ && is_grey(step.sigma_t) && is_grey(step.sigma_s);
+}
+
+void TransmittanceRecord::apply_layer(const SurfaceLayer& layer) {
+  const float opacity = std::clamp(layer.opacity, 0.0f, 1.0f);
+  layers_.push_back({layer.t, opacity, end_transmittance_});
+  layer_totals_ += end_transmittance_ * opacity;
+  end_transmittance_ *= 1.0f - opacity;
+}
+
+// The steps are pushed again with the layers between them: a step restarts at each layer inside
+// it (same coefficients and lobes), and a layer outside every step starts a step of vacuum up to
+// the next step (or a step of one ulp past the end), so that every layer sits at a step start and
+// the step in front of it ends with T before the layer.
+void TransmittanceRecord::insert_layers(std::span<const SurfaceLayer> layers) {
+  if (layers.empty()) return;
+  unlayered_.swap(steps_);
+  steps_.clear();
+  end_transmittance_ = RGB(1.0f);
+  scatter_totals_ = RGB(0.0f);
+  grey_ = true;
+  size_t next = 0;
+  const auto vacuum_from = [&](float t0, float t1) {
+    MarchStep v{t0, t1, RGB(0.0f), RGB(0.0f), {}, {}, 0, 0};
+    append(v);
+  };
+  for (const MarchStep& s : unlayered_) {
+    // Layers in the gap before this step (or at its start).
+    while (next < layers.size() && layers[next].t <= s.t0) {
+      apply_layer(layers[next]);
+      const float t = layers[next++].t;
+      const float end = next < layers.size() ? std::min(layers[next].t, s.t0) : s.t0;
+      if (end > t) vacuum_from(t, end);
+    }
+    MarchStep piece = s;
+    while (next < layers.size() && layers[next].t < s.t1) {
+      piece.t1 = layers[next].t;
+      if (piece.t1 > piece.t0) append(piece);
+      apply_layer(layers[next++]);
+      piece.t0 = piece.t1;
+      piece.t1 = s.t1;
+    }
+    if (piece.t1 > piece.t0) append(piece);
+  }
+  while (next < layers.size()) {
+    apply_layer(layers[next]);
+    const float t = layers[next++].t;
+    if (next == layers.size() || layers[next].t > t) vacuum_from(t, std::nextafter(t, kInfinity));
+  }
+}
+
+std::optional<DistanceSample> TransmittanceRecord::sample_layer(int c, float u) const {
+  const float total = c < 0 ? layer_totals_.average() : layer_totals_[c];
+  if (!(total > 0.0f)) return std::nullopt;
+  const float target = u * total;
+  float cumulative = 0.0f;
+  int last = -1;
+  for (size_t i = 0; i < layers_.size(); ++i) {
+    const float mass = (c < 0 ? layers_[i].before.average() : layers_[i].before[c]) * layers_[i].opacity;
+    if (!(mass > 0.0f)) continue;
+    last = int(i);
+    cumulative += mass;
+    if (target < cumulative) break;
+  }
+  const SurfaceLayer& l = layers_[size_t(last)];
+  const float mass = (c < 0 ? l.before.average() : l.before[c]) * l.opacity;
+  return DistanceSample{l.t, mass / total, find_step(l.t), last};
 }
 
 std::span<const PhaseLobe> TransmittanceRecord::lobes(const MarchStep& step) const {
@@ -156,8 +230,10 @@ RGB TransmittanceRecord::transmittance(float t) const {
   const MarchStep& s = steps_[i];
   if (t < s.t1) return transmittance_in_step(s, t);
   // In the gap after step i (vacuum) or past the end: the next step's stored start value, which is
-  // exactly what push computed, so T is continuous and consistent with the samplers.
-  return size_t(i) + 1 < steps_.size() ? steps_[i + 1].transmittance : transmittance_after_step(s);
+  // exactly what push computed, so T is continuous and consistent with the samplers. A layer may
+  // start the next step (its T is after the layer): the gap in front of it has T before.
+  if (!layers_.empty() || size_t(i) + 1 == steps_.size()) return transmittance_after_step(s);
+  return steps_[i + 1].transmittance;
 }
 
 RGB TransmittanceRecord::transmittance_end() const { return end_transmittance_; }
@@ -217,10 +293,21 @@ std::optional<DistanceSample> TransmittanceRecord::sample_free_flight(float u_ch
                                        [&](const MarchStep& s) { return s.transmittance[c] >= target; });
   const int i = int(it - steps_.begin()) - 1;  // >= 0: the first step starts at T = 1
   const MarchStep& s = steps_[i];
+  if (!layers_.empty() && transmittance_after_step(s)[c] >= target) return layer_crossing(steps_[i + 1].t0, c, target);
   // T_c crosses the target inside step i (T is constant over gaps), so sigma_t,c > 0 there.
   const double x = (std::log(double(s.transmittance[c])) - std::log(target)) / s.sigma_t[c];
   const float t = clamp_into_step(s, double(s.t0) + std::max(x, 0.0));
   return DistanceSample{t, free_flight_density_in_step(s, t), i};
+}
+
+// T_c falls past `target` in the jump of the layers at t (several when coincident): the first whose
+// factor takes it below.
+std::optional<DistanceSample> TransmittanceRecord::layer_crossing(float t, int c, double target) const {
+  const auto first = std::partition_point(layers_.begin(), layers_.end(), [&](const SurfaceLayer& l) { return l.t < t; });
+  for (auto it = first; it != layers_.end() && it->t == t; ++it)
+    if (double(it->before[c]) * (1.0 - it->opacity) < target || std::next(it) == layers_.end() || std::next(it)->t != t)
+      return DistanceSample{t, (it->before * it->opacity).average(), find_step(t), int(it - layers_.begin())};
+  return std::nullopt;  // unreachable: a jump holds the target only where a layer is
 }
 
 float TransmittanceRecord::free_flight_pdf(float t) const {

@@ -38,10 +38,19 @@ struct MarchStep {
   uint32_t first_lobe, lobe_count;
 };
 
+// A partly transparent surface the march met (materials/opacity_map.h): at t the transmittance
+// of every channel drops by the factor 1 - opacity. `before` is T just in front of it.
+struct SurfaceLayer {
+  float t;
+  float opacity;
+  RGB before;
+};
+
 struct DistanceSample {
   float t;
-  float pdf;  // per unit length (see the sampling functions for its normalisation)
-  int step;   // index of the step containing t
+  float pdf;       // per unit length (see the sampling functions for its normalisation); a probability for a layer
+  int step;        // index of the step containing t
+  int layer = -1;  // free flight and fates only: the surface layer the path meets instead (t is its)
 };
 
 class TransmittanceRecord {
@@ -51,6 +60,18 @@ class TransmittanceRecord {
   // Appends [t0, t1) with constant coefficients; t0 must be >= the previous step's t1 and
   // t1 > t0. Lobe weights should sum to 1 in every channel with sigma_s > 0.
   void push(float t0, float t1, RGB sigma_t, RGB sigma_s, std::span<const PhaseLobe> lobes);
+  // Partly transparent surfaces along the ray, sorted by t (their `before` is ignored), after the
+  // march has pushed its steps: each layer becomes a step boundary (a step it falls inside is split;
+  // one in a gap or past the end starts a step of vacuum) where T drops by 1 - opacity, so every
+  // query and sampler below sees it. The layers' masses opacity x T in front are layer_totals().
+  void insert_layers(std::span<const SurfaceLayer> layers);
+  std::span<const SurfaceLayer> layers() const { return layers_; }
+  // Per channel, the sum over layers of opacity x T in front: the probability of meeting each.
+  RGB layer_totals() const { return layer_totals_; }
+  // A layer chosen with probability opacity x T_c in front / layer_totals()[c] (c < 0: by the
+  // channel average); its pdf is that probability. std::nullopt when no layer has mass.
+  std::optional<DistanceSample> sample_layer(int c, float u) const;
+
   // Adds emitted radiance already integrated by the marcher (for the record's owner to read).
   void add_emission(RGB radiance) { emission_ += radiance; }
   // Adds the integral of sigma_h T over a step, already integrated by the marcher: the share of
@@ -93,13 +114,20 @@ class TransmittanceRecord {
   std::optional<DistanceSample> sample_scatter_channel(int c, float u_distance) const;
 
   // Free-flight sampling for indirect paths: with probability 1 - avg_c T_c(end) returns a
-  // collision distance with pdf(t) = avg_c sigma_t,c(t) T_c(t) (NOT renormalised), otherwise
+  // collision distance with pdf(t) = avg_c sigma_t,c(t) T_c(t) (NOT renormalised), or a surface
+  // layer (DistanceSample::layer) with probability avg_c opacity T_c in front, otherwise
   // std::nullopt (the ray passes the whole record, probability avg_c T_c(end)).
   std::optional<DistanceSample> sample_free_flight(float u_channel, float u_distance) const;
   float free_flight_pdf(float t) const;
 
  private:
+  void append(const MarchStep& coefficients);  // t0, t1, sigma_t, sigma_s and lobe range of the step
+  void apply_layer(const SurfaceLayer& layer);
+  std::optional<DistanceSample> layer_crossing(float t, int c, double target) const;
   std::vector<MarchStep> steps_;
+  std::vector<MarchStep> unlayered_;  // insert_layers' copy of the steps (kept to avoid allocating)
+  std::vector<SurfaceLayer> layers_;
+  RGB layer_totals_{0.0f};
   std::vector<PhaseLobe> lobes_;
   RGB emission_;
   float holdout_ = 0.0f;

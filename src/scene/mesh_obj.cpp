@@ -169,6 +169,9 @@ void check_obj_faces(const tinyobj::attrib_t& attrib, const std::vector<tinyobj:
       if (index.vertex_index < 0 || size_t(index.vertex_index) >= vertex_count)
         fail("a face refers to vertex " + std::to_string(int64_t(index.vertex_index) + 1) +
              ", but the file has " + std::to_string(vertex_count) + " vertices");
+      if (index.texcoord_index >= 0 && size_t(index.texcoord_index) >= attrib.texcoords.size() / 2)
+        fail("a face refers to texture coordinate " + std::to_string(int64_t(index.texcoord_index) + 1) +
+             ", but the file has " + std::to_string(attrib.texcoords.size() / 2) + " texture coordinates");
       if (index.normal_index >= 0 && size_t(index.normal_index) >= normal_count)
         fail("a face refers to normal " + std::to_string(int64_t(index.normal_index) + 1) +
              ", but the file has " + std::to_string(normal_count) + " normals");
@@ -176,10 +179,10 @@ void check_obj_faces(const tinyobj::attrib_t& attrib, const std::vector<tinyobj:
   }
 }
 
-bool every_corner_has_a_normal(const std::vector<tinyobj::shape_t>& shapes) {
+bool every_corner_has(const std::vector<tinyobj::shape_t>& shapes, int tinyobj::index_t::*attribute) {
   for (const tinyobj::shape_t& shape : shapes)
     for (const tinyobj::index_t& index : shape.mesh.indices)
-      if (index.normal_index < 0) return false;
+      if (index.*attribute < 0) return false;
   return true;
 }
 
@@ -203,18 +206,29 @@ TriangleMesh obj_mesh_without_normals(const tinyobj::attrib_t& attrib,
 
 }  // namespace
 
-// OBJ indexes positions and normals separately; a mesh vertex is each distinct pair.
-TriangleMesh obj_mesh_with_normals(const tinyobj::attrib_t& attrib,
-                                   const std::vector<tinyobj::shape_t>& shapes) {
+// OBJ indexes positions, texture coordinates and normals separately; a mesh vertex is each
+// distinct triple of the attributes the mesh keeps (normals and uvs only where every corner has one).
+TriangleMesh obj_mesh_with_attributes(const tinyobj::attrib_t& attrib, const std::vector<tinyobj::shape_t>& shapes,
+                                      bool normals, bool uvs) {
   TriangleMesh mesh;
-  std::unordered_map<uint64_t, uint32_t> vertex_of_pair;
+  struct KeyHash {
+    size_t operator()(const std::array<int, 3>& k) const {
+      return std::hash<uint64_t>()(uint64_t(uint32_t(k[0])) << 32 ^ uint64_t(uint32_t(k[1])) << 16 ^ uint32_t(k[2]));
+    }
+  };
+  std::unordered_map<std::array<int, 3>, uint32_t, KeyHash> vertex_of;
   for (const tinyobj::shape_t& shape : shapes)
     for (const tinyobj::index_t& index : shape.mesh.indices) {
-      const uint64_t key = uint64_t(uint32_t(index.vertex_index)) << 32 | uint32_t(index.normal_index);
-      const auto [it, added] = vertex_of_pair.try_emplace(key, uint32_t(mesh.positions.size()));
+      const std::array<int, 3> key{index.vertex_index, normals ? index.normal_index : -1,
+                                   uvs ? index.texcoord_index : -1};
+      const auto [it, added] = vertex_of.try_emplace(key, uint32_t(mesh.positions.size()));
       if (added) {
         mesh.positions.push_back(obj_vec3(attrib.vertices, index.vertex_index));
-        mesh.normals.push_back(obj_vec3(attrib.normals, index.normal_index));
+        if (normals) mesh.normals.push_back(obj_vec3(attrib.normals, index.normal_index));
+        if (uvs) {
+          const size_t i = 2 * size_t(index.texcoord_index);
+          mesh.uvs.push_back({float(attrib.texcoords[i]), float(attrib.texcoords[i + 1])});
+        }
       }
       mesh.indices.push_back(it->second);
     }
@@ -235,9 +249,10 @@ TriangleMesh read_obj(const std::string& text, DegenerateTriangles degenerate) {
   if (attrib.vertices.size() / 3 > std::numeric_limits<uint32_t>::max())
     fail("the mesh has more vertices than 32-bit indices can address");
   check_obj_faces(attrib, shapes);
-  return !attrib.normals.empty() && every_corner_has_a_normal(shapes)
-             ? obj_mesh_with_normals(attrib, shapes)
-             : obj_mesh_without_normals(attrib, shapes);
+  const bool normals = !attrib.normals.empty() && every_corner_has(shapes, &tinyobj::index_t::normal_index);
+  const bool uvs = !attrib.texcoords.empty() && every_corner_has(shapes, &tinyobj::index_t::texcoord_index);
+  return normals || uvs ? obj_mesh_with_attributes(attrib, shapes, normals, uvs)
+                        : obj_mesh_without_normals(attrib, shapes);
 }
 
 }  // namespace caligo::mesh_detail

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/message_text.h"
 #include "core/overloaded.h"
 #include "geometry/mesh_generate.h"
 #include "geometry/shapes.h"
@@ -130,8 +131,11 @@ int Scene::add_geometry(uint32_t geom_id, GeometryInfo info) {
   const bool priority = m.priority != kPriorityOff;
   has_priority_objects_ = has_priority_objects_ || priority;
   surfaces_.set_casts_shadows(geom_id, priority || !null);
-  shadow_deferred_[0].push_back(priority && null ? 1 : 0);
-  shadow_deferred_[1].push_back(priority ? 1 : 0);
+  const bool transparent = partly_transparent(m);
+  has_transparent_surfaces_ = has_transparent_surfaces_ || transparent;
+  transparent_.push_back(transparent ? 1 : 0);
+  shadow_deferred_[0].push_back((priority && null) || transparent ? 1 : 0);
+  shadow_deferred_[1].push_back(priority || transparent ? 1 : 0);
   return int(geom_id);
 }
 
@@ -143,6 +147,13 @@ void Scene::add_shape(const ShapeDesc& shape) {
 
 void Scene::add_shape_geometry(const ShapeDesc& shape) {
   const Material& material = materials_[size_t(shape.material)];
+  if (partly_transparent(material) && shape.holdout)
+    throw InputError(shape.where, "a holdout cannot be partly transparent (material " +
+                                      quote_for_message(material.name) + " has an \"opacity\")");
+  if (material.opacity_map && std::holds_alternative<SphereShape>(shape.geometry))
+    throw InputError(shape.where, "material " + quote_for_message(material.name) +
+                                      " has an opacity image, but a sphere has no texture coordinates (use a mesh "
+                                      "or a rectangle)");
   if (const auto* s = std::get_if<SphereShape>(&shape.geometry)) {
     const Sphere sphere = Sphere::make(s->center, s->radius, shape.transform);
     GeometryInfo info{shape.material};
@@ -163,6 +174,9 @@ void Scene::add_shape_geometry(const ShapeDesc& shape) {
     add_emitting_mesh(std::move(mesh), shape.material, shape.where);
     return;
   }
+  if (material.opacity_map && mesh.uvs.empty())
+    throw InputError(shape.where, "material " + quote_for_message(material.name) +
+                                      " has an opacity image, but this mesh has no texture coordinates");
   try {
     add_geometry(surfaces_.add_mesh(std::move(mesh)), {shape.material});
   } catch (const std::invalid_argument& e) {
@@ -237,12 +251,29 @@ SurfaceInteraction Scene::interaction(const Ray& ray, const SurfaceHit& hit) con
   return si;
 }
 
-std::optional<SurfaceHit> nearest_non_null_hit(const Scene& scene, Ray ray, int max_crossings, uint64_t* queries) {
+float Scene::opacity(const SurfaceHit& hit) const {
+  const Material& m = material(hit);
+  if (!m.opacity_map) return m.opacity;
+  // Meshes only (add_shape_geometry refuses maps elsewhere); uvs interpolated by the barycentrics.
+  const TriangleMesh& mesh = surfaces_.mesh(hit.geom_id);
+  const uint32_t* tri = &mesh.indices[3 * size_t(hit.prim_id)];
+  const float b1 = hit.uv.x, b2 = hit.uv.y, b0 = 1.0f - b1 - b2;
+  const Vec2 a = mesh.uvs[tri[0]], b = mesh.uvs[tri[1]], c = mesh.uvs[tri[2]];
+  const Vec2 uv{a.x * b0 + b.x * b1 + c.x * b2, a.y * b0 + b.y * b1 + c.y * b2};
+  return m.opacity * m.opacity_map->lookup(uv);
+}
+
+std::optional<SurfaceHit> nearest_non_null_hit(const Scene& scene, Ray ray, int max_crossings, uint64_t* queries,
+                                               std::vector<SurfaceHit>* layers) {
+  if (layers) layers->clear();
   for (int crossings = 0; crossings <= max_crossings; ++crossings) {
     if (queries) ++*queries;
     const auto hit = scene.surfaces().intersect(ray);
     if (!hit) return std::nullopt;
-    if (!std::holds_alternative<NullBsdf>(scene.material(*hit).bsdf)) return hit;
+    if (layers && scene.is_transparent(hit->geom_id))
+      layers->push_back(*hit);
+    else if (!std::holds_alternative<NullBsdf>(scene.material(*hit).bsdf))
+      return hit;
     ray.tmin = hit->t + std::max(1e-4f, hit->t * 1e-5f);
   }
   return std::nullopt;

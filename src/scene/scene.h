@@ -75,6 +75,15 @@ class Scene {
   const MediumStack& camera_stack() const { return camera_stack_; }
   // The same probe from any point.
   MediumStack stack_at(Vec3 p) const;
+  // Partly transparent surfaces (materials/opacity_map.h): some material has an opacity below 1 or
+  // a map. Per geometry, 1 for those (a mask for EmbreeScene::occluded's deferred hits; shadow_deferred
+  // lists them too).
+  bool has_transparent_surfaces() const { return has_transparent_surfaces_; }
+  const std::vector<uint8_t>& transparent_geometry() const { return transparent_; }
+  bool is_transparent(uint32_t geom_id) const { return transparent_[geom_id] != 0; }
+  // The opacity of the surface at a hit: the material's number times its map at the hit's texture
+  // coordinates; 1 for opaque surfaces.
+  float opacity(const SurfaceHit& hit) const;
   // A holdout shape (ShapeDesc::holdout).
   bool is_holdout(uint32_t geom_id) const { return geometry_[geom_id].holdout; }
   const Material& material(const SurfaceHit& hit) const {
@@ -109,7 +118,9 @@ class Scene {
   std::array<LightSampler, kLightSamplerNames.size()> light_samplers_;  // indexed by LightSamplerKind
   std::vector<int> interior_slot_;  // per SceneDesc medium: its slot in volumes_' media, or -1
   std::array<std::vector<uint8_t>, 2> shadow_deferred_;  // without, with priority_shadows
+  std::vector<uint8_t> transparent_;                    // per geometry: partly transparent
   bool has_priority_objects_ = false;
+  bool has_transparent_surfaces_ = false;
   MediumStack camera_stack_;
 };
 
@@ -120,7 +131,9 @@ inline constexpr int kMaxNullCrossings = 256;
 // media seen from outside, are stepped over by a relative epsilon of their distance, so what lies
 // in front of the hit stays one segment). `queries` counts the Embree queries when given. Every
 // pipeline's camera and bounce rays in scenes without priority surfaces find their hit here.
+// With `layers`, partly transparent surfaces are stepped over too and listed there in order (the
+// path tracer's march records them); without, they are hits like any other.
 std::optional<SurfaceHit> nearest_non_null_hit(const Scene& scene, Ray ray, int max_crossings = kMaxNullCrossings,
-                                               uint64_t* queries = nullptr);
+                                               uint64_t* queries = nullptr, std::vector<SurfaceHit>* layers = nullptr);
 
 }  // namespace caligo

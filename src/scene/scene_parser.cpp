@@ -15,6 +15,7 @@
 #include "geometry/mesh_closure.h"
 #include "settings/aov.h"
 #include "scene/mesh_loader.h"
+#include "image/image_read.h"
 #include "scene/json_reader.h"
 #include "scene/light_parser.h"
 #include "scene/material_priority.h"
@@ -305,19 +306,43 @@ void read_bounded_medium(ObjectReader& r, const std::string& type, const std::ve
                    "never enter the medium stack), got " + priority->describe());
 }
 
-Material parse_material(const JsonCursor& c, const std::string& name, const std::vector<NamedMedium>& media) {
+// "opacity": a number in [0, 1] or an image file of a greyscale mask (materials/opacity_map.h), read
+// once per scene. Emitters and surfaces that bound media are opaque.
+void read_opacity(ObjectReader& r, SceneFiles& files, Material& m) {
+  const auto c = r.optional("opacity");
+  if (!c) return;
+  if (!m.emission.is_black()) c->fail("an emitting surface cannot be partly transparent (\"opacity\")");
+  if (m.priority != kPriorityOff)
+    c->fail("a surface that bounds a medium (a priority or an interior) cannot be partly transparent");
+  if (!c->is_string()) {
+    if (!c->is_number()) c->fail("expected an opacity: a number in [0, 1] or an image file, got " + c->describe());
+    m.opacity = c->number(Range::closed(0, 1));
+    return;
+  }
+  const std::string path = files.resolve(c->string());
+  try {
+    const Image image = read_image_grey(path);
+    m.opacity_map = std::make_shared<const OpacityMap>(image.width(), image.height(),
+                                                       std::vector<float>(image.pixels().begin(), image.pixels().end()));
+  } catch (const InputError& e) {
+    c->fail(std::string("cannot use the opacity image: ") + e.what());
+  }
+}
+
+Material parse_material(const JsonCursor& c, const std::string& name, const std::vector<NamedMedium>& media,
+                        SceneFiles& files) {
   ObjectReader r(c, "a material");
   const std::string type = r.choice("type", {"diffuse", "dielectric", "emissive", "null"});
   r.set_what("a " + type + " material");
   Material m;
   m.name = name;
   if (type == "diffuse") {
-    r.allow({"type", "reflectance", "emission", "two_sided", "priority", "interior"});
+    r.allow({"type", "reflectance", "emission", "two_sided", "priority", "interior", "opacity"});
     m.bsdf = DiffuseBsdf{r.rgb("reflectance", Range::closed(0, 1))};
     m.emission = r.rgb_or("emission", RGB(0.0f));
     m.two_sided_emission = r.boolean_or("two_sided", false);
   } else if (type == "dielectric") {
-    r.allow({"type", "ior", "priority", "interior"});
+    r.allow({"type", "ior", "priority", "interior", "opacity"});
     m.ior = r.number_or("ior", 1.5f, Range::closed(1, kMaxIor));
     m.bsdf = DielectricBsdf{m.ior};
   } else if (type == "emissive") {
@@ -332,14 +357,16 @@ Material parse_material(const JsonCursor& c, const std::string& name, const std:
     m.ior = r.number_or("ior", 1.0f, Range::closed(1, kMaxIor));
   }
   read_bounded_medium(r, type, media, m);
+  if (type == "diffuse" || type == "dielectric") read_opacity(r, files, m);
   r.finish();
   return m;
 }
 
-std::vector<Material> parse_materials(const JsonCursor& c, const std::vector<NamedMedium>& media) {
+std::vector<Material> parse_materials(const JsonCursor& c, const std::vector<NamedMedium>& media,
+                                      SceneFiles& files) {
   std::vector<Material> materials;
   for (const auto& [name, m] : named_definitions(c, "material", "materials"))
-    materials.push_back(parse_material(m, name, media));
+    materials.push_back(parse_material(m, name, media, files));
   return materials;
 }
 
@@ -450,7 +477,7 @@ SceneDesc parse_scene_text(const std::string& json_text, const std::string& file
   if (auto c = r.optional("realtime")) scene.realtime = parse_realtime(*c);
   // Media first: materials name their interior medium.
   if (auto c = r.optional("media")) scene.media = parse_media(*c);
-  if (auto c = r.optional("materials")) scene.materials = parse_materials(*c, scene.media);
+  if (auto c = r.optional("materials")) scene.materials = parse_materials(*c, scene.media, files);
   if (auto c = r.optional("shapes"))
     for (const JsonCursor& s : c->elements("an array of shapes"))
       scene.shapes.push_back(parse_shape(s, scene.materials, files));
