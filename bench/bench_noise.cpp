@@ -108,6 +108,27 @@ void BM_GuidedDistancesEqualTime(benchmark::State& state) {
 }
 BENCHMARK(BM_GuidedDistancesEqualTime)->DenseRange(0, 1)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
 
+// Deferred next-event estimation by segments (PathSettings::deferred_nee = range(1) connections)
+// against per-segment NEE on the dense media of kGuided: case 1 (cloud) and 7 (sss);
+// bench_deferred_nee.cpp has the dense sphere. gain above 1: deferred wins at equal time.
+void BM_DeferredNeeScenes(benchmark::State& state) {
+  const Case& c = kGuided[state.range(0)];
+  const int k = int(state.range(1));
+  const Image ref = reference(c);
+  Measured off, on;
+  for (auto _ : state) {
+    off = measure(c.scene, c.spp, ref, [](RenderSettings&) {});
+    on = measure(c.scene, c.spp, ref, [&](RenderSettings& s) { s.path.deferred_nee = k; });
+  }
+  state.SetLabel(c.scene);
+  state.counters["per_segment_MSE"] = off.mse;
+  state.counters["deferred_MSE"] = on.mse;
+  state.counters["per_segment_s"] = off.seconds;
+  state.counters["deferred_s"] = on.seconds;
+  state.counters["gain"] = (off.mse * off.seconds) / (on.mse * on.seconds);
+}
+BENCHMARK(BM_DeferredNeeScenes)->ArgsProduct({{1, 7}, {4}})->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
+
 // Adaptive sampling at threshold range(1) / 100 against every pixel taking every sample.
 const Case kAdaptive[] = {{"default", 256, 4096}, {"holdout", 256, 4096}};
 

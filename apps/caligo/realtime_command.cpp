@@ -204,11 +204,17 @@ void compare_with_reference(const RealtimeOptions& o, const SceneDesc& desc, con
                             const RealtimeFrame& frame, RealtimeOutputs& outputs) {
   const Image reference = reference_image(o, desc.at_time(time), s.resolution);
   const Image realtime = to_image(frame.color);
-  const ReferenceError err = reference_error(realtime, reference);
+  const std::vector<uint8_t> cores =
+      light_core_mask(desc.lights_at(time), frame.view, kLightCoreRadius * float(s.scale));
+  const ReferenceError err = reference_error(realtime, reference, &cores);
   std::printf("reference (%d spp%s, single scattering, direct light): mean error %+.2f %%, relative RMSE %.2f %%, "
               "RMSE/mean %.2f %%\n",
               o.reference_spp, o.reference_per_light ? " per light" : "", err.mean_error * 100.0,
               err.relative_rmse * 100.0, err.rmse_over_mean * 100.0);
+  std::printf("  outside the light cores (%.2f %% of the pixels within %.0f px of a light): RMSE/mean %.2f %%; "
+              "in them: mean error %+.2f %%\n",
+              err.core_fraction * 100.0, kLightCoreRadius * float(s.scale), err.outside_rmse_over_mean * 100.0,
+              err.core_mean_error * 100.0);
   const Rgb8Image strip = comparison_strip(realtime, reference, o.exposure, 0.5f);
   outputs.comparison(strip.width, strip.height, strip.rgb);
   std::printf("comparison (real-time | reference | |error| / mean, 0..50 %%) -> %s\n", outputs.comparison_path().c_str());

@@ -50,9 +50,9 @@ SegmentOutcome scatter_in_medium(const PathContext& ctx, PathState& state, Ray& 
   state.emission_weight = emission_bounce_weight(ctx, x, ps.wi, ps.pdf);
   // Kept only on the scattered outcome, which is where trace_path stores its medium stack.
   PathScratch& scratch = ctx.scratch;
-  if (ctx.settings.deferred_nee > 0) {
+  if (ctx.settings.deferred_nee > 0 && !marched_segment) {  // a marched segment is deferred whole
     scratch.deferred.push_back({x, ray.direction, beta, state.connected(true), uint32_t(scratch.deferred_lobes.size()),
-                                uint32_t(lobes.size())});
+                                uint32_t(lobes.size()), -1, beta.average()});
     scratch.deferred_lobes.insert(scratch.deferred_lobes.end(), lobes.begin(), lobes.end());
   }
   state.specular_bounce = false;
@@ -165,6 +165,26 @@ std::optional<DistanceSample> scatter_distance(const PathContext& ctx, const Ray
 // alone (pass weight T / (1 - S)) was worse in dense, bright media: its passes carry tiny weights
 // that Russian roulette then turns into noise (3x the standard error on `sss`). A path that may
 // not scatter again just takes T.
+// Deferred next-event estimation by segments: the segment joins the path's list with a copy of
+// its record, chosen later with probability proportional to throughput x scatter probability.
+void defer_segment(const PathContext& ctx, const PathState& state, const Ray& ray, const TransmittanceRecord& record) {
+  const float weight = state.throughput.average() * record.scatter_weight_total();
+  if (!(weight > 0.0f)) return;
+  PathScratch& scratch = ctx.scratch;
+  const int segment = int(scratch.deferred_segments.size());
+  scratch.deferred_segments.push_back({ray, state.events > 0});
+  if (scratch.deferred_records.size() <= size_t(segment)) scratch.deferred_records.resize(size_t(segment) + 1);
+  scratch.deferred_records[size_t(segment)] = record;
+  scratch.deferred.push_back({{}, ray.direction, state.throughput, state.connected(true), 0, 0, segment, weight});
+  if (ctx.nested) {
+    const size_t entry = scratch.deferred.size() - 1;
+    if (scratch.deferred_stacks.size() <= entry) scratch.deferred_stacks.resize(entry + 1);
+    if (scratch.deferred_pending.size() <= entry) scratch.deferred_pending.resize(entry + 1);
+    scratch.deferred_stacks[entry].assign(scratch.stack);
+    scratch.deferred_pending[entry] = scratch.pending;
+  }
+}
+
 // The partly transparent surfaces in front of the segment's end as layers of the record.
 void record_layers(const PathContext& ctx, TransmittanceRecord& record) {
   PathScratch& scratch = ctx.scratch;
@@ -256,6 +276,7 @@ SegmentOutcome marched_segment(const PathContext& ctx, PathState& state, Ray& ra
   out.add(state.arriving(LightKind::kVolumeEmission), state.throughput * record.emission() * state.emission_weight);
   const bool may_scatter = may_scatter_in_medium(ctx, state);
   if (may_scatter && ctx.settings.deferred_nee <= 0) connect_marched_segment(ctx, state, ray, record, out);
+  if (may_scatter && ctx.settings.deferred_nee > 0) defer_segment(ctx, state, ray, record);
   const std::optional<DistanceSample> collision = segment_fate(ctx, state, ray, record, may_scatter);
   if (!collision) return state.throughput.is_black() ? SegmentOutcome::kAbsorbed : SegmentOutcome::kPassed;
   if (collision->layer >= 0) {

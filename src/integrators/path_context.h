@@ -48,16 +48,27 @@ struct PathScratch {
   std::vector<SurfaceHit> layer_hits;
   std::vector<SurfaceLayer> layers;
   std::vector<SurfaceHit> line_layers;
-  // Deferred next-event estimation (PathSettings::deferred_nee): the path's scattering vertices
-  // in media, their phase lobes and (with nested media) their medium stacks.
+  // Deferred next-event estimation (PathSettings::deferred_nee): the path's marched segments in
+  // media (their ray and a copy of their record) and scattering vertices of tracked segments,
+  // each with its throughput, its phase lobes (vertices) and, with nested media, its medium stack
+  // and the segment's false crossings.
   struct DeferredVertex {
-    Vec3 x, wo;  // the vertex and the direction the path arrived along
-    RGB beta;    // throughput at the vertex, before the phase sample
+    Vec3 x, wo;  // the vertex and the direction the path arrived along (vertices)
+    RGB beta;    // throughput at the vertex before the phase sample, or at the segment's start
     LightKind kind;  // the light layer a connection from it feeds
     uint32_t first_lobe, lobe_count;
+    int segment = -1;     // >= 0: the marched segment deferred_segments[segment] (x, wo, lobes unused)
+    float weight = 0.0f;  // its share of the connections: beta x the segment's scatter probability
+  };
+  struct DeferredSegment {
+    Ray ray;
+    bool secondary;  // its shadow rays follow PathSettings::secondary
   };
   std::vector<DeferredVertex> deferred;
   std::vector<PhaseLobe> deferred_lobes;
+  std::vector<DeferredSegment> deferred_segments;
+  std::vector<TransmittanceRecord> deferred_records;  // per segment; reused from path to path
+  std::vector<std::vector<PendingCrossing>> deferred_pending;  // per entry (nested media)
   std::vector<MediumStack> deferred_stacks;
   // Path guiding's training: the path's guided vertices, whose incident radiance is what the
   // path adds to the image after them (integrators/guided_direction.h).

@@ -150,48 +150,44 @@ void apply_pending(PathScratch& scratch, float t_limit) {
   scratch.pending.clear();
 }
 
-// Deferred next-event estimation (PathSettings::deferred_nee): `count` connections, each to a
-// scattering vertex of the finished path chosen with probability q_i proportional to its
-// throughput and weighted 1 / (count q_i); at the vertex, one light by the light sampler's
-// point form and one point on it, the phase mixture stored with the vertex, and the shadow
-// ray's transmittance (with the vertex's medium stack in nested scenes). Its random numbers
-// come from the vertex indices after the path's last one.
+// Deferred next-event estimation (PathSettings::deferred_nee), the seed's form: once the path is
+// built, `count` connections, each to one of its marched segments in media (or scattering vertices
+// of tracked segments) chosen with probability q_i proportional to throughput x the segment's
+// scatter probability (the integral of sigma_s T; 1 for a vertex) and weighted 1 / (count q_i).
+// A segment connects as per-segment NEE does, over its stored record (equiangular and density
+// sampling, the light sampler's segment form); a vertex at its point. Without MIS partner: light
+// hits by phase-sampled rays from media count zero. Random numbers come from the vertex indices
+// after the path's last one.
 void deferred_connections(const PathContext& ctx, int first_dim, PathSample& out) {
-  const PathScratch& scratch = ctx.scratch;
-  const Sampler& sampler = ctx.sampler;
+  PathScratch& scratch = ctx.scratch;
   const int count = ctx.settings.deferred_nee;
   double total = 0.0;
-  for (const auto& v : scratch.deferred) total += double(v.beta.average());
+  for (const auto& v : scratch.deferred) total += double(v.weight);
   if (!(total > 0.0)) return;
   for (int k = 0; k < count; ++k) {
     const int dim = first_dim + k;
-    // The vertex: inverse CDF over the throughputs.
-    const double target = double(sampler.get_1d(bounce(dim, sample_dim::kFreeFlightChannel))) * total;
+    // The entry: inverse CDF over the weights.
+    const double target = double(ctx.sampler.get_1d(bounce(dim, sample_dim::kFreeFlightChannel))) * total;
     size_t i = 0;
-    double acc = double(scratch.deferred[0].beta.average());
-    while (acc <= target && i + 1 < scratch.deferred.size()) acc += double(scratch.deferred[++i].beta.average());
+    double acc = double(scratch.deferred[0].weight);
+    while (acc <= target && i + 1 < scratch.deferred.size()) acc += double(scratch.deferred[++i].weight);
     const auto& v = scratch.deferred[i];
-    const float q = float(double(v.beta.average()) / total);
+    const float q = float(double(v.weight) / total);
     if (!(q > 0.0f)) continue;
-    const LightChoice choice = ctx.lights.sample(
-        v.x, Vec3(0.0f), ctx.lights.needs_random() ? sampler.get_1d(bounce(dim, sample_dim::kVolumeLightSelect)) : 0.0f);
-    if (choice.light < 0) continue;
-    const Light& light = ctx.scene.lights()[size_t(choice.light)];
-    const auto ls = sample_light(
-        light, v.x, is_delta(light) ? Vec2{0.5f, 0.0f} : sampler.get_2d(bounce(dim, sample_dim::kVolumeLightPosition)));
-    if (!ls || ls->radiance.is_black() || !(ls->pdf > 0.0f)) continue;
-    const RGB phase = mixed_phase_eval(
-        std::span<const PhaseLobe>(scratch.deferred_lobes).subspan(v.first_lobe, v.lobe_count), v.wo, ls->wi);
-    if (phase.is_black()) continue;
     if (ctx.nested) {
-      ctx.scratch.stack.assign(scratch.deferred_stacks[i]);
-      ctx.scratch.pending.clear();
+      scratch.stack.assign(scratch.deferred_stacks[i]);
+      scratch.pending.clear();
+      if (v.segment >= 0) scratch.pending = scratch.deferred_pending[i];
     }
-    const RGB tr = light_transmittance(ctx.scene, v.x, v.x, *ls, ctx.scene.casts_shadows(choice.light),
-                                       shadow_medium(ctx, dim, true, sample_dim::kDistanceSample), ctx.scratch,
-                                       ctx.counters);
-    if (tr.is_black()) continue;
-    out.add(v.kind, v.beta * phase * tr * ls->radiance * (1.0f / (choice.pmf * ls->pdf * float(count) * q)));
+    RGB light;
+    if (v.segment >= 0) {
+      const PathScratch::DeferredSegment& seg = scratch.deferred_segments[size_t(v.segment)];
+      light = volume_direct_light(ctx, seg.ray, scratch.deferred_records[size_t(v.segment)], dim, seg.secondary);
+    } else {
+      const auto lobes = std::span<const PhaseLobe>(scratch.deferred_lobes).subspan(v.first_lobe, v.lobe_count);
+      light = point_volume_direct_light(ctx, v.x, v.wo, lobes, dim, kInfinity);
+    }
+    out.add(v.kind, v.beta * light * (1.0f / (float(count) * q)));
   }
 }
 
@@ -288,6 +284,7 @@ Next medium_in_front(const PathContext& ctx, PathState& state, Ray& ray, const s
   }
   const RGB throughput_in = state.throughput;  // the segment changes it
   SegmentEvent event;
+  const size_t deferred_before = ctx.scratch.deferred.size();
   const SegmentOutcome outcome = medium_segment(ctx, state, ray, hit ? hit->t : kInfinity,
                                                 ctx.nested ? ctx.scratch.stack.current().medium : -1, out, &event);
   if (camera_ray) {
@@ -305,7 +302,10 @@ Next medium_in_front(const PathContext& ctx, PathState& state, Ray& ray, const s
     *layer = event.layer;
     return Next::kLayer;
   }
-  if (ctx.nested && state.deferred_nee) {
+  // A tracked event's deferred vertex takes the stack after its false crossings (a marched
+  // segment's entry kept the stack at its start, with the crossings).
+  if (ctx.nested && state.deferred_nee && scratch.deferred.size() > deferred_before &&
+      scratch.deferred.back().segment < 0) {
     if (scratch.deferred_stacks.size() < scratch.deferred.size()) scratch.deferred_stacks.resize(scratch.deferred.size());
     scratch.deferred_stacks[scratch.deferred.size() - 1].assign(scratch.stack);
   }
@@ -337,6 +337,7 @@ PathSample trace_path(const Scene& scene, Ray ray, const Sampler& sampler, const
   state.deferred_nee = settings.deferred_nee > 0;
   scratch.deferred.clear();
   scratch.deferred_lobes.clear();
+  scratch.deferred_segments.clear();
   if (ctx.nested) {
     scratch.stack.assign(scene.camera_stack());
     scratch.pending.clear();

@@ -50,8 +50,9 @@ RGB scattered_light(const PathContext& ctx, const Ray& ray, const TransmittanceR
                                      ctx.counters, t, &through_interface);
   if (tr.is_black()) return RGB(0.0f);
   const float light_pdf_sa = pick_pmf * ls->pdf;
+  // Deferred connections have no MIS partner: phase-sampled light hits from media count zero then.
   const float w =
-      ls->delta || through_interface
+      ls->delta || through_interface || ctx.settings.deferred_nee > 0
           ? 1.0f
           : power_heuristic(1, light_pdf_sa, 1, phase_sampling_pdf(ctx, x, record.lobes(step), ray.direction, ls->wi));
   return step.sigma_s * record.transmittance(t) * tr * ls->radiance * phase * (w / light_pdf_sa);
@@ -177,7 +178,7 @@ RGB connect_point(const PathContext& ctx, Vec3 x, Vec3 direction, std::span<cons
                                      ctx.counters, segment_t, &through_interface);
   if (tr.is_black()) return RGB(0.0f);
   const float light_pdf_sa = choice.pmf * ls->pdf;
-  const float w = ls->delta || through_interface
+  const float w = ls->delta || through_interface || ctx.settings.deferred_nee > 0
                       ? 1.0f
                       : power_heuristic(1, light_pdf_sa, 1, phase_sampling_pdf(ctx, x, lobes, direction, ls->wi));
   return phase * tr * ls->radiance * (w / light_pdf_sa);

@@ -198,8 +198,8 @@ TEST(VolumeScenes, SingleScatteringMatchesQuadrature) {
   EXPECT_NEAR(image_mean(render_desc(desc, 8192, DistanceSampling::kMis, 1)).g, expected, 0.01 * expected);
 }
 
-// Deferred next-event estimation connects a few vertices of the finished path instead of every
-// segment; its mean must equal per-segment NEE's. Scene: a scattering sphere (albedo 0.9, HG 0.3)
+// Deferred next-event estimation connects a few segments (and tracked vertices) of the finished
+// path instead of every segment; its mean must equal per-segment NEE's. Scene: a scattering sphere (albedo 0.9, HG 0.3)
 // lit by a point light inside it, a sphere light outside and a sky, so both delta and area lights
 // and the environment take the deferred path (their light hits from medium vertices count zero).
 // Means over 64 x 48 pixels at 256 spp; tolerance 4 standard errors of the difference, from the
@@ -211,6 +211,8 @@ TEST(VolumeScenes, DeferredNeeMatchesPerSegmentNee) {
   desc.lights.push_back(SphereLight{{2.5f, 1.5f, 0.5f}, 0.4f, RGB(3.0f), false});
   desc.lights.push_back(EnvironmentLight{RGB(0.3f, 0.4f, 0.5f)});
   const auto scene = Scene::build(desc);
+  // Marched bounce segments connect as segments (stored records); tracked ones as vertices.
+  for (const SecondarySegments policy : {SecondarySegments::kMarch, SecondarySegments::kTrack}) {
   const auto mean_and_error = [&](int deferred) {
     std::vector<double> means;
     for (uint64_t seed = 0; seed < 8; ++seed) {
@@ -219,6 +221,7 @@ TEST(VolumeScenes, DeferredNeeMatchesPerSegmentNee) {
       s.seed = seed;
       s.path.limits.max_volume_bounces = 64;
       s.path.deferred_nee = deferred;
+      s.path.secondary = policy;
       means.push_back(image_mean(render(*scene, s).image).average());
     }
     double m = 0, v = 0;
@@ -230,7 +233,9 @@ TEST(VolumeScenes, DeferredNeeMatchesPerSegmentNee) {
   const auto [deferred, se_b] = mean_and_error(2);
   std::printf("per-segment NEE %.5f +- %.5f, deferred (2 connections) %.5f +- %.5f\n", per_segment, se_a, deferred, se_b);
   EXPECT_NEAR(deferred, per_segment, 4.0 * std::hypot(se_a, se_b));
-  EXPECT_LT(std::hypot(se_a, se_b), 0.01 * per_segment);  // the test can see a 4 % bias
+  // The test can see a 4 % bias (marched), 8 % (tracked: vertices connect at points, noisier).
+  EXPECT_LT(std::hypot(se_a, se_b), (policy == SecondarySegments::kMarch ? 0.01 : 0.02) * per_segment);
+  }
 }
 
 // Absorption by weight: a purely absorbing slab (sigma_a = 0.8, thickness 1 m) seen in perspective

@@ -68,13 +68,55 @@ Image to_image(const ColorPlanes& planes) {
   return image;
 }
 
-ReferenceError reference_error(const Image& a, const Image& ref) {
+ReferenceError reference_error(const Image& a, const Image& ref, const std::vector<uint8_t>* cores) {
   if (a.width() != ref.width() || a.height() != ref.height())
     throw std::invalid_argument("reference_error: images differ in size");
+  if (cores && cores->size() != ref.pixel_count()) throw std::invalid_argument("reference_error: mask size");
   const auto ca = rgb_of(a, "real-time"), cr = rgb_of(ref, "reference");
   const double mean_ref = mean_rgb(ref, cr);
   const ImageMetrics m = compare_images(a, ref);
-  return {(mean_rgb(a, ca) - mean_ref) / mean_ref, std::sqrt(m.relative_mse), m.rmse / mean_ref};
+  ReferenceError e{(mean_rgb(a, ca) - mean_ref) / mean_ref, std::sqrt(m.relative_mse), m.rmse / mean_ref};
+  e.outside_rmse_over_mean = e.rmse_over_mean;
+  if (!cores) return e;
+  // Sums in double over each side of the mask: squared error and reference outside, both images inside.
+  double sq = 0, ref_out = 0, a_in = 0, ref_in = 0;
+  size_t outside = 0, inside = 0;
+  for (int y = 0; y < ref.height(); ++y)
+    for (int x = 0; x < ref.width(); ++x) {
+      const RGB va = a.rgb(x, y, ca), vr = ref.rgb(x, y, cr);
+      if ((*cores)[size_t(y) * size_t(ref.width()) + size_t(x)]) {
+        a_in += va.average(), ref_in += vr.average();
+        ++inside;
+        continue;
+      }
+      const RGB d = va - vr;
+      sq += (double(d.r) * d.r + double(d.g) * d.g + double(d.b) * d.b) / 3.0;
+      ref_out += vr.average();
+      ++outside;
+    }
+  if (outside > 0 && ref_out > 0) e.outside_rmse_over_mean = std::sqrt(sq / double(outside)) / (ref_out / double(outside));
+  if (ref_in > 0) e.core_mean_error = (a_in - ref_in) / ref_in;
+  e.core_fraction = double(inside) / double(ref.pixel_count());
+  return e;
+}
+
+std::vector<uint8_t> light_core_mask(const std::vector<Light>& lights, const View& view, float radius) {
+  const Vec2i res = view.resolution;
+  std::vector<uint8_t> mask(size_t(res.x) * size_t(res.y), 0);
+  for (const Light& light : lights) {
+    const auto centre = light_centre(light);
+    if (!centre) continue;
+    const Vec3 p = view.project(*centre);
+    if (!(p.z > 0.0f) || !std::isfinite(p.x) || !std::isfinite(p.y)) continue;
+    const int x0 = std::max(0, int(std::floor(p.x - radius))), x1 = std::min(res.x - 1, int(std::ceil(p.x + radius)));
+    const int y0 = std::max(0, int(std::floor(p.y - radius))), y1 = std::min(res.y - 1, int(std::ceil(p.y + radius)));
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) {
+        const float dx = float(x) + 0.5f - p.x, dy = float(y) + 0.5f - p.y;
+        if (dx * dx + dy * dy <= radius * radius) mask[size_t(y) * size_t(res.x) + size_t(x)] = 1;
+      }
+  }
+  return mask;
 }
 
 Rgb8Image comparison_strip(const Image& a, const Image& ref, float exposure, float heat_scale) {

@@ -7,7 +7,9 @@
 #include <vector>
 
 #include "image/image.h"
+#include "lights/light.h"
 #include "realtime/plane.h"
+#include "realtime/view.h"
 
 namespace caligo {
 
@@ -20,12 +22,32 @@ Image to_image(const ColorPlanes& planes);
 //                    the bright core around a visible light weigh by their own brightness
 //   rmse_over_mean = sqrt(mean (a - ref)^2) / mean(ref)         the absolute error against the
 //                    frame's mean: dominated by the brightest pixels and by dark frames' noise
+//
+// With a mask of light cores (light_core_mask), the error users see is split in two:
+//   outside_rmse_over_mean = rmse_over_mean over the pixels outside the cores (against their mean)
+//   core_mean_error        = (sum(a) - sum(ref)) / sum(ref) over the core pixels: how much of the
+//                            cores' light the frame keeps (a blurred core loses its peak, a
+//                            noisy one gains or loses it)
 struct ReferenceError {
   double mean_error = 0;
   double relative_rmse = 0;
   double rmse_over_mean = 0;
+  double outside_rmse_over_mean = 0;  // = rmse_over_mean without a mask
+  double core_mean_error = 0;         // 0 without a mask or without core pixels
+  double core_fraction = 0;           // of the pixels
 };
-ReferenceError reference_error(const Image& realtime, const Image& reference);
+ReferenceError reference_error(const Image& realtime, const Image& reference,
+                               const std::vector<uint8_t>* cores = nullptr);
+
+// The light cores of a view: 1 for pixels within `radius` pixels of where a light with a centre
+// (light_centre: point lights, spot apexes, area lights) projects in front of the camera. There
+// single scattering rises as 1/D for rays passing at distance D from the light, a peak narrower
+// than an accumulation pixel: the real-time frame, marched at pixel centres at a fraction of the
+// resolution and upsampled, cannot follow it, and the peak dominates any RMSE over the frame.
+// The cores' radius users see reported, in accumulation pixels (x RealtimeSettings::scale for the
+// frame's pixels): the upsample and gather spread a core over about this many.
+inline constexpr float kLightCoreRadius = 3.0f;
+std::vector<uint8_t> light_core_mask(const std::vector<Light>& lights, const View& view, float radius);
 
 struct Rgb8Image {
   int width = 0, height = 0;
