@@ -145,6 +145,11 @@ HybridScatterer::HybridScatterer(const Scene& scene, VolumetricMethod method, Hy
     hit.geom_id = g;
     // Null surfaces cast no shadow (the raster scene leaves them out of the shadow maps too).
     if (std::holds_alternative<NullBsdf>(scene.material(hit).bsdf)) continue;
+    // A shape's proxy (ShapeDesc::proxy, closed) stands in for its shadow volumes.
+    if (const TriangleMesh* proxy = scene.shadow_proxy(g)) {
+      occluders_.push_back(MeshEdges(*proxy));
+      continue;
+    }
     const TriangleMesh mesh = surfaces.is_sphere(g) ? circumscribed_sphere(surfaces.sphere(g)) : surfaces.mesh(g);
     MeshEdges edges(mesh);
     if (!edges.closed()) {

@@ -174,6 +174,28 @@ TEST(HybridPipeline, AnOpenOccluderStandsInByItsBoundingBox) {
   EXPECT_NEAR(h / b, 1.0, 1.2e-4);
 }
 
+// ShapeDesc::proxy: the hybrid builds the shape's shadow volumes from its proxy alone. A sphere
+// proxy of the occluder's own size gives the brute-force march's shafts (the mesh is a 1,280-
+// triangle sphere, the proxy a 5,120-triangle one 0.2 % larger); a box proxy around it casts the
+// box's wider shadow, so less light reaches the camera than brute force sees.
+TEST(HybridPipeline, AShadowProxyStandsInForItsShape) {
+  SceneDesc desc = wyman_like();
+  const double brute = mean(render(desc, VolumetricMethod::kBrute).volumetric);
+  desc.shapes[1].proxy = SphereShape{{0, 0, 0}, 1.0f};
+  const Rendered sphere = render(desc, VolumetricMethod::kHybrid);
+  desc.shapes[1].proxy = BoxShape{{-1, -1, -1}, {1, 1, 1}};
+  const Rendered box = render(desc, VolumetricMethod::kHybrid);
+  EXPECT_EQ(sphere.used, VolumetricMethod::kHybrid);
+  const double s = mean(sphere.volumetric), b = mean(box.volumetric);
+  std::printf("proxies: sphere/brute - 1 = %+.4f %%, box/brute - 1 = %+.4f %%\n", (s / brute - 1) * 100,
+              (b / brute - 1) * 100);
+  EXPECT_NEAR(s / brute, 1.0, 2e-3);
+  EXPECT_LT(b, 0.99 * brute);
+  // An open proxy is refused, naming the shape.
+  desc.shapes[1].proxy = RectangleShape{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  EXPECT_THROW(Scene::build(desc), InputError);
+}
+
 // The proxy: closed, and it holds every vertex of the mesh (so its shadow holds the mesh's).
 TEST(HybridPipeline, TheBoundingBoxProxyIsClosedAndHoldsTheMesh) {
   TriangleMesh card = rectangle_mesh({-1, 0, -1}, {0, 0, 2}, {2, 0, 0});

@@ -6,6 +6,7 @@
 
 #include "core/message_text.h"
 #include "core/overloaded.h"
+#include "geometry/mesh_closure.h"
 #include "geometry/mesh_generate.h"
 #include "geometry/shapes.h"
 #include "scene/mesh_loader.h"
@@ -142,7 +143,33 @@ int Scene::add_geometry(uint32_t geom_id, GeometryInfo info) {
 void Scene::add_shape(const ShapeDesc& shape) {
   const size_t first = geometry_.size();
   add_shape_geometry(shape);
-  for (size_t g = first; g < geometry_.size(); ++g) geometry_[g].holdout = shape.holdout;
+  int proxy = -1;
+  if (shape.proxy) {
+    const ShapeGeometry& g = *shape.proxy;
+    TriangleMesh mesh;
+    if (const auto* s = std::get_if<SphereShape>(&g)) {
+      // Four subdivisions (5,120 triangles) of the unit sphere, circumscribing the true one a little.
+      mesh = icosphere(4);
+      for (Vec3& p : mesh.positions) p = s->center + p * (s->radius * 1.002f);
+    } else {
+      ShapeDesc proxy_shape = shape;
+      proxy_shape.geometry = g;
+      mesh = std::visit(ShapeMesh{proxy_shape}, g);
+    }
+    transform_mesh(mesh, shape.transform);
+    const MeshClosure c = check_closure(mesh);
+    if (c.boundary_edges + c.non_manifold_edges + c.misoriented_edges > 0)
+      throw InputError(shape.where, "the shadow proxy is not a closed, consistently wound surface (" +
+                                        std::to_string(c.boundary_edges) + " boundary, " +
+                                        std::to_string(c.non_manifold_edges) + " non-manifold, " +
+                                        std::to_string(c.misoriented_edges) + " misoriented edges)");
+    proxy = int(proxies_.size());
+    proxies_.push_back(std::move(mesh));
+  }
+  for (size_t g = first; g < geometry_.size(); ++g) {
+    geometry_[g].holdout = shape.holdout;
+    geometry_[g].proxy = proxy;
+  }
 }
 
 void Scene::add_shape_geometry(const ShapeDesc& shape) {

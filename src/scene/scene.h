@@ -84,6 +84,11 @@ class Scene {
   // The opacity of the surface at a hit: the material's number times its map at the hit's texture
   // coordinates; 1 for opaque surfaces.
   float opacity(const SurfaceHit& hit) const;
+  // The shadow-volume stand-in of a geometry (ShapeDesc::proxy, closed, world space), or null.
+  const TriangleMesh* shadow_proxy(uint32_t geom_id) const {
+    const int p = geometry_[geom_id].proxy;
+    return p < 0 ? nullptr : &proxies_[size_t(p)];
+  }
   // A holdout shape (ShapeDesc::holdout).
   bool is_holdout(uint32_t geom_id) const { return geometry_[geom_id].holdout; }
   const Material& material(const SurfaceHit& hit) const {
@@ -97,6 +102,7 @@ class Scene {
     int light = -1;                    // first light of this geometry, or -1
     bool light_per_primitive = false;  // emissive meshes: one TriangleLight per triangle
     bool holdout = false;              // ShapeDesc::holdout
+    int proxy = -1;                    // index into proxies_
   };
 
   Scene() = default;
@@ -119,6 +125,7 @@ class Scene {
   std::vector<int> interior_slot_;  // per SceneDesc medium: its slot in volumes_' media, or -1
   std::array<std::vector<uint8_t>, 2> shadow_deferred_;  // without, with priority_shadows
   std::vector<uint8_t> transparent_;                    // per geometry: partly transparent
+  std::vector<TriangleMesh> proxies_;                   // ShapeDesc::proxy meshes, world space
   bool has_priority_objects_ = false;
   bool has_transparent_surfaces_ = false;
   MediumStack camera_stack_;

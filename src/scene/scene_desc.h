@@ -109,6 +109,10 @@ struct ShapeDesc {
   // A holdout (matte) object: the camera sees a hole through it (black beauty, alpha 0), as it
   // would see the background; every other ray sees its material (it shadows and reflects).
   bool holdout = false;
+  // A coarse closed stand-in for the shape's shadow volumes in the hybrid (Wyman & Ramsey 2008,
+  // W10), placed by the same transform; nothing else sees it. Opt-in and approximate: the
+  // shafts follow the proxy's silhouette, not the shape's.
+  std::optional<ShapeGeometry> proxy;
 };
 
 struct SceneDesc {

@@ -391,22 +391,22 @@ MeshFileShape read_mesh(ObjectReader& r, SceneFiles& files) {
 
 ShapeGeometry read_geometry(ObjectReader& r, const std::string& type, SceneFiles& files) {
   if (type == "sphere") {
-    r.allow({"type", "center", "radius", "material", "transform", "open", "holdout"});
+    r.allow({"type", "center", "radius", "material", "transform", "open", "holdout", "proxy"});
     const Vec3 center = r.vec3("center");
     return SphereShape{center, r.number("radius", size_range())};
   }
   if (type == "box") {
-    r.allow({"type", "min", "max", "material", "transform", "open", "holdout"});
+    r.allow({"type", "min", "max", "material", "transform", "open", "holdout", "proxy"});
     const BoxCorners box = read_box_corners(r);
     return BoxShape{box.min, box.max};
   }
   if (type == "rectangle") {
-    r.allow({"type", "corner", "edge1", "edge2", "material", "transform", "open", "holdout"});
+    r.allow({"type", "corner", "edge1", "edge2", "material", "transform", "open", "holdout", "proxy"});
     RectangleShape rect;
     read_parallelogram(r, rect.corner, rect.edge1, rect.edge2);
     return rect;
   }
-  r.allow({"type", "file", "generate", "skip_degenerate", "material", "transform", "open", "holdout"});
+  r.allow({"type", "file", "generate", "skip_degenerate", "material", "transform", "open", "holdout", "proxy"});
   if (const auto g = r.optional("generate")) {
     if (r.has("file")) r.fail("a mesh takes either \"file\" or \"generate\", not both");
     ObjectReader gr(*g, "a generated mesh");
@@ -446,6 +446,21 @@ void check_closed(const ObjectReader& r, const ShapeDesc& shape, const Material&
            " edges whose two triangles wind the same way); fix its winding or mark the shape \"open\": true");
 }
 
+// "proxy": a closed shape (sphere, box or mesh, with its own geometry keys only) for the hybrid's
+// shadow volumes; closure of a mesh file is checked when the scene is built.
+ShapeGeometry parse_proxy(const JsonCursor& c, SceneFiles& files) {
+  ObjectReader r(c, "a shadow proxy");
+  const std::string type = r.choice("type", {"sphere", "box", "mesh"});
+  r.set_what("a " + type + " shadow proxy");
+  ShapeGeometry geometry = read_geometry(r, type, files);
+  for (const char* key : {"material", "transform", "open", "holdout", "proxy"})
+    if (r.has(key))
+      r.optional(key)->fail(std::string("a shadow proxy takes its shape's material and transform; \"") + key +
+                            "\" does not belong here");
+  r.finish();
+  return geometry;
+}
+
 ShapeDesc parse_shape(const JsonCursor& c, const std::vector<Material>& materials, SceneFiles& files) {
   ObjectReader r(c, "a shape");
   const std::string type = r.choice("type", {"sphere", "box", "rectangle", "mesh"});
@@ -458,6 +473,7 @@ ShapeDesc parse_shape(const JsonCursor& c, const std::vector<Material>& material
   const bool open = r.boolean_or("open", false);
   if (!open) check_closed(r, shape, materials[size_t(shape.material)]);
   shape.holdout = r.boolean_or("holdout", false);
+  if (auto p = r.optional("proxy")) shape.proxy = parse_proxy(*p, files);
   r.finish();
   return shape;
 }

@@ -208,6 +208,31 @@ TEST(SceneParser, HoldoutShapes) {
   EXPECT_TRUE(scene.shapes[3].holdout);
 }
 
+// "proxy": a closed shape for the hybrid's shadow volumes, with geometry keys only.
+TEST(SceneParser, ShadowProxies) {
+  const auto scene_with = [](const std::string& proxy) {
+    return R"json({"camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},
+      "materials": {"w": {"type": "diffuse", "reflectance": 0.5}},
+      "shapes": [{"type": "mesh", "generate": {"kind": "torus_knot", "triangles": 2000}, "material": "w",
+                  "proxy": )json" + proxy + "}]}";
+  };
+  const SceneDesc scene = parse_scene_text(scene_with(R"({"type": "box", "min": [-1, -1, -1], "max": [1, 1, 1]})"),
+                                           "p.json", "");
+  ASSERT_TRUE(scene.shapes[0].proxy);
+  EXPECT_TRUE(std::holds_alternative<BoxShape>(*scene.shapes[0].proxy));
+  try {
+    parse_scene_text(scene_with(R"({"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "w"})"), "p.json",
+                     "");
+    ADD_FAILURE() << "a proxy with a material";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().json_path, "/shapes/0/proxy/material");
+  }
+  EXPECT_THROW(parse_scene_text(scene_with(R"({"type": "rectangle", "corner": [0, 0, 0], "edge1": [1, 0, 0],
+                                              "edge2": [0, 1, 0]})"),
+                                "p.json", ""),
+               InputError);
+}
+
 // "render.aovs": exactly the listed outputs (the beauty always), with --aov's names and shortcuts.
 TEST(SceneParser, RenderAovs) {
   const auto aovs_of = [](const std::string& render) {

@@ -91,10 +91,12 @@ struct PathSettings {
   bool absorption_by_weight = true;
   // Deferred next-event estimation (the seed's "optimizations for multiple scattering"): 0 (the
   // default) connects each medium segment to a light as the path goes; K > 0 builds the whole
-  // path first, then connects K of its scattering vertices, chosen with probability
-  // proportional to their throughput (~ sigma_s T along the path) and weighted by the inverse.
-  // Light hits from medium vertices then count zero (the connections alone are unbiased).
-  // See docs/techniques.md for when it pays.
+  // path first, keeping its marched medium segments with their transmittance records (and the
+  // scattering vertices of tracked segments), then connects K of them, chosen with probability
+  // proportional to throughput x the segment's integral of sigma_s T and weighted by the inverse;
+  // a chosen segment connects as per-segment NEE does (equiangular and density sampling along
+  // its record). Light hits from medium vertices then count zero (the connections alone are
+  // unbiased). Off by default: it lost or tied at equal time wherever measured (docs/techniques.md).
   int deferred_nee = 0;
   SecondarySegments secondary = SecondarySegments::kAuto;
   // Tracked shadow rays by residual ratio tracking with each span's minimum as the control
