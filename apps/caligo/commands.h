@@ -69,6 +69,7 @@ struct RealtimeOptions {
   std::optional<float> ms_floor;
   std::optional<std::string> steps;  // uniform or equiangular
   std::optional<bool> temporal;
+  std::optional<bool> light_cores;
   std::optional<float> still_time;  // --time: every frame at this time (a still scene)
   int warmup = 3;
   bool exr = false;

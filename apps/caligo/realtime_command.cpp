@@ -49,6 +49,9 @@ void add_realtime_command(CLI::App& app, RealtimeOptions& o) {
   cmd->add_option("--steps", o.steps, "March steps of point and spot lights: uniform (the seed) or equiangular");
   cmd->add_option("--ms-floor", o.ms_floor, "Faked multiple scattering: minimum shadow term in [0, 1]");
   cmd->add_option("--temporal", o.temporal, "Temporal reprojection on or off (true/false)");
+  cmd->add_option("--light-cores", o.light_cores,
+                  "Re-march the pixels around on-screen point lights and spot apexes at full resolution (true) or "
+                  "leave them to the upsampled buffer (false, the default: the pass is slow)");
   cmd->add_option("--warmup", o.warmup, "Frames left out of the timing medians");
   cmd->add_option("--time", o.still_time,
                   "Render every frame at this time in seconds (a still scene: only the interleaving changes)");
@@ -100,6 +103,7 @@ RealtimeSettings settings_from(const RealtimeOptions& o, const SceneDesc& desc) 
     s.accumulation.multiple_scattering_floor = *o.ms_floor;
   }
   if (o.temporal) s.temporal = *o.temporal;
+  if (o.light_cores) s.resolve_light_cores = *o.light_cores;
   if (o.steps) {
     if (*o.steps != "uniform" && *o.steps != "equiangular")
       throw InputError(kCommandLine, "--steps: expected uniform or equiangular, got \"" + *o.steps + "\"");

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "core/parallel.h"
+#include "realtime/light_cores.h"
 #include "realtime/scene_buffers.h"
 #include "realtime/shadow_map.h"
 #include "realtime/surface_shading.h"
@@ -224,7 +225,13 @@ const RealtimeFrame& RealtimePipeline::render(float time, uint32_t frame_index) 
   ColorPlanes gathered;
   timed(times.gather, [&] { gathered = gather(accum, marched, scattered, next); });
   timed(times.temporal, [&] { reproject(gathered, next); });
-  timed(times.upsample, [&] { upsample(next); });
+  timed(times.upsample, [&] {
+    upsample(next);
+    // The cores need every light in the march (a scatterer's lights are not in it).
+    if (settings_.resolve_light_cores && marched && !scattered)
+      resolve_light_cores(lights, volumes, next.view, gbuffer_->depth, settings_.accumulation,
+                          {kLightCoreRadius * float(settings_.scale), 4, 32}, next.volumetric);
+  });
   timed(times.surfaces, [&] { shade_surfaces(*gbuffer_, next.view, *scene_, lights, next.surfaces, settings_.simd); });
   timed(times.composite, [&] { composite(next); });
   times.total = micros_since(frame_start);

@@ -8,6 +8,7 @@
 
 #include "image/image.h"
 #include "lights/light.h"
+#include "realtime/light_cores.h"
 #include "realtime/plane.h"
 #include "realtime/view.h"
 
@@ -44,9 +45,6 @@ ReferenceError reference_error(const Image& realtime, const Image& reference,
 // single scattering rises as 1/D for rays passing at distance D from the light, a peak narrower
 // than an accumulation pixel: the real-time frame, marched at pixel centres at a fraction of the
 // resolution and upsampled, cannot follow it, and the peak dominates any RMSE over the frame.
-// The cores' radius users see reported, in accumulation pixels (x RealtimeSettings::scale for the
-// frame's pixels): the upsample and gather spread a core over about this many.
-inline constexpr float kLightCoreRadius = 3.0f;
 std::vector<uint8_t> light_core_mask(const std::vector<Light>& lights, const View& view, float radius);
 
 struct Rgb8Image {

@@ -37,6 +37,10 @@ struct RealtimeSettings {
   int scatter_gather_radius = 1;
   float gather_depth_falloff = 1000.0f;  // weight exp(-falloff * |relative depth difference|)
   bool temporal = true;                  // temporal reprojection
+  // Light cores (realtime/light_cores.h): the output pixels around on-screen point lights and
+  // spot apexes re-marched at full resolution after the upsample, when every light marches. Off
+  // by default: on `arena` at 1080p it costs ~108 ms a frame (docs/techniques.md).
+  bool resolve_light_cores = false;
   float temporal_blend = 0.1f;           // weight of the current frame in the history blend
   bool simd = true;
   SceneBufferMethod scene_buffers = SceneBufferMethod::raster;
