@@ -10,36 +10,24 @@
 namespace caligo {
 namespace {
 
-struct CorePixel {
-  Vec2i pixel;
-  float distance;  // output pixels from the nearest focus's projection
-};
-
-// The output pixels within `radius` of a marched light's focus in front of the camera.
-std::vector<CorePixel> core_pixels(const std::vector<FrameLight>& lights, const View& view, float radius) {
+// The output pixels within `radius` of a marched light's focus in front of the camera, each once
+// with its distance to the nearest focus.
+std::vector<DiscPixel> core_pixels(const std::vector<FrameLight>& lights, const View& view, float radius) {
   const Vec2i res = view.resolution;
   std::vector<int32_t> index(size_t(res.x) * size_t(res.y), -1);
-  std::vector<CorePixel> pixels;
+  std::vector<DiscPixel> pixels;
   for (const FrameLight& light : lights) {
     const Vec3* focus = light.options.volumetric ? equiangular_focus(light.light) : nullptr;
     if (!focus) continue;
-    const Vec3 p = view.project(*focus);
-    if (!(p.z > 0.0f) || !std::isfinite(p.x) || !std::isfinite(p.y)) continue;
-    const int x0 = std::max(0, int(std::floor(p.x - radius))), x1 = std::min(res.x - 1, int(std::ceil(p.x + radius)));
-    const int y0 = std::max(0, int(std::floor(p.y - radius))), y1 = std::min(res.y - 1, int(std::ceil(p.y + radius)));
-    for (int y = y0; y <= y1; ++y)
-      for (int x = x0; x <= x1; ++x) {
-        const float dx = float(x) + 0.5f - p.x, dy = float(y) + 0.5f - p.y;
-        const float r = std::sqrt(dx * dx + dy * dy);
-        if (r > radius) continue;
-        int32_t& i = index[size_t(y) * size_t(res.x) + size_t(x)];
-        if (i >= 0) {
-          pixels[size_t(i)].distance = std::min(pixels[size_t(i)].distance, r);
-          continue;
-        }
-        i = int32_t(pixels.size());
-        pixels.push_back({{x, y}, r});
+    for (const DiscPixel& d : disc_pixels(res, view.project(*focus), radius)) {
+      int32_t& i = index[size_t(d.pixel.y) * size_t(res.x) + size_t(d.pixel.x)];
+      if (i >= 0) {
+        pixels[size_t(i)].distance = std::min(pixels[size_t(i)].distance, d.distance);
+        continue;
       }
+      i = int32_t(pixels.size());
+      pixels.push_back(d);
+    }
   }
   return pixels;
 }
@@ -73,11 +61,25 @@ RGB march_all(const std::vector<FrameLight>& lights, const VolumeScene& volumes,
 
 }  // namespace
 
+std::vector<DiscPixel> disc_pixels(Vec2i res, Vec3 p, float radius) {
+  std::vector<DiscPixel> out;
+  if (!(p.z > 0.0f) || !std::isfinite(p.x) || !std::isfinite(p.y)) return out;
+  const int x0 = std::max(0, int(std::floor(p.x - radius))), x1 = std::min(res.x - 1, int(std::ceil(p.x + radius)));
+  const int y0 = std::max(0, int(std::floor(p.y - radius))), y1 = std::min(res.y - 1, int(std::ceil(p.y + radius)));
+  for (int y = y0; y <= y1; ++y)
+    for (int x = x0; x <= x1; ++x) {
+      const float dx = float(x) + 0.5f - p.x, dy = float(y) + 0.5f - p.y;
+      const float r = std::sqrt(dx * dx + dy * dy);
+      if (r <= radius) out.push_back({{x, y}, r});
+    }
+  return out;
+}
+
 int resolve_light_cores(const std::vector<FrameLight>& lights, const VolumeScene& volumes, const View& view,
                         const Plane& depth, const AccumulationSettings& accumulation,
                         const LightCoreSettings& settings, ColorPlanes& volumetric) {
   if (volumes.empty()) return 0;
-  const std::vector<CorePixel> pixels = core_pixels(lights, view, settings.radius);
+  const std::vector<DiscPixel> pixels = core_pixels(lights, view, settings.radius);
   if (pixels.empty()) return 0;
   AccumulationSettings march = accumulation;
   march.samples = std::max(1, settings.samples);

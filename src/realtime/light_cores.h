@@ -33,6 +33,14 @@ struct LightCoreSettings {
   int samples = 32;      // equiangular steps per ray and light
 };
 
+// The pixels of a view whose centres lie within `radius` pixels of a projected point (View::project:
+// pixel x, y, depth), none when it lies behind the camera; with each pixel, its distance.
+struct DiscPixel {
+  Vec2i pixel;
+  float distance;
+};
+std::vector<DiscPixel> disc_pixels(Vec2i resolution, Vec3 projected, float radius);
+
 // Returns the number of pixels resolved. `depth` is the full-resolution linear depth
 // (kSkyDepth for none), `volumetric` the upsampled buffer at the view's resolution.
 int resolve_light_cores(const std::vector<FrameLight>& lights, const VolumeScene& volumes, const View& view,

@@ -106,15 +106,8 @@ std::vector<uint8_t> light_core_mask(const std::vector<Light>& lights, const Vie
   for (const Light& light : lights) {
     const auto centre = light_centre(light);
     if (!centre) continue;
-    const Vec3 p = view.project(*centre);
-    if (!(p.z > 0.0f) || !std::isfinite(p.x) || !std::isfinite(p.y)) continue;
-    const int x0 = std::max(0, int(std::floor(p.x - radius))), x1 = std::min(res.x - 1, int(std::ceil(p.x + radius)));
-    const int y0 = std::max(0, int(std::floor(p.y - radius))), y1 = std::min(res.y - 1, int(std::ceil(p.y + radius)));
-    for (int y = y0; y <= y1; ++y)
-      for (int x = x0; x <= x1; ++x) {
-        const float dx = float(x) + 0.5f - p.x, dy = float(y) + 0.5f - p.y;
-        if (dx * dx + dy * dy <= radius * radius) mask[size_t(y) * size_t(res.x) + size_t(x)] = 1;
-      }
+    for (const DiscPixel& d : disc_pixels(res, view.project(*centre), radius))
+      mask[size_t(d.pixel.y) * size_t(res.x) + size_t(d.pixel.x)] = 1;
   }
   return mask;
 }
