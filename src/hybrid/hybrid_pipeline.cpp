@@ -50,13 +50,6 @@ TriangleMesh circumscribed_sphere(const Sphere& sphere) {
   return m;
 }
 
-struct IsotropicCheck {
-  bool operator()(const IsotropicPhase&) const { return true; }
-  bool operator()(const HenyeyGreensteinPhase& p) const { return p.g == 0.0f; }
-  bool operator()(const SchlickPhase& p) const { return p.k == 0.0f; }
-  bool operator()(const DoubleHenyeyGreensteinPhase& p) const { return p.g1 == 0.0f && p.g2 == 0.0f; }
-};
-
 struct ConvexCheck {
   bool operator()(const SphereVolumeShape&) const { return true; }
   bool operator()(const BoxVolumeShape&) const { return true; }
@@ -102,15 +95,23 @@ ClippedDepth clip_to_medium(const Plane& depth, const View& view, const VolumeSh
   return out;
 }
 
-// Why the scene's media are outside the airlight model for this eye and light ("" when inside):
-// one homogeneous, convex, isotropic medium containing both.
-std::string medium_problem(const VolumeScene& volumes, Vec3 eye, Vec3 light) {
+// The pass's view of the one homogeneous medium (density folded in).
+ScatteringMedium scattering_medium(const VolumePrimitive& medium) {
+  const float density = medium.shader.density;
+  return {medium.shader.sigma_s * density, (medium.shader.sigma_a + medium.shader.sigma_s) * density,
+          medium.shader.phase};
+}
+
+// Why the scene's media are outside the model for this eye and light ("" when inside): one
+// homogeneous, convex medium containing both, isotropic unless `any_phase` (Hoffman–Preetham).
+std::string medium_problem(const VolumeScene& volumes, Vec3 eye, Vec3 light, bool any_phase = false) {
   if (volumes.primitives().size() != 1)
     return std::to_string(volumes.primitives().size()) + " volume primitives (the model takes one)";
   const VolumePrimitive& medium = volumes.primitive(0);
   if (!is_homogeneous(medium.shader)) return "the medium is not homogeneous";
   if (!std::visit(ConvexCheck{}, medium.shape)) return "a mesh-bounded medium";
-  if (!std::visit(IsotropicCheck{}, medium.shader.phase)) return "an anisotropic phase function (the airlight is isotropic)";
+  if (!any_phase && !scattering_medium(medium).isotropic())
+    return "an anisotropic phase function (the airlight is isotropic)";
   if (!inside(medium.shape, eye) || !inside(medium.shape, light)) return "the eye or the light is outside the medium";
   return "";
 }
@@ -241,9 +242,7 @@ bool HybridScatterer::scatter(size_t index, const FrameLight& frame_light, const
   VolumetricMethod method = method_ == VolumetricMethod::kTextured ? VolumetricMethod::kHybrid : method_;
   if (!frame_light.shadow) method = VolumetricMethod::kNone;  // casts no shadow: the airlight is exact
 
-  const float density = medium.shader.density;
-  const RGB sigma_s = medium.shader.sigma_s * density,
-            sigma_t = (medium.shader.sigma_a + medium.shader.sigma_s) * density;
+  const ScatteringMedium coefficients = scattering_medium(medium);
   const ClippedDepth clipped = clip_to_medium(low_depth, low_view, medium.shape, point->position);
   const Plane& depth = clipped.depth;
 
@@ -255,7 +254,7 @@ bool HybridScatterer::scatter(size_t index, const FrameLight& frame_light, const
   }
 
   const RGB weight = point->intensity * frame_light.options.volumetric_intensity;
-  if (!scatter_channels(method, sigma_s, sigma_t, point->position, weight, frame_light, low_view, depth, buffers,
+  if (!scatter_channels(method, coefficients, point->position, weight, frame_light, low_view, depth, buffers,
                         accum))
     return false;
   used_[index] = method;
@@ -263,15 +262,15 @@ bool HybridScatterer::scatter(size_t index, const FrameLight& frame_light, const
 }
 
 // The airlight passes for one point light, once for a grey medium, once per channel otherwise.
-bool HybridScatterer::scatter_channels(VolumetricMethod method, RGB sigma_s, RGB sigma_t, Vec3 position, RGB weight,
+bool HybridScatterer::scatter_channels(VolumetricMethod method, const ScatteringMedium& medium, Vec3 position,
+                                       RGB weight,
                                        const FrameLight& frame_light, const View& low_view, const Plane& depth,
                                        const ShadowVolumeBuffers* buffers, ColorPlanes& accum) const {
   const AirlightTable& table = AirlightTable::shared();
-  const bool grey =
-      sigma_s.r == sigma_s.g && sigma_s.g == sigma_s.b && sigma_t.r == sigma_t.g && sigma_t.g == sigma_t.b;
+  const bool grey = medium.grey();
   const int passes = grey ? 1 : 3;
   for (int c = 0; c < passes; ++c) {
-    const AirlightMedium m{sigma_s[c], sigma_t[c]};
+    const AirlightMedium m{medium.sigma_s[c], medium.sigma_t[c]};
     const HybridLight light{position, 1.0f, RGB(1.0f)};
     ColorPlanes result;
     switch (method) {
@@ -298,14 +297,13 @@ bool HybridScatterer::scatter_channels(VolumetricMethod method, RGB sigma_s, RGB
 bool HybridScatterer::scatter_spot(size_t index, const SpotLight& spot, const FrameLight& frame_light,
                                    const VolumeScene& volumes, const View& low_view, const Plane& low_depth,
                                    ColorPlanes& accum) {
-  if (const std::string why = medium_problem(volumes, low_view.eye, spot.position); !why.empty())
+  // Hoffman–Preetham takes any phase; the airlight (forced, or kAuto's pick) an isotropic one.
+  const bool any_phase = spot_settings_.model != SpotScatterModel::kAirlight;
+  if (const std::string why = medium_problem(volumes, low_view.eye, spot.position, any_phase); !why.empty())
     return note(index, why), false;
-  const VolumePrimitive& medium = volumes.primitive(0);
-  const float density = medium.shader.density;
-  const RGB sigma_s = medium.shader.sigma_s * density,
-            sigma_t = (medium.shader.sigma_a + medium.shader.sigma_s) * density;
-  const ClippedDepth clipped = clip_to_medium(low_depth, low_view, medium.shape, spot.position);
-  const AirlightTable& table = AirlightTable::shared();
+  const VolumePrimitive& primitive = volumes.primitive(0);
+  const ScatteringMedium medium = scattering_medium(primitive);
+  const ClippedDepth clipped = clip_to_medium(low_depth, low_view, primitive.shape, spot.position);
   // The spot's shadow volumes cut each frustum stretch into segments sampled at their own
   // rates; with an open occluder, every step reads the shadow map.
   const ShadowVolumeBuffers* buffers = nullptr;
@@ -314,11 +312,7 @@ bool HybridScatterer::scatter_spot(size_t index, const SpotLight& spot, const Fr
     sv = shadow_volume_buffers(index, spot.position, clipped.light_reach, low_view, clipped.depth);
     buffers = &sv;
   }
-  // The pass already carries the spot's colour (intensity, cone, gobo); a coloured medium takes
-  // one pass per channel, each keeping its own channel.
-  const bool grey =
-      sigma_s.r == sigma_s.g && sigma_s.g == sigma_s.b && sigma_t.r == sigma_t.g && sigma_t.g == sigma_t.b;
-  const float gain = frame_light.options.volumetric_intensity;
+  // The pass carries the spot's colour (intensity, cone, gobo) and the medium's per channel.
   const GoboMips* mips = nullptr;
   if (spot.gobo.image) {
     CachedVolumes& cache = cache_[index];
@@ -328,13 +322,9 @@ bool HybridScatterer::scatter_spot(size_t index, const SpotLight& spot, const Fr
     }
     mips = &cache.gobo_mips;
   }
-  for (int c = 0; c < (grey ? 1 : 3); ++c) {
-    const ScatterResult r =
-        scatter_textured_spot(low_view, clipped.depth, frame_light.shadow, table, AirlightMedium{sigma_s[c], sigma_t[c]},
-                              spot, spot_settings_, buffers, mips);
-    const RGB w = grey ? RGB(gain) : RGB(c == 0 ? gain : 0.0f, c == 1 ? gain : 0.0f, c == 2 ? gain : 0.0f);
-    accum.add(r.radiance, w);
-  }
+  const ScatterResult r =
+      scatter_textured_spot(low_view, clipped.depth, frame_light.shadow, medium, spot, spot_settings_, buffers, mips);
+  accum.add(r.radiance, RGB(frame_light.options.volumetric_intensity));
   used_[index] = VolumetricMethod::kTextured;
   return true;
 }

@@ -14,7 +14,9 @@
 //     HG lobe of g = 0.3 already changes forward in-scattering by ~2x.
 // kTextured is the paper's textured-spotlight method (hybrid/textured_spot.h) for SPOT lights
 // (gobo, IES and range included: they go through the path tracer's light profile), in the same
-// one-medium setting, with the spot's own shadow volumes cutting each frustum stretch into
+// one-medium setting but with ANY phase: a spot in an anisotropic or coloured medium takes
+// Hoffman and Preetham's per-step model in one pass (TexturedSpotSettings::model, kAuto), as
+// the paper does for its coloured lights, and the airlight otherwise; with the spot's own shadow volumes cutting each frustum stretch into
 // segments sampled at their own rates (every step reads the shadow map when an occluder is
 // open); point lights under kTextured take the hybrid.
 // Other lights (box and directional lights, spots outside kTextured, other media) keep the
@@ -88,7 +90,7 @@ class HybridScatterer : public LightScatterer {
   ShadowVolumeBuffers shadow_volume_buffers(size_t index, Vec3 light, float light_reach, const View& low_view,
                                             const Plane& depth);
   // The per-channel airlight passes of one light at `position` into `accum`.
-  bool scatter_channels(VolumetricMethod method, RGB sigma_s, RGB sigma_t, Vec3 position, RGB weight,
+  bool scatter_channels(VolumetricMethod method, const ScatteringMedium& medium, Vec3 position, RGB weight,
                         const FrameLight& frame_light, const View& low_view, const Plane& depth,
                         const ShadowVolumeBuffers* buffers, ColorPlanes& accum) const;
   // A spot light: kTextured takes the textured-spotlight pass (hybrid/textured_spot.h).

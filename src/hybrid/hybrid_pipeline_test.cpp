@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <tuple>
 
 #include "scene/scene.h"
 #include "scene/scene_parser.h"
@@ -214,10 +215,9 @@ TEST(HybridPipeline, TheBoundingBoxProxyIsClosedAndHoldsTheMesh) {
 namespace caligo {
 namespace {
 
-// --method textured: a spot light takes the textured-spotlight pass, and agrees with the
-// Lords of the Fallen march of the same light (both single scattering, shadow-mapped).
-TEST(HybridPipeline, TexturedSpotAgreesWithTheMarch) {
-  const SceneDesc desc = parse_scene_text(R"({
+// A spot over a ground box with a sphere in its cone, in a fog box of the given medium.
+SceneDesc spot_scene(const std::string& medium = R"("sigma_s": 0.25, "sigma_a": 0.03)") {
+  return parse_scene_text(R"({
     "camera": {"position": [0, 2.0, 4.5], "look_at": [0, 1.0, 0], "fov": 50, "resolution": [64, 64]},
     "materials": {"grey": {"type": "diffuse", "reflectance": 0.5}},
     "shapes": [{"type": "box", "min": [-5, -0.1, -5], "max": [5, 0, 5], "material": "grey"},
@@ -225,10 +225,16 @@ TEST(HybridPipeline, TexturedSpotAgreesWithTheMarch) {
        "transform": [{"scale": 0.5}, {"translate": [0.1, 1.8, 0]}]}],
     "lights": [{"type": "spot", "position": [0.3, 3.8, -0.2], "look_at": [0, 0, 0], "inner_angle": 18,
                 "outer_angle": 26, "color": [1, 0.9, 0.8], "intensity": 40}],
-    "media": {"fog": {"sigma_s": 0.25, "sigma_a": 0.03}},
+    "media": {"fog": {)" + medium + R"(}},
     "volumes": [{"type": "box", "min": [-5, 0, -5], "max": [5, 5, 5], "medium": "fog"}]
   })",
-                                          "textured-spot-test", ".");
+                          "textured-spot-test", ".");
+}
+
+// --method textured: a spot light takes the textured-spotlight pass, and agrees with the
+// Lords of the Fallen march of the same light (both single scattering, shadow-mapped).
+TEST(HybridPipeline, TexturedSpotAgreesWithTheMarch) {
+  const SceneDesc desc = spot_scene();
   const Rendered textured = render(desc, VolumetricMethod::kTextured);
   EXPECT_EQ(textured.used, VolumetricMethod::kTextured);
   const double t = mean(textured.volumetric);
@@ -242,6 +248,24 @@ TEST(HybridPipeline, TexturedSpotAgreesWithTheMarch) {
   EXPECT_NEAR(t / m, 1.0, 0.03) << "textured " << t << ", march " << m;
   // Under kHybrid the spot is not taken (the point-light model): it keeps the march.
   EXPECT_EQ(render(desc, VolumetricMethod::kHybrid).used, VolumetricMethod::kMarch);
+}
+
+// A spot in a coloured, forward-scattering fog: outside the airlight, so kTextured takes
+// Hoffman and Preetham's model (one pass, the scene's phase) and agrees with the march per channel.
+TEST(HybridPipeline, TexturedSpotInAnisotropicColouredFogTakesHoffmanPreetham) {
+  const SceneDesc desc = spot_scene(R"("sigma_s": [0.15, 0.25, 0.35], "sigma_a": 0.03, "phase": {"type": "hg", "g": 0.5})");
+  const Rendered textured = render(desc, VolumetricMethod::kTextured);
+  EXPECT_EQ(textured.used, VolumetricMethod::kTextured);
+  const Rendered march = render(desc, VolumetricMethod::kMarch, 64);
+  for (const auto& [name, t, m] : {std::tuple{"r", &textured.volumetric.r, &march.volumetric.r},
+                                   std::tuple{"b", &textured.volumetric.b, &march.volumetric.b}}) {
+    double st = 0, sm = 0;
+    for (size_t i = 0; i < t->data.size(); ++i) st += t->data[i], sm += m->data[i];
+    ASSERT_GT(sm, 0.0);
+    std::printf("anisotropic coloured fog, channel %s: textured/march - 1 = %+.2f %%\n", name, (st / sm - 1) * 100);
+    // As in the isotropic test above (+1.47 % there): the passes place the shadow edge differently.
+    EXPECT_NEAR(st / sm, 1.0, 0.03) << name;
+  }
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "hybrid/scatter_pixels.h"
+#include "media/phase.h"
 #include "lights/light_profile.h"
 #include "realtime/light_volume.h"
 #include "realtime/scene_buffers.h"
@@ -106,7 +107,52 @@ int textured_spot_steps(float abs_cos_axis, const TexturedSpotSettings& settings
   return std::clamp(int(std::lround(float(lo) + float(hi - lo) * sin_a)), lo, hi);
 }
 
+
 namespace {
+
+// Sun et al.'s closed form per step (airlight.h): consecutive steps share their endpoint tails,
+// k + 1 tail evaluations per segment of k steps; exact in 1/d² and e^{-σ_t d} along the step.
+struct AirlightSteps {
+  const AirlightTable& table;
+  AirlightRay air;
+  float tail0 = 0.0f;
+
+  void start(float a) { tail0 = airlight_tail(table, air, a); }
+  // The step [t0, t1]'s radiance, E read at p; the tails advance whether or not it is lit.
+  RGB step(float, float t1, Vec3 p, Vec3 dir, float length, float lit, const Emitter& emitter) {
+    const float tail1 = airlight_tail(table, air, t1);
+    const float weight = std::max(tail0 - tail1, 0.0f);
+    tail0 = tail1;
+    return lit > 0.0f ? emitter.towards(p, dir, length) * (lit * weight) : RGB(0.0f);
+  }
+};
+
+// Hoffman and Preetham's per step (hoffman_preetham.h): the light at the midpoint, I e^{-σ_t d}
+// / d², held over the step, any phase, every channel at once.
+struct HoffmanPreethamSteps {
+  const ScatteringMedium& medium;
+  Vec3 light;
+  RGB transmittance{1.0f};  // e^{-σ_t t} at the step's start
+
+  void start(float a) {
+    const auto e = [&](int c) { return std::exp(-std::max(medium.sigma_t[c], 0.0f) * a); };
+    transmittance = RGB(e(0), e(1), e(2));
+  }
+  RGB step(float t0, float t1, Vec3 p, Vec3 dir, float length, float lit, const Emitter& emitter) {
+    const HoffmanPreethamStep s = hoffman_preetham_step(medium.sigma_t, transmittance, t1 - t0);
+    transmittance = s.end;
+    if (!(lit > 0.0f)) return RGB(0.0f);
+    const Vec3 v = p - light;
+    const float d2 = dot(v, v);
+    if (!(d2 > 0.0f)) return RGB(0.0f);
+    const float d = std::sqrt(d2);
+    const auto leg = [&](int c) { return std::exp(-std::max(medium.sigma_t[c], 0.0f) * d); };
+    // The light travels along v / d before scattering and towards the eye (-dir) after.
+    const float phase = phase_eval(medium.phase, v / d, -dir);
+    const RGB irradiance = emitter.towards(p, dir, length) * RGB(leg(0), leg(1), leg(2)) * (lit / d2);
+    return irradiance * medium.sigma_s * s.integral * phase;
+  }
+};
 
 // The buffers must be the view's (a caller's bug otherwise, not bad input).
 void check_buffers(const View& view, const Plane& opaque_depth, const ShadowVolumeBuffers* volumes) {
@@ -119,12 +165,12 @@ void check_buffers(const View& view, const Plane& opaque_depth, const ShadowVolu
     throw std::invalid_argument("textured spot: shadow-volume buffers do not match the view");
 }
 
-}  // namespace
-
-ScatterResult scatter_textured_spot(const View& view, const Plane& opaque_depth, const ShadowMap* shadow,
-                                    const AirlightTable& table, const AirlightMedium& medium,
-                                    const SpotLight& light, const TexturedSpotSettings& settings,
-                                    const ShadowVolumeBuffers* volumes, const GoboMips* mips) {
+// The pass with one step integrator: make_steps(origin, dir) gives a pixel's (AirlightSteps or
+// HoffmanPreethamSteps). Everything but the per-step integral is shared.
+template <typename MakeSteps>
+ScatterResult march_spot(const View& view, const Plane& opaque_depth, const ShadowMap* shadow,
+                         const SpotLight& light, const TexturedSpotSettings& settings,
+                         const ShadowVolumeBuffers* volumes, const GoboMips* mips, const MakeSteps& make_steps) {
   check_buffers(view, opaque_depth, volumes);
   if (!shadow) volumes = nullptr;  // nothing casts a shadow: every step is lit
   const Emitter emitter = Emitter::make(light, settings, mips);
@@ -144,7 +190,7 @@ ScatterResult scatter_textured_spot(const View& view, const Plane& opaque_depth,
     if (!span || !(span->t1 > span->t0)) return RGB(0.0f);
     const float s0 = span->t0, s1 = span->t1;
     const int n = textured_spot_steps(dot(dir, light.direction), settings);
-    const AirlightRay air = make_airlight_ray(table, medium, 1.0f, light.position, o, dir);
+    auto steps_of = make_steps(o, dir);
     const float offset = 0.5f + jitter * (pixel_noise(x, y) - 0.5f);
 
     // [a, b] in `k` equal steps, E held per step, V read per step when `shadowed` (else 1).
@@ -152,14 +198,12 @@ ScatterResult scatter_textured_spot(const View& view, const Plane& opaque_depth,
     const auto segment = [&](float a, float b, int k, bool shadowed) {
       if (!(b > a) || k <= 0) return;
       const float step = (b - a) / float(k);
-      float tail0 = airlight_tail(table, air, a);
+      steps_of.start(a);
       for (int i = 0; i < k; ++i) {
-        const float t1 = i + 1 == k ? b : a + step * float(i + 1);
-        const float tail1 = airlight_tail(table, air, t1);
+        const float t0 = a + step * float(i), t1 = i + 1 == k ? b : a + step * float(i + 1);
         const Vec3 p = o + dir * (a + step * (float(i) + offset));
         const float lit = shadowed ? shadow->visibility(p) : 1.0f;
-        if (lit > 0.0f) sum += emitter.towards(p, dir, step) * (lit * std::max(tail0 - tail1, 0.0f));
-        tail0 = tail1;
+        sum += steps_of.step(t0, t1, p, dir, step, lit, emitter);
       }
       lookups += k;
     };
@@ -182,6 +226,54 @@ ScatterResult scatter_textured_spot(const View& view, const Plane& opaque_depth,
     }
     return sum;
   });
+}
+
+// Channel c of `from` into `into` (the other channels kept), lookups added.
+void take_channel(ScatterResult& into, const ScatterResult& from, int c) {
+  Plane* const planes[3] = {&into.radiance.r, &into.radiance.g, &into.radiance.b};
+  const Plane* const source[3] = {&from.radiance.r, &from.radiance.g, &from.radiance.b};
+  planes[c]->data = source[c]->data;
+  for (size_t i = 0; i < into.lookups.size(); ++i) into.lookups[i] += from.lookups[i];
+  into.total_lookups += from.total_lookups;
+}
+
+}  // namespace
+
+ScatterResult scatter_textured_spot(const View& view, const Plane& opaque_depth, const ShadowMap* shadow,
+                                    const AirlightTable& table, const AirlightMedium& medium,
+                                    const SpotLight& light, const TexturedSpotSettings& settings,
+                                    const ShadowVolumeBuffers* volumes, const GoboMips* mips) {
+  return march_spot(view, opaque_depth, shadow, light, settings, volumes, mips, [&](Vec3 o, Vec3 dir) {
+    return AirlightSteps{table, make_airlight_ray(table, medium, 1.0f, light.position, o, dir)};
+  });
+}
+
+SpotScatterModel resolve_spot_model(SpotScatterModel model, const ScatteringMedium& medium) {
+  if (model != SpotScatterModel::kAuto) return model;
+  return medium.grey() && medium.isotropic() ? SpotScatterModel::kAirlight : SpotScatterModel::kHoffmanPreetham;
+}
+
+ScatterResult scatter_textured_spot(const View& view, const Plane& opaque_depth, const ShadowMap* shadow,
+                                    const ScatteringMedium& medium, const SpotLight& light,
+                                    const TexturedSpotSettings& settings, const ShadowVolumeBuffers* volumes,
+                                    const GoboMips* mips) {
+  if (resolve_spot_model(settings.model, medium) == SpotScatterModel::kHoffmanPreetham)
+    return march_spot(view, opaque_depth, shadow, light, settings, volumes, mips,
+                      [&](Vec3, Vec3) { return HoffmanPreethamSteps{medium, light.position}; });
+  if (!medium.isotropic())
+    throw std::invalid_argument("textured spot: the airlight model takes an isotropic phase only");
+  const AirlightTable& table = AirlightTable::shared();
+  const auto pass = [&](int c) {
+    return scatter_textured_spot(view, opaque_depth, shadow, table, AirlightMedium{medium.sigma_s[c], medium.sigma_t[c]},
+                                 light, settings, volumes, mips);
+  };
+  ScatterResult result = pass(0);
+  if (medium.grey()) return result;
+  // A coloured medium: one pass per channel, each keeping its own channel.
+  for (int c = 1; c < 3; ++c) take_channel(result, pass(c), c);
+  result.marched_pixels = 0;
+  for (int32_t n : result.lookups) result.marched_pixels += n > 0;
+  return result;
 }
 
 }  // namespace caligo

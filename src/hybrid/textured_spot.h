@@ -3,10 +3,10 @@
 // marched only where the ray is inside the light's frustum.
 //
 // Quantity (as in hybrid_scatter.h, which it complements for spot lights): the in-scattered
-// radiance along each pixel's centre ray from the eye to the opaque surface, isotropic phase,
-// no surface term,
+// radiance along each pixel's centre ray from the eye to the opaque surface, phase p (isotropic
+// for the airlight model), no surface term,
 //
-//   L = σ_s / (4π) ∫ V(x) E(x) e^{-σ_t (t + d)} / d² dt,   E(x) = I · cone · window · IES · gobo,
+//   L = σ_s ∫ V(x) E(x) p(θ) e^{-σ_t (t + d)} / d² dt,   E(x) = I · cone · window · IES · gobo,
 //
 // E the spot's emitted colour towards x (lights/light_profile.h: the same cone, range window,
 // IES and gobo functions the path tracer's delta_arrival uses), d the distance to the light.
@@ -24,11 +24,21 @@
 //     sweeps the whole texture in a short stretch and needs many;
 //   - each step reads E and the shadow map once, at the step's midpoint moved by
 //     jitter · (noise - 0.5) steps (noise: per-pixel interleaved gradient noise), so the step
-//     pattern differs between neighbouring pixels and no sampling planes show; E · V is held
-//     constant over the step and the step's airlight of an isotropic point light of unit
-//     intensity at the spot's position is integrated in closed form (airlight.h; consecutive
-//     steps share their endpoint tails, k + 1 tail evaluations per segment of k steps). The only errors are
-//     E and V varying inside a step.
+//     pattern differs between neighbouring pixels and no sampling planes show. E · V is held
+//     constant over the step, whose integral the model (TexturedSpotSettings::model) gives:
+//       * the airlight (Sun et al., airlight.h): the step's airlight of an isotropic point light
+//         of unit intensity at the spot's position, in closed form (consecutive steps share
+//         their endpoint tails, k + 1 tail evaluations per segment of k steps); exact in 1/d²
+//         and e^{-σ_t d}, so the only errors are E and V varying inside a step; isotropic
+//         phase, one channel per pass;
+//       * Hoffman and Preetham (hoffman_preetham.h), the paper's model for its coloured and
+//         textured lights: the light at the midpoint, I(ω) e^{-σ_t d} / d², and the phase
+//         there, held over the step, times the closed-form ∫ σ_s e^{-σ_t t} dt; any phase, RGB
+//         coefficients in one pass; 1/d² varying inside a step is a further error (largest
+//         next to the apex, where the steps are long against d).
+//     kAuto takes the airlight for a grey, isotropic medium and Hoffman–Preetham otherwise
+//     (an anisotropic phase, which the airlight cannot represent, or a coloured medium, which
+//     it would march three times).
 //   - with the spot's shadow volumes (shadow_volume.h, built from the spot's position), the
 //     stretch is cut at the front-most and back-most volume surfaces into before / inside /
 //     after, each sampled at its own rate: inside, n steps per stretch length with a shadow
@@ -61,6 +71,7 @@
 #include <vector>
 
 #include "hybrid/airlight.h"
+#include "hybrid/hoffman_preetham.h"
 #include "hybrid/hybrid_scatter.h"
 #include "hybrid/shadow_volume.h"
 #include "lights/gobo.h"
@@ -71,7 +82,12 @@
 
 namespace caligo {
 
+// How a step's in-scattering is integrated (the header comment): kAuto is the airlight for a
+// grey, isotropic medium and Hoffman–Preetham otherwise.
+enum class SpotScatterModel { kAuto, kAirlight, kHoffmanPreetham };
+
 struct TexturedSpotSettings {
+  SpotScatterModel model = SpotScatterModel::kAuto;
   int min_steps = 16;   // rays along the axis (clamped to >= 1)
   int max_steps = 150;  // rays across the axis (clamped to >= min_steps)
   float jitter = 0.5f;  // 0 = step midpoints; 1 = anywhere in the step
@@ -97,6 +113,7 @@ GoboMips gobo_mips(const std::shared_ptr<const GoboImage>& image);
 // The steps the pass takes for a ray at |cos α| = abs_cos_axis (the rule above).
 int textured_spot_steps(float abs_cos_axis, const TexturedSpotSettings& settings);
 
+// The airlight pass of one channel (σ_s, σ_t scalars, isotropic phase); settings.model is not read.
 // `opaque_depth` must have view.resolution, and `volumes`, when given, too (std::invalid_argument
 // otherwise). `shadow` may be null (no occlusion; `volumes` is then ignored). `volumes`: the
 // spot's shadow volumes from the eye (shadow_volume.h), or null to read the shadow map at every
@@ -107,5 +124,16 @@ ScatterResult scatter_textured_spot(const View& view, const Plane& opaque_depth,
                                     const SpotLight& light, const TexturedSpotSettings& settings = {},
                                     const ShadowVolumeBuffers* volumes = nullptr,
                                     const GoboMips* mips = nullptr);
+
+// The model `model` resolves to for `medium` (kAuto as above; the others as they are).
+SpotScatterModel resolve_spot_model(SpotScatterModel model, const ScatteringMedium& medium);
+
+// The pass for a whole medium, by settings.model: Hoffman–Preetham in one pass, or the airlight
+// once for a grey medium and once per channel otherwise (ScatterResult::lookups then adds the
+// passes' steps). The airlight with an anisotropic phase is a caller's bug (std::invalid_argument).
+ScatterResult scatter_textured_spot(const View& view, const Plane& opaque_depth, const ShadowMap* shadow,
+                                    const ScatteringMedium& medium, const SpotLight& light,
+                                    const TexturedSpotSettings& settings = {},
+                                    const ShadowVolumeBuffers* volumes = nullptr, const GoboMips* mips = nullptr);
 
 }  // namespace caligo
