@@ -4,6 +4,10 @@
 // steps everywhere (the paper's settings). Counters: shadow-map lookups per pixel and the
 // fraction of pixels marched. The second argument: lit runs by the closed-form tail (0, the former
 // behaviour and the default) or by the per-frame table (1, HybridSettings::frame_table).
+// BM_TexturedSpotModel: the textured-spotlight pass over the same scene with a spot above the
+// sphere, by model (0: the airlight, once per channel in a coloured medium, the former
+// behaviour; 1: Hoffman & Preetham in one pass) and medium (0: grey; 1: coloured), shadow map
+// read at every step.
 // Run: build/release/bench/caligo_bench --benchmark_filter=Scatter
 #include <benchmark/benchmark.h>
 
@@ -11,6 +15,7 @@
 #include <vector>
 
 #include "hybrid/hybrid_scatter.h"
+#include "hybrid/textured_spot.h"
 #include "hybrid/shadow_volume_testing.h"
 #include "realtime/scene_buffers.h"
 
@@ -100,6 +105,35 @@ void BM_UnshadowedScatter(benchmark::State& state) {
             .r.data.data());
 }
 BENCHMARK(BM_UnshadowedScatter)->ArgsProduct({{256, 1024}, {0, 1}})->Unit(benchmark::kMillisecond);
+
+void BM_TexturedSpotModel(benchmark::State& state) {
+  const BenchScene& s = scene(512);
+  SpotLight spot;
+  spot.position = s.light.position;
+  spot.direction = normalize(Vec3(0, 1.5f, 0) - spot.position);
+  spot.up = normalize(cross(spot.direction, Vec3(1, 0, 0)));
+  spot.cos_outer = std::cos(radians(35.0f));
+  spot.cos_inner = std::cos(radians(28.0f));
+  spot.intensity = RGB(20.0f);
+  static const ShadowMap shadow = [&] {
+    RasterScene raster;
+    const Vec3 up{0, 1, 0};
+    raster.add_triangle({-20, 0, -20}, {-20, 0, 20}, {20, 0, 20}, up, up, up, 0);
+    raster.add_triangle({-20, 0, -20}, {20, 0, 20}, {20, 0, -20}, up, up, up, 0);
+    const TriangleMesh occluder = testing::sphere_mesh({0, 1.5f, 0}, 1.0f, 4);
+    const auto& p = occluder.positions;
+    for (size_t i = 0; i + 2 < p.size(); i += 3) raster.add_triangle(p[i], p[i + 1], p[i + 2], up, up, up, 0);
+    return *render_shadow_map(raster, ShadedLight{spot}, 1024, raster.bounds());
+  }();
+  const ScatteringMedium medium = state.range(1) ? ScatteringMedium{RGB(0.06f, 0.1f, 0.16f), RGB(0.1f, 0.15f, 0.22f)}
+                                                 : ScatteringMedium{RGB(0.1f), RGB(0.15f)};
+  TexturedSpotSettings settings;
+  settings.model = state.range(0) ? SpotScatterModel::kHoffmanPreetham : SpotScatterModel::kAirlight;
+  ScatterResult r;
+  for (auto _ : state) r = scatter_textured_spot(s.view, s.depth, &shadow, medium, spot, settings);
+  report(state, r);
+}
+BENCHMARK(BM_TexturedSpotModel)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace caligo

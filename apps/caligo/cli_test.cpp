@@ -424,7 +424,8 @@ TEST_F(Cli, RealtimeRejectsBadOptionsBeforeRendering) {
   for (const std::string& bad : {std::string("--scale eighth"), std::string("--frames 0"), std::string("--samples 0"),
                                  std::string("--ms-floor 2"), std::string("--method magic"),
                                  std::string("--scene-buffers gpu"), std::string("--res 0x10"),
-                                 std::string("--steps diagonal"), std::string("--time nan")}) {
+                                 std::string("--steps diagonal"), std::string("--time nan"),
+                                 std::string("--spot-model sun")}) {
     const RunResult r = run("realtime " + scene.string() + " " + bad);
     EXPECT_EQ(r.exit_code, 2) << bad;
     EXPECT_NE(r.err.find("caligo: error: command line"), std::string::npos) << bad << ": " << r.err;
@@ -444,6 +445,26 @@ TEST_F(Cli, RealtimeRunsTheHybridMethodOnAWymanScene) {
   EXPECT_NE(r.out.find("per light: 0 hybrid"), std::string::npos) << r.out;
   EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
   EXPECT_GT(fs::file_size(out), 100u);
+}
+
+// A spot in forward-scattering fog: --method textured takes it by Hoffman & Preetham's model
+// (auto); forced to the isotropic airlight it is left to the march, with a note saying why.
+TEST_F(Cli, RealtimeTexturedSpotInAnisotropicFogFollowsTheSpotModel) {
+  const fs::path scene = write("hg-spot.json", R"({
+    "camera": {"position": [0, 2, 4.5], "look_at": [0, 1, 0], "resolution": [48, 48]},
+    "shapes": [{"type": "box", "min": [-5, -0.1, -5], "max": [5, 0, 5], "material": "grey"}],
+    "materials": {"grey": {"type": "diffuse", "reflectance": 0.5}},
+    "lights": [{"type": "spot", "position": [0.3, 3.8, -0.2], "look_at": [0, 0, 0], "inner_angle": 18,
+                "outer_angle": 26, "intensity": 40}],
+    "media": {"fog": {"sigma_s": 0.25, "sigma_a": 0.03, "phase": {"type": "hg", "g": 0.5}}},
+    "volumes": [{"type": "box", "min": [-5, 0, -5], "max": [5, 5, 5], "medium": "fog"}]})");
+  const RunResult hp = run("realtime " + scene.string() + " --method textured --frames 1");
+  ASSERT_EQ(hp.exit_code, 0) << hp.err;
+  EXPECT_NE(hp.out.find("per light: 0 textured"), std::string::npos) << hp.out;
+  const RunResult air = run("realtime " + scene.string() + " --method textured --spot-model airlight --frames 1");
+  ASSERT_EQ(air.exit_code, 0) << air.err;
+  EXPECT_NE(air.out.find("per light: 0 march"), std::string::npos) << air.out;
+  EXPECT_NE(air.err.find("anisotropic phase"), std::string::npos) << air.err;
 }
 
 TEST_F(Cli, RealtimeReportsBrokenGoboAndIesFilesWithTheirJsonPath) {

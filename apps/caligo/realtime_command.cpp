@@ -40,6 +40,10 @@ void add_realtime_command(CLI::App& app, RealtimeOptions& o) {
                   "maps, all lights), none (airlight, no volumetric shadows), brute (150 steps, closed-form lit "
                   "intervals), hybrid (Wyman & Ramsey shadow volumes, 50 steps) or textured (hybrid, and spot lights by "
                   "the textured-spotlight march); other lights march");
+  cmd->add_option("--spot-model", o.spot_model,
+                  "Per-step in-scattering of --method textured spots: auto (airlight for a grey isotropic medium, "
+                  "else Hoffman-Preetham), airlight (Sun et al.; isotropic only, a pass per channel of a coloured "
+                  "medium) or hoffman-preetham (any phase, one pass)");
   cmd->add_option("--scene-buffers", o.scene_buffers, "Depth/normal buffers by: raster (default) or embree");
   cmd->add_option("--samples", o.samples, "March steps per pixel per light");
   cmd->add_option("--tile", o.tile_size, "Interleaved-sampling tile side (1: no interleaving)");
@@ -68,6 +72,13 @@ void add_realtime_command(CLI::App& app, RealtimeOptions& o) {
 
 namespace {
 
+std::optional<SpotScatterModel> spot_model_of(const std::string& name) {
+  if (name == "auto") return SpotScatterModel::kAuto;
+  if (name == "airlight") return SpotScatterModel::kAirlight;
+  if (name == "hoffman-preetham") return SpotScatterModel::kHoffmanPreetham;
+  return std::nullopt;
+}
+
 int check_int(std::optional<int> v, int lo, int hi, const char* option, int fallback) {
   if (!v) return fallback;
   if (*v < lo || *v > hi)
@@ -89,6 +100,9 @@ RealtimeSettings settings_from(const RealtimeOptions& o, const SceneDesc& desc) 
   }
   if (!parse_volumetric_method(o.method))
     throw InputError(kCommandLine, "--method: expected march, none, brute, hybrid or textured, got \"" + o.method + "\"");
+  if (!spot_model_of(o.spot_model))
+    throw InputError(kCommandLine,
+                     "--spot-model: expected auto, airlight or hoffman-preetham, got \"" + o.spot_model + "\"");
   if (o.scene_buffers == "raster") s.scene_buffers = SceneBufferMethod::raster;
   else if (o.scene_buffers == "embree") s.scene_buffers = SceneBufferMethod::embree;
   else throw InputError(kCommandLine, "--scene-buffers: expected raster or embree, got \"" + o.scene_buffers + "\"");
@@ -279,7 +293,9 @@ int run_realtime(const RealtimeOptions& o) {
   const VolumetricMethod method = *parse_volumetric_method(o.method);
   HybridScatterer* scatterer = nullptr;  // owned by the pipeline
   if (method != VolumetricMethod::kMarch) {
-    auto owned = std::make_unique<HybridScatterer>(pipeline.scene(), method);
+    TexturedSpotSettings spot;
+    spot.model = *spot_model_of(o.spot_model);
+    auto owned = std::make_unique<HybridScatterer>(pipeline.scene(), method, HybridSettings{}, spot);
     scatterer = owned.get();
     pipeline.set_scatterer(std::move(owned));
   }

@@ -30,6 +30,10 @@ bool ScatteringMedium::isotropic() const { return std::visit(IsotropicCheck{}, p
 
 HoffmanPreethamStep hoffman_preetham_step(RGB sigma_t, RGB start, float step) {
   if (!(step > 0.0f)) return {RGB(0.0f), start};
+  if (sigma_t.r == sigma_t.g && sigma_t.g == sigma_t.b) {  // grey: one exp, not three
+    const float sigma = std::max(sigma_t.r, 0.0f);
+    return {start * unit_integral(sigma, step), start * std::exp(-sigma * step)};
+  }
   float integral[3], end[3];
   for (int c = 0; c < 3; ++c) {
     const float sigma = std::max(sigma_t[c], 0.0f);

@@ -132,6 +132,7 @@ struct AirlightSteps {
 struct HoffmanPreethamSteps {
   const ScatteringMedium& medium;
   Vec3 light;
+  bool grey = false;        // one exp per step for the light's leg, not three
   RGB transmittance{1.0f};  // e^{-σ_t t} at the step's start
 
   void start(float a) {
@@ -147,9 +148,10 @@ struct HoffmanPreethamSteps {
     if (!(d2 > 0.0f)) return RGB(0.0f);
     const float d = std::sqrt(d2);
     const auto leg = [&](int c) { return std::exp(-std::max(medium.sigma_t[c], 0.0f) * d); };
+    const RGB attenuation = grey ? RGB(leg(0)) : RGB(leg(0), leg(1), leg(2));
     // The light travels along v / d before scattering and towards the eye (-dir) after.
     const float phase = phase_eval(medium.phase, v / d, -dir);
-    const RGB irradiance = emitter.towards(p, dir, length) * RGB(leg(0), leg(1), leg(2)) * (lit / d2);
+    const RGB irradiance = emitter.towards(p, dir, length) * attenuation * (lit / d2);
     return irradiance * medium.sigma_s * s.integral * phase;
   }
 };
@@ -259,7 +261,7 @@ ScatterResult scatter_textured_spot(const View& view, const Plane& opaque_depth,
                                     const GoboMips* mips) {
   if (resolve_spot_model(settings.model, medium) == SpotScatterModel::kHoffmanPreetham)
     return march_spot(view, opaque_depth, shadow, light, settings, volumes, mips,
-                      [&](Vec3, Vec3) { return HoffmanPreethamSteps{medium, light.position}; });
+                      [&](Vec3, Vec3) { return HoffmanPreethamSteps{medium, light.position, medium.grey()}; });
   if (!medium.isotropic())
     throw std::invalid_argument("textured spot: the airlight model takes an isotropic phase only");
   const AirlightTable& table = AirlightTable::shared();
