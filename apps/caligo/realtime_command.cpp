@@ -36,8 +36,9 @@ void add_realtime_command(CLI::App& app, RealtimeOptions& o) {
   cmd->add_option("--res", o.resolution, "Output resolution WxH (overrides the scene)");
   cmd->add_option("--scale", o.scale, "Accumulation resolution: full, half or quarter");
   cmd->add_option("--method", o.method,
-                  "Volumetric method of point lights in one homogeneous medium: march (ray marching with shadow "
-                  "maps, all lights), none (airlight, no volumetric shadows), brute (150 steps, closed-form lit "
+                  "Volumetric method: march (ray marching with shadow maps per light, all lights), froxel (every "
+                  "light and medium in one camera-aligned froxel grid); of point lights in one homogeneous medium: "
+                  "none (airlight, no volumetric shadows), brute (150 steps, closed-form lit "
                   "intervals), hybrid (Wyman & Ramsey shadow volumes, 50 steps) or textured (hybrid, and spot lights by "
                   "the textured-spotlight march); other lights march");
   cmd->add_option("--spot-model", o.spot_model,
@@ -98,8 +99,10 @@ RealtimeSettings settings_from(const RealtimeOptions& o, const SceneDesc& desc) 
     else if (*o.scale == "quarter") s.scale = 4;
     else throw InputError(kCommandLine, "--scale: expected full, half or quarter, got \"" + *o.scale + "\"");
   }
-  if (!parse_volumetric_method(o.method))
-    throw InputError(kCommandLine, "--method: expected march, none, brute, hybrid or textured, got \"" + o.method + "\"");
+  s.froxel = o.method == "froxel";
+  if (!s.froxel && !parse_volumetric_method(o.method))
+    throw InputError(kCommandLine,
+                     "--method: expected march, froxel, none, brute, hybrid or textured, got \"" + o.method + "\"");
   if (!spot_model_of(o.spot_model))
     throw InputError(kCommandLine,
                      "--spot-model: expected auto, airlight or hoffman-preetham, got \"" + o.spot_model + "\"");
@@ -132,12 +135,14 @@ std::string light_kind(const Light& light) {
   return std::string(light_type_name(light)) + (spot && spot->gobo.image ? "+gobo" : "");
 }
 
-// "march", or what the scatterer used for the light in the last frame.
-std::string light_method(const HybridScatterer* scatterer, size_t light) {
+// "froxel", "march", or what the scatterer used for the light in the last frame.
+std::string light_method(const RealtimeSettings& settings, const HybridScatterer* scatterer, size_t light) {
+  if (settings.froxel) return "froxel";
   return volumetric_method_name(scatterer ? scatterer->used(light) : VolumetricMethod::kMarch);
 }
 
-void print_table(const SceneDesc& desc, const std::vector<PassTimes>& timed, const HybridScatterer* scatterer) {
+void print_table(const SceneDesc& desc, const RealtimeSettings& settings, const std::vector<PassTimes>& timed,
+                 const HybridScatterer* scatterer) {
   const auto row = [&](const char* name, auto get) {
     std::vector<double> v;
     for (const PassTimes& t : timed) v.push_back(get(t));
@@ -152,7 +157,7 @@ void print_table(const SceneDesc& desc, const std::vector<PassTimes>& timed, con
     if (!desc.options(i).volumetric) continue;
     char name[64];
     std::snprintf(name, sizeof name, "  light %zu (%s, %s)", i, light_kind(desc.lights[i]).c_str(),
-                  light_method(scatterer, i).c_str());
+                  light_method(settings, scatterer, i).c_str());
     row(name, [i](const PassTimes& t) { return i < t.per_light.size() ? t.per_light[i] : 0.0; });
   }
   row("gather", [](const PassTimes& t) { return t.gather; });
@@ -272,7 +277,7 @@ void print_summary(const RealtimeOptions& o, const SceneDesc& desc, const Realti
   std::string methods;
   for (size_t i = 0; i < desc.lights.size(); ++i)
     if (desc.options(i).volumetric)
-      methods += (methods.empty() ? "" : ", ") + std::to_string(i) + " " + light_method(scatterer, i);
+      methods += (methods.empty() ? "" : ", ") + std::to_string(i) + " " + light_method(settings, scatterer, i);
   std::printf("volumetric method (--method %s) per light: %s\n", o.method.c_str(),
               methods.empty() ? "no volumetric lights" : methods.c_str());
   if (!changes.empty())
@@ -290,7 +295,7 @@ int run_realtime(const RealtimeOptions& o) {
   RealtimeOutputs outputs(o, desc, frames);  // every output is checked before any work
 
   RealtimePipeline pipeline(Scene::build(desc), settings);
-  const VolumetricMethod method = *parse_volumetric_method(o.method);
+  const VolumetricMethod method = settings.froxel ? VolumetricMethod::kMarch : *parse_volumetric_method(o.method);
   HybridScatterer* scatterer = nullptr;  // owned by the pipeline
   if (method != VolumetricMethod::kMarch) {
     TexturedSpotSettings spot;
@@ -314,7 +319,7 @@ int run_realtime(const RealtimeOptions& o) {
     if (outputs.wants_frame(i == frames - 1)) outputs.frame(to_image(frame.color), i, i == frames - 1);
   }
 
-  if (!o.quiet) print_table(desc, timed, scatterer);
+  if (!o.quiet) print_table(desc, settings, timed, scatterer);
   print_summary(o, desc, settings, frames, timed, scatterer, changes);
   if (o.compare_reference) compare_with_reference(o, desc, settings, time, *last_frame, outputs);
   outputs.commit(settings.resolution.x, settings.resolution.y, desc.realtime.fps);

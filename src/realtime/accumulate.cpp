@@ -129,30 +129,34 @@ bool setup_pixel_march(RayRange span, const AccumulationRays::PixelRay& ray,
   return true;
 }
 
+RGB inscatter_scalar(const FrameLight& light, const VolumeScene& volumes, const PixelMarch& march, float t,
+                     float multiple_scattering_floor, float far) {
+  const Vec3 p = march.origin + march.dir * t;
+  const auto arrival = std::visit([&](const auto& l) { return delta_arrival(l, p); }, light.light);
+  if (!arrival) return {};
+  // sigma_s x phase summed over the primitives here: overlapping media add their
+  // coefficients and mix their phase functions in proportion to sigma_s.
+  RGB scatter;
+  for (const VolumeInterval& iv : march.intervals) {
+    if (t < iv.t0 || t > iv.t1) continue;
+    const VolumePrimitive& prim = volumes.primitive(iv.primitive);
+    scatter += prim.shader.sigma_s * (medium_density(prim, p) * phase_eval(prim.shader.phase, march.dir, arrival->wi));
+  }
+  if (scatter.is_black()) return {};
+  const float v = light.shadow ? std::max(multiple_scattering_floor, light.shadow->visibility(p)) : 1.0f;
+  if (!(v > 0.0f)) return {};
+  const Vec3 light_point = p + arrival->wi * std::min(arrival->distance, far);
+  return scatter * arrival->radiance * exp_neg(segment_optical_depth(volumes, p, light_point)) * v;
+}
+
 RGB march_scalar(const FrameLight& light, const VolumeScene& volumes, const PixelMarch& march,
                  float multiple_scattering_floor, float far) {
   RGB sum;
   for (int k = 0; k < march.samples; ++k) {
     float weight;
     const float t = march_sample(march, float(k), weight);
-    const Vec3 p = march.origin + march.dir * t;
-    const auto arrival = std::visit([&](const auto& l) { return delta_arrival(l, p); }, light.light);
-    if (!arrival) continue;
-    // sigma_s x phase summed over the primitives here: overlapping media add their
-    // coefficients and mix their phase functions in proportion to sigma_s.
-    RGB scatter;
-    for (const VolumeInterval& iv : march.intervals) {
-      if (t < iv.t0 || t > iv.t1) continue;
-      const VolumePrimitive& prim = volumes.primitive(iv.primitive);
-      scatter += prim.shader.sigma_s *
-                 (medium_density(prim, p) * phase_eval(prim.shader.phase, march.dir, arrival->wi));
-    }
-    if (scatter.is_black()) continue;
-    const float v = light.shadow ? std::max(multiple_scattering_floor, light.shadow->visibility(p)) : 1.0f;
-    if (!(v > 0.0f)) continue;
-    const Vec3 light_point = p + arrival->wi * std::min(arrival->distance, far);
-    const RGB tau = camera_optical_depth(volumes, march, t) + segment_optical_depth(volumes, p, light_point);
-    sum += scatter * arrival->radiance * exp_neg(tau) * (v * weight);
+    const RGB in = inscatter_scalar(light, volumes, march, t, multiple_scattering_floor, far);
+    if (!in.is_black()) sum += in * exp_neg(camera_optical_depth(volumes, march, t)) * weight;
   }
   return sum;
 }

@@ -60,6 +60,10 @@ float media_extent(const VolumeScene& volumes);
 // light_profile.h's delta_arrival, media.h's optical depths, ShadowMap::visibility).
 RGB march_scalar(const FrameLight& light, const VolumeScene& volumes, const PixelMarch& march,
                  float multiple_scattering_floor, float far);
+// The integrand of march_scalar at t without the camera's transmittance: radiance scattered
+// towards -march.dir per unit length (SimdMarcher::inscatter's reference).
+RGB inscatter_scalar(const FrameLight& light, const VolumeScene& volumes, const PixelMarch& march, float t,
+                     float multiple_scattering_floor, float far);
 
 // The same with xsimd, 8 samples at a time. Built once per light and frame.
 class SimdMarcher {
@@ -71,6 +75,10 @@ class SimdMarcher {
   // area lights); march() then must not be called.
   bool supported() const { return supported_; }
   RGB march(const PixelMarch& march) const;
+  // Adds to out[i] the radiance scattered towards -march.dir at march.origin + t[i] march.dir,
+  // per unit length and without the camera's transmittance (the froxel grid's injection);
+  // march.intervals must hold the media on the ray up to the last t.
+  void inscatter(const PixelMarch& march, std::span<const float> t, RGB* out) const;
   // Cache hints for the shadow-map texels march() will read: issued a pixel ahead, so the
   // scattered texel loads (the march's main cost when a map outgrows the cache) overlap
   // the previous pixel's arithmetic instead of stalling it.

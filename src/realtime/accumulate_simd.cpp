@@ -20,6 +20,7 @@ using lanes::Batch;
 using lanes::BatchVec;
 using lanes::Mask;
 constexpr int kLanes = int(Batch::size);
+alignas(32) constexpr float kLaneIndex[8] = {0, 1, 2, 3, 4, 5, 6, 7};
 
 namespace lanes {
 
@@ -176,7 +177,6 @@ Batch sample_t(const PixelMarch& m, const Batch& k, Batch& weight) {
 void SimdMarcher::prefetch(const PixelMarch& m) const {
   const ShadowMap* map = data_->light->shadow;
   if (!map) return;
-  alignas(32) static constexpr float kLaneIndex[8] = {0, 1, 2, 3, 4, 5, 6, 7};
   const Batch lane = Batch::load_aligned(kLaneIndex);
   if (ShadowRaySimd::applies(*map)) {
     const ShadowRaySimd shadow(*map, m.origin, m.dir);
@@ -277,58 +277,105 @@ void add_light_depth(const SimdMarcher::Data& d, const BatchVec& p, const SimdMa
 
 }  // namespace
 
+namespace {
+
+// What one batch of samples at t sends towards the camera, per lane: sigma_s x phase x the
+// light's arrival x shadow x e^(-tau), tau towards the light, plus the camera's when kCamera;
+// lanes outside `ok` (or unlit, or in no medium) end outside out.ok.
+struct LaneLight {
+  Batch r, g, b;
+  Mask ok;
+};
+
+struct RayPrep {
+  std::optional<ShadowRaySimd> shadow_ray;
+  bool hoist_phase = false;
+  static constexpr size_t kPhaseSlots = 8;
+  Batch phase[kPhaseSlots];
+  Mask inside[kInsideSlots];
+  size_t slots = 0;
+};
+
+// Directional and box lights arrive from one direction everywhere, so the scattering angle is
+// the same at every sample of the ray: each primitive's phase once per ray.
+void prepare_ray(const SimdMarcher::Data& d, const PixelMarch& m, RayPrep& prep) {
+  prep.slots = d.any_light_inside ? std::min(kInsideSlots, d.prims.size()) : 0;
+  prep.hoist_phase = d.arrivals->parallel() && m.intervals.size() <= RayPrep::kPhaseSlots;
+  const ShadowMap* map = d.light->shadow;
+  if (map && ShadowRaySimd::applies(*map)) prep.shadow_ray.emplace(*map, m.origin, m.dir);
+  if (!prep.hoist_phase) return;
+  const Vec3 wi = -d.arrivals->direction();
+  const Batch cos_theta = xsimd::min(xsimd::max(Batch(dot(wi, m.dir)), Batch(-1.0f)), Batch(1.0f));
+  for (size_t j = 0; j < m.intervals.size(); ++j)
+    prep.phase[j] = std::visit(lanes::PhaseBatch{cos_theta}, d.prims[m.intervals[j].primitive].phase);
+}
+
+template <bool kCamera>
+LaneLight sample_lanes(const SimdMarcher::Data& d, const PixelMarch& m, const Batch& t, Mask ok, RayPrep& prep) {
+  LaneLight out{Batch(0.0f), Batch(0.0f), Batch(0.0f), Mask(false)};
+  const BatchVec p{m.origin.x + m.dir.x * t, m.origin.y + m.dir.y * t, m.origin.z + m.dir.z * t};
+  const SimdMarcher::Data::LaneArrival a = d.arrival(p);
+  ok = ok & ((a.r > 0.0f) | (a.g > 0.0f) | (a.b > 0.0f));
+  if (xsimd::none(ok)) return out;
+  const Batch cos_theta = xsimd::min(xsimd::max(lanes::dot(a.wi, m.dir), Batch(-1.0f)), Batch(1.0f));
+  BatchScatter bs = scatter_and_camera_depth(d, m, t, p, cos_theta, prep.hoist_phase ? prep.phase : nullptr, ok,
+                                             prep.inside, prep.slots);
+  if (!kCamera) bs.tau_r = bs.tau_g = bs.tau_b = Batch(0.0f);
+  ok = ok & ((bs.s_r > 0.0f) | (bs.s_g > 0.0f) | (bs.s_b > 0.0f));
+  if (xsimd::none(ok)) return out;
+  // The shadow map before the light's optical depth: shadowed lanes need no segment.
+  Batch v(1.0f);
+  if (const ShadowMap* map = d.light->shadow) {
+    v = xsimd::max(prep.shadow_ray ? prep.shadow_ray->visibility(t) : shadow_visibility(*map, p.x, p.y, p.z),
+                   Batch(d.floor));
+    ok = ok & (v > 0.0f);
+    if (xsimd::none(ok)) return out;
+  }
+  add_light_depth(d, p, a, prep.inside, prep.slots, ok, bs);
+  const Batch tr_r = lanes::exp_neg(bs.tau_r);
+  const Batch tr_g = d.grey ? tr_r : lanes::exp_neg(bs.tau_g);
+  const Batch tr_b = d.grey ? tr_r : lanes::exp_neg(bs.tau_b);
+  out.r = bs.s_r * a.r * tr_r * v;
+  out.g = bs.s_g * a.g * tr_g * v;
+  out.b = bs.s_b * a.b * tr_b * v;
+  out.ok = ok;
+  return out;
+}
+
+}  // namespace
+
 RGB SimdMarcher::march(const PixelMarch& m) const {
-  const Data& d = *data_;
-  alignas(32) static constexpr float kLaneIndex[8] = {0, 1, 2, 3, 4, 5, 6, 7};
   static_assert(kLanes == 8, "built for AVX2 (-march=x86-64-v3)");
   const Batch lane = Batch::load_aligned(kLaneIndex);
   Batch sum_r(0.0f), sum_g(0.0f), sum_b(0.0f);
-  Mask inside[kInsideSlots];
-  const size_t slots = d.any_light_inside ? std::min(kInsideSlots, d.prims.size()) : 0;
-  // Directional and box lights arrive from one direction everywhere, so the scattering
-  // angle is the same at every sample of the ray: each primitive's phase once per pixel.
-  constexpr size_t kPhaseSlots = 8;
-  const bool hoist_phase = d.arrivals->parallel() && m.intervals.size() <= kPhaseSlots;
-  Batch phase[kPhaseSlots];
-  const ShadowMap* map = d.light->shadow;
-  std::optional<ShadowRaySimd> shadow_ray;
-  if (map && ShadowRaySimd::applies(*map)) shadow_ray.emplace(*map, m.origin, m.dir);
-  if (hoist_phase) {
-    const Vec3 wi = -d.arrivals->direction();
-    const Batch cos_theta = xsimd::min(xsimd::max(Batch(dot(wi, m.dir)), Batch(-1.0f)), Batch(1.0f));
-    for (size_t j = 0; j < m.intervals.size(); ++j)
-      phase[j] = std::visit(lanes::PhaseBatch{cos_theta}, d.prims[m.intervals[j].primitive].phase);
-  }
+  RayPrep prep;
+  prepare_ray(*data_, m, prep);
   for (int k0 = 0; k0 < m.samples; k0 += kLanes) {
     const Batch k = lane + float(k0);
     Batch weight;
     const Batch t = sample_t(m, k, weight);
-    const BatchVec p{m.origin.x + m.dir.x * t, m.origin.y + m.dir.y * t, m.origin.z + m.dir.z * t};
-    const Data::LaneArrival a = d.arrival(p);
-    Mask ok = (k < float(m.samples)) & ((a.r > 0.0f) | (a.g > 0.0f) | (a.b > 0.0f));
-    if (xsimd::none(ok)) continue;
-    const Batch cos_theta = xsimd::min(xsimd::max(lanes::dot(a.wi, m.dir), Batch(-1.0f)), Batch(1.0f));
-    BatchScatter bs = scatter_and_camera_depth(d, m, t, p, cos_theta, hoist_phase ? phase : nullptr, ok, inside, slots);
-    ok = ok & ((bs.s_r > 0.0f) | (bs.s_g > 0.0f) | (bs.s_b > 0.0f));
-    if (xsimd::none(ok)) continue;
-    // The shadow map before the light's optical depth: shadowed lanes need no segment.
-    Batch v(1.0f);
-    if (map) {
-      v = xsimd::max(shadow_ray ? shadow_ray->visibility(t) : shadow_visibility(*map, p.x, p.y, p.z),
-                     Batch(d.floor));
-      ok = ok & (v > 0.0f);
-      if (xsimd::none(ok)) continue;
-    }
-    add_light_depth(d, p, a, inside, slots, ok, bs);
-    const Batch tr_r = lanes::exp_neg(bs.tau_r);
-    const Batch tr_g = d.grey ? tr_r : lanes::exp_neg(bs.tau_g);
-    const Batch tr_b = d.grey ? tr_r : lanes::exp_neg(bs.tau_b);
-    const Batch vw = v * weight;
-    sum_r += xsimd::select(ok, bs.s_r * a.r * tr_r * vw, Batch(0.0f));
-    sum_g += xsimd::select(ok, bs.s_g * a.g * tr_g * vw, Batch(0.0f));
-    sum_b += xsimd::select(ok, bs.s_b * a.b * tr_b * vw, Batch(0.0f));
+    const LaneLight l = sample_lanes<true>(*data_, m, t, k < float(m.samples), prep);
+    sum_r += xsimd::select(l.ok, l.r * weight, Batch(0.0f));
+    sum_g += xsimd::select(l.ok, l.g * weight, Batch(0.0f));
+    sum_b += xsimd::select(l.ok, l.b * weight, Batch(0.0f));
   }
   return RGB(xsimd::hadd(sum_r), xsimd::hadd(sum_g), xsimd::hadd(sum_b));
+}
+
+void SimdMarcher::inscatter(const PixelMarch& m, std::span<const float> t, RGB* out) const {
+  const Batch lane = Batch::load_aligned(kLaneIndex);
+  RayPrep prep;
+  prepare_ray(*data_, m, prep);
+  const int n = int(t.size());
+  for (int k0 = 0; k0 < n; k0 += kLanes) {
+    alignas(32) float ts[kLanes], r[kLanes], g[kLanes], b[kLanes];
+    for (int i = 0; i < kLanes; ++i) ts[i] = t[size_t(std::min(k0 + i, n - 1))];
+    const LaneLight l = sample_lanes<false>(*data_, m, Batch::load_aligned(ts), lane + float(k0) < float(n), prep);
+    xsimd::select(l.ok, l.r, Batch(0.0f)).store_aligned(r);
+    xsimd::select(l.ok, l.g, Batch(0.0f)).store_aligned(g);
+    xsimd::select(l.ok, l.b, Batch(0.0f)).store_aligned(b);
+    for (int i = 0; i < std::min(kLanes, n - k0); ++i) out[k0 + i] += RGB(r[i], g[i], b[i]);
+  }
 }
 
 }  // namespace caligo

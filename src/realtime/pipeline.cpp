@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "core/parallel.h"
+#include "realtime/froxel_fog.h"
 #include "realtime/light_cores.h"
 #include "realtime/scene_buffers.h"
 #include "realtime/shadow_map.h"
@@ -177,6 +178,22 @@ void RealtimePipeline::upsample(RealtimeFrame& next) {
                            settings_.simd);
 }
 
+void RealtimePipeline::render_froxels(const std::vector<FrameLight>& lights, const VolumeScene& volumes,
+                                      uint32_t frame_index, RealtimeFrame& next) {
+  if (!froxels_) froxels_ = std::make_unique<FroxelFog>();
+  FroxelFog::Times t;
+  froxels_->render(lights, volumes, next.view, gbuffer_->depth, settings_, frame_index, scene_->desc().lights.size(),
+                   next.volumetric, t);
+  PassTimes& times = next.times;
+  times.rays = t.columns;
+  times.per_light = t.per_light;
+  times.accumulation = t.columns + t.media;
+  for (double l : t.per_light) times.accumulation += l;
+  times.temporal = t.reproject;
+  times.gather = t.integrate;
+  times.upsample = t.lookup;
+}
+
 // Composite before tone mapping (the seed adds the upscaled buffer to the lit scene).
 void RealtimePipeline::composite(RealtimeFrame& next) {
   if (next.color.width() != settings_.resolution.x || next.color.height() != settings_.resolution.y)
@@ -218,20 +235,24 @@ const RealtimeFrame& RealtimePipeline::render(float time, uint32_t frame_index) 
   std::optional<VolumeScene> moved;
   if (desc.media_move()) moved.emplace(desc.volumes_at(time));
   const VolumeScene& volumes = moved ? *moved : scene_->volumes();
-  ColorPlanes accum;
-  bool marched = false, scattered = false;
-  timed(times.accumulation,
-        [&] { accumulate_lights(lights, volumes, low_res, frame_index, next, accum, &marched, &scattered); });
-  ColorPlanes gathered;
-  timed(times.gather, [&] { gathered = gather(accum, marched, scattered, next); });
-  timed(times.temporal, [&] { reproject(gathered, next); });
-  timed(times.upsample, [&] {
-    upsample(next);
-    // The cores need every light in the march (a scatterer's lights are not in it).
-    if (settings_.resolve_light_cores && marched && !scattered)
-      resolve_light_cores(lights, volumes, next.view, gbuffer_->depth, settings_.accumulation,
-                          {kLightCoreRadius * float(settings_.scale), 4, 32}, next.volumetric);
-  });
+  if (settings_.froxel) {
+    render_froxels(lights, volumes, frame_index, next);
+  } else {
+    ColorPlanes accum;
+    bool marched = false, scattered = false;
+    timed(times.accumulation,
+          [&] { accumulate_lights(lights, volumes, low_res, frame_index, next, accum, &marched, &scattered); });
+    ColorPlanes gathered;
+    timed(times.gather, [&] { gathered = gather(accum, marched, scattered, next); });
+    timed(times.temporal, [&] { reproject(gathered, next); });
+    timed(times.upsample, [&] {
+      upsample(next);
+      // The cores need every light in the march (a scatterer's lights are not in it).
+      if (settings_.resolve_light_cores && marched && !scattered)
+        resolve_light_cores(lights, volumes, next.view, gbuffer_->depth, settings_.accumulation,
+                            {kLightCoreRadius * float(settings_.scale), 4, 32}, next.volumetric);
+    });
+  }
   timed(times.surfaces, [&] { shade_surfaces(*gbuffer_, next.view, *scene_, lights, next.surfaces, settings_.simd); });
   timed(times.composite, [&] { composite(next); });
   times.total = micros_since(frame_start);

@@ -22,6 +22,7 @@ namespace caligo {
 
 class Scene;
 class RasterScene;
+class FroxelFog;
 class VolumeScene;
 struct FrameLight;
 struct GBuffer;
@@ -102,6 +103,9 @@ class RealtimePipeline {
   void reproject(ColorPlanes& gathered, RealtimeFrame& next);
   void upsample(RealtimeFrame& next);
   void composite(RealtimeFrame& next);
+  // --method froxel: the grid's passes in place of accumulation, gather, temporal and upsample.
+  void render_froxels(const std::vector<FrameLight>& lights, const VolumeScene& volumes, uint32_t frame_index,
+                      RealtimeFrame& next);
 
   RealtimeSettings settings_;
   std::shared_ptr<const Scene> scene_;
@@ -113,6 +117,7 @@ class RealtimePipeline {
   bool has_history_ = false;
   std::unique_ptr<LightScatterer> scatterer_;
   ColorPlanes scatter_accum_;  // the scatterer's lights, reused frame to frame
+  std::unique_ptr<FroxelFog> froxels_;  // --method froxel: the grid and its history
 };
 
 }  // namespace caligo

@@ -27,6 +27,14 @@ struct AccumulationSettings {
 // rays (kept for comparison).
 enum class SceneBufferMethod { raster, embree };
 
+// The camera-aligned froxel grid of `--method froxel` (realtime/froxel_fog.h; Wronski 2014,
+// Hillaire 2015): columns across and down, slices in depth (exponentially spaced).
+struct FroxelSettings {
+  int width = 160, height = 90, slices = 64;
+  // Slice 1 starts at far / near_ratio (slice 0 covers the depths before it).
+  float near_ratio = 256.0f;
+};
+
 struct RealtimeSettings {
   Vec2i resolution{640, 480};
   int scale = 4;  // accumulation at resolution / scale: 1, 2 (half) or 4 (quarter)
@@ -37,6 +45,10 @@ struct RealtimeSettings {
   int scatter_gather_radius = 1;
   float gather_depth_falloff = 1000.0f;  // weight exp(-falloff * |relative depth difference|)
   bool temporal = true;                  // temporal reprojection
+  // Every light and medium into one camera-aligned froxel grid instead of a march per light
+  // (realtime/froxel_fog.h); the cost does not grow with each light's screen coverage.
+  bool froxel = false;
+  FroxelSettings froxels;
   // Light cores (realtime/light_cores.h): the output pixels around on-screen point lights and
   // spot apexes re-marched at full resolution after the upsample, when every light marches. Off
   // by default: on `arena` at 1080p it costs ~108 ms a frame (docs/techniques.md).

@@ -1,0 +1,251 @@
+// The froxel grid of `caligo realtime --method froxel`: its slices, its integration against
+// the closed form, its injection (SIMD against scalar), its reprojection, and whole frames
+// against the analytic slab and the per-light march.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "realtime/accumulate_internal.h"
+#include "realtime/froxel_fog.h"
+#include "realtime/passes.h"
+#include "realtime/scene_buffers.h"
+#include "volumes/volume_scene.h"
+
+namespace caligo {
+namespace {
+
+VolumePrimitive fog_box(Vec3 lo, Vec3 hi, RGB sigma_a, RGB sigma_s, PhaseFunction phase = IsotropicPhase{}) {
+  VolumePrimitive p;
+  p.shape = BoxVolumeShape{Transform(), lo, hi};
+  p.shader.sigma_a = sigma_a;
+  p.shader.sigma_s = sigma_s;
+  p.shader.phase = phase;
+  return p;
+}
+
+FrameLight frame_light(const Light& l, size_t index = 0) {
+  FrameLight f{*shaded_light(l), LightOptions{}, nullptr};
+  f.index = index;
+  return f;
+}
+
+FroxelGrid grid_of(int w, int h, int slices, float near, float far) {
+  FroxelGrid g;
+  g.width = w;
+  g.height = h;
+  g.slices = slices;
+  g.near = near;
+  g.far = far;
+  return g;
+}
+
+TEST(FroxelFog, SliceEdgesAreExponentialAndEdgeCoordinateIsTheirInverse) {
+  const FroxelGrid g = grid_of(4, 4, 32, 0.05f, 40.0f);
+  EXPECT_EQ(g.edge(0.0f), 0.0f);
+  EXPECT_FLOAT_EQ(g.edge(1.0f), 0.05f);
+  EXPECT_FLOAT_EQ(g.edge(32.0f), 40.0f);
+  // Equal depth ratios from edge 1 on.
+  const float ratio = std::pow(40.0f / 0.05f, 1.0f / 31.0f);
+  for (int i = 1; i < 32; ++i) EXPECT_NEAR(g.edge(float(i + 1)) / g.edge(float(i)), ratio, 1e-4f) << i;
+  for (float e = 0.0f; e <= 32.0f; e += 0.37f) EXPECT_NEAR(g.edge_coordinate(g.edge(e)), e, 2e-4f * (1.0f + e)) << e;
+  EXPECT_EQ(g.edge_coordinate(1e9f), 32.0f);  // beyond far: clamped
+}
+
+// Constant extinction sigma and in-scatter S along a column: the integral to depth z is
+// S (1 - e^(-sigma t)) / sigma at t = z / depth_per_t, and S t where sigma = 0; the
+// energy-conserving step is exact for piecewise-constant media, so every edge agrees.
+TEST(FroxelFog, IntegrationOfConstantMediaMatchesTheClosedForm) {
+  const FroxelGrid g = grid_of(2, 1, 24, 0.1f, 30.0f);
+  FroxelColumns columns;
+  columns.columns.resize(2);
+  columns.columns[0].t_per_depth = 1.0f;
+  columns.columns[1].t_per_depth = 1.25f;  // an off-axis column: longer in t than in depth
+  FroxelMedia media;
+  media.reset(g.cells());
+  const RGB sigma(0.3f, 0.0f, 2.0f), in(0.7f, 0.2f, 1.5f);
+  for (size_t i = 0; i < g.cells(); ++i) {
+    media.sigma_t[i] = sigma;
+    media.scatter[i] = in;
+  }
+  const std::vector<RGB> out = integrate_froxels(g, columns, media);
+  ASSERT_EQ(out.size(), 2u * 25u);
+  for (int c = 0; c < 2; ++c) {
+    for (int e = 0; e <= 24; ++e) {
+      const double t = double(g.edge(float(e))) * columns.columns[size_t(c)].t_per_depth;
+      const RGB v = out[size_t(c) * 25 + size_t(e)];
+      for (int ch = 0; ch < 3; ++ch) {
+        const double s = sigma[ch];
+        const double want = s > 0 ? in[ch] * (1 - std::exp(-s * t)) / s : in[ch] * t;
+        EXPECT_NEAR(v[ch], want, 2e-5 * want + 1e-7) << c << " edge " << e << " channel " << ch;
+      }
+    }
+  }
+}
+
+// Orthographic columns along +x through a slab of fog, lit from above: every froxel sees the
+// light through the same height h, so the whole frame must give
+// L = sigma_s E p e^(-sigma_t h) (1 - e^(-sigma_t D)) / sigma_t, D the depth in the fog.
+// The grid is the view's resolution and the surface sits on the last slice edge, so the only
+// error left is float rounding.
+TEST(FroxelFog, DirectionalLightInASlabMatchesTheAnalyticIntegral) {
+  const float sa = 0.1f, ss = 0.3f, st = sa + ss, depth = 6.0f;
+  VolumeScene volumes({fog_box({0, 0, -5}, {10, 2, 5}, RGB(sa), RGB(ss))});
+  const View view = View::orthographic_view({0.0f, 1.0f, 0.0f}, {1, 0, 0}, {0, 1, 0}, 0.5f, 0.5f, {4, 8});
+  const Plane depths(4, 8, depth);
+  const std::vector<FrameLight> lights{frame_light(DirectionalLight{{0, -1, 0}, RGB(2.0f)})};
+  for (bool simd : {false, true}) {
+    RealtimeSettings s;
+    s.froxels = {4, 8, 48, 256.0f};
+    s.temporal = false;
+    s.simd = simd;
+    FroxelFog fog;
+    ColorPlanes out;
+    FroxelFog::Times times;
+    fog.render(lights, volumes, view, depths, s, 0, 1, out, times);
+    ASSERT_EQ(out.width(), 4);
+    for (int y = 0; y < 8; ++y) {
+      const float h = 2.0f - (1.5f - (float(y) + 0.5f) / 8.0f);
+      const float want = ss * 2.0f * kInv4Pi * std::exp(-st * h) * (1.0f - std::exp(-st * depth)) / st;
+      for (int x = 0; x < 4; ++x) EXPECT_NEAR(out.r.at(x, y), want, 1e-4f * want) << simd << " y " << y;
+    }
+  }
+}
+
+// The grid's far end: the media's bounds, or the farthest surface where no sky is seen.
+TEST(FroxelFog, GridEndsAtTheMediaOrTheFarthestSurface) {
+  VolumeScene volumes({fog_box({-5, 0, -20}, {5, 3, -2}, RGB(0.1f), RGB(0.1f))});
+  const View view = View::perspective_view({0, 1, 0}, {0, 0, -1}, {0, 1, 0}, radians(60.0f), {8, 6});
+  Plane depth(8, 6, 7.0f);
+  EXPECT_FLOAT_EQ(fit_froxel_grid(view, volumes, depth, {}).far, 7.0f);
+  depth.at(3, 3) = kSkyDepth;
+  const FroxelGrid g = fit_froxel_grid(view, volumes, depth, {});
+  EXPECT_FLOAT_EQ(g.far, 20.0f);
+  EXPECT_FLOAT_EQ(g.near, 20.0f / 256.0f);
+}
+
+// Injection by SIMD lanes and by the scalar integrand agree to float rounding, for every
+// light type the passes shade, through coloured, anisotropic and noise-modulated media.
+TEST(FroxelFog, SimdInjectionMatchesScalar) {
+  std::vector<VolumePrimitive> prims;
+  prims.push_back(fog_box({-4, -1, -9}, {4, 4, 1}, RGB(0.02f, 0.05f, 0.08f), RGB(0.3f, 0.2f, 0.1f)));
+  VolumePrimitive noisy = fog_box({-2, 0, -7}, {0, 2, -3}, RGB(0.1f), RGB(0.3f), HenyeyGreensteinPhase{0.5f});
+  noisy.shader.noise = NoiseModulation{2.0f, 0.6f, {}, {0.1f, 0.2f, 0.3f}};
+  prims.push_back(noisy);
+  const VolumeScene volumes(std::move(prims));
+  const View view = View::perspective_view({0.0f, 1.2f, 0.5f}, {0.0f, -0.05f, -1.0f}, {0, 1, 0}, radians(60.0f),
+                                           {64, 36});
+  const FroxelGrid g = fit_froxel_grid(view, volumes, Plane(64, 36, kSkyDepth), {20, 12, 37, 128.0f});
+  const FroxelColumns columns = froxel_columns(g, view, volumes, 0.3f);
+  SpotLight spot;
+  spot.position = {-1.0f, 2.5f, -4.0f};
+  spot.direction = normalize(Vec3(0.3f, -1.0f, -0.2f));
+  spot.cos_inner = std::cos(radians(18.0f));
+  spot.cos_outer = std::cos(radians(30.0f));
+  spot.intensity = RGB(20.0f);
+  spot.range = 8.0f;
+  BoxLight box;
+  box.position = {1.0f, 3.0f, -5.0f};
+  box.direction = {0.0f, -1.0f, 0.0f};
+  box.up = {0.0f, 0.0f, 1.0f};
+  box.half_width = 0.7f;
+  box.half_height = 1.5f;
+  box.range = 4.0f;
+  box.irradiance = RGB(2.0f, 3.0f, 4.0f);
+  const std::vector<Light> lights{PointLight{{0.5f, 1.0f, -3.0f}, RGB(5.0f, 4.0f, 3.0f), 4.0f}, spot, box,
+                                  DirectionalLight{normalize(Vec3(0.4f, -1.0f, -0.3f)), RGB(1.5f)}};
+  for (const Light& l : lights) {
+    const FrameLight fl = frame_light(l);
+    ASSERT_TRUE(SimdMarcher(fl, volumes, 0.0f, 100.0f).supported());
+    FroxelMedia scalar, simd;
+    scalar.reset(g.cells());
+    simd.reset(g.cells());
+    inject_light(fl, g, columns, volumes, 0.0f, false, scalar);
+    inject_light(fl, g, columns, volumes, 0.0f, true, simd);
+    float peak = 0.0f;
+    int lit = 0;
+    for (const RGB& v : scalar.scatter) peak = std::max(peak, v.g);
+    ASSERT_GT(peak, 0.0f) << l.index();
+    for (size_t i = 0; i < g.cells(); ++i) {
+      for (int c = 0; c < 3; ++c) {
+        const float a = scalar.scatter[i][c], b = simd.scatter[i][c];
+        lit += a > 0.0f;
+        EXPECT_NEAR(a, b, 1e-4f * std::abs(a) + 1e-6f * peak) << "light " << l.index() << " froxel " << i;
+      }
+    }
+    EXPECT_GT(lit, 200) << l.index();
+  }
+}
+
+// Constant fields: a still camera blends every froxel, history + blend (current - history);
+// a camera that moved forward keeps the current value where the old grid did not reach.
+TEST(FroxelFog, ReprojectionBlendsWhereTheHistoryReaches) {
+  const View before = View::perspective_view({0, 1, 0}, {0, 0, -1}, {0, 1, 0}, radians(60.0f), {32, 18});
+  const FroxelGrid g = grid_of(16, 9, 32, 0.05f, 12.0f);
+  FroxelMedia history, current;
+  history.reset(g.cells());
+  for (RGB& v : history.sigma_t) v = RGB(0.2f);
+  for (RGB& v : history.scatter) v = RGB(1.0f);
+  auto fresh = [&] {
+    FroxelMedia m;
+    m.reset(g.cells());
+    for (RGB& v : m.sigma_t) v = RGB(0.6f);
+    for (RGB& v : m.scatter) v = RGB(3.0f);
+    return m;
+  };
+  current = fresh();
+  reproject_froxels(g, before, history, g, before, 0.25f, current);
+  for (size_t i = 0; i < g.cells(); ++i) {
+    ASSERT_NEAR(current.sigma_t[i].r, 0.2f + 0.25f * 0.4f, 1e-6f) << i;
+    ASSERT_NEAR(current.scatter[i].b, 1.0f + 0.25f * 2.0f, 1e-6f) << i;
+  }
+  // Backwards by 20 cm: the new grid's nearest slices (exponential: a quarter of them) were
+  // behind the old camera, and its edges outside the old frustum.
+  const View after = View::perspective_view({0, 1, 0.2f}, {0, 0, -1}, {0, 1, 0}, radians(60.0f), {32, 18});
+  current = fresh();
+  reproject_froxels(g, after, history, g, before, 0.25f, current);
+  int blended = 0, kept = 0;
+  for (size_t i = 0; i < g.cells(); ++i) {
+    const float v = current.scatter[i].g;
+    if (std::abs(v - 1.5f) < 1e-5f) ++blended;
+    else if (v == 3.0f) ++kept;
+    else ADD_FAILURE() << "froxel " << i << " = " << v;
+  }
+  EXPECT_GT(blended, int(g.cells()) / 3);
+  EXPECT_GT(kept, int(g.cells()) / 10);
+}
+
+// A point light in homogeneous HG fog seen in perspective: the grid converges to the
+// per-light march (400 midpoints a pixel) as the slices get finer. Measured (2026-12) mean
+// relative differences: 32 slices 0.77 %, 256 slices 0.003 %; held within 1.5 % and 0.05 %.
+TEST(FroxelFog, PointLightConvergesToTheMarchAsSlicesRefine) {
+  VolumeScene volumes({fog_box({-10, -10, -10}, {10, 10, 10}, RGB(0.05f), RGB(0.25f), HenyeyGreensteinPhase{0.5f})});
+  const FrameLight light = frame_light(PointLight{{0.4f, 0.3f, -3.0f}, RGB(3.0f), kInfinity});
+  const View view = View::perspective_view({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, radians(40.0f), {18, 14});
+  const Plane depth(18, 14, 6.0f);
+  AccumulationSettings march;
+  march.samples = 400;
+  march.tile_size = 1;
+  ColorPlanes want(18, 14);
+  accumulate_light(light, volumes, view, depth, march, want);
+  auto error = [&](int slices) {
+    RealtimeSettings s;
+    s.froxels = {18, 14, slices, 256.0f};
+    s.temporal = false;
+    FroxelFog fog;
+    ColorPlanes out;
+    FroxelFog::Times times;
+    fog.render({light}, volumes, view, depth, s, 0, 1, out, times);
+    double sum = 0.0;
+    for (size_t i = 0; i < out.r.data.size(); ++i) sum += std::abs(out.r.data[i] / want.r.data[i] - 1.0);
+    return sum / double(out.r.data.size());
+  };
+  const double coarse = error(32), fine = error(256);
+  std::printf("mean relative difference to the march: 32 slices %.3f %%, 256 slices %.3f %%\n", 100 * coarse, 100 * fine);
+  EXPECT_LT(fine, 0.1 * coarse);
+  EXPECT_LT(fine, 5e-4);
+  EXPECT_LT(coarse, 0.015);
+}
+
+}  // namespace
+}  // namespace caligo
