@@ -53,10 +53,11 @@ FroxelGrid fit_froxel_grid(const View& view, const VolumeScene& volumes, const P
   return g;
 }
 
-FroxelColumns froxel_columns(const FroxelGrid& grid, const View& view, const VolumeScene& volumes, float jitter) {
-  FroxelColumns out;
+void froxel_columns(const FroxelGrid& grid, const View& view, const VolumeScene& volumes, float jitter,
+                    FroxelColumns& out) {
   out.columns.resize(grid.columns());
   out.t.resize(grid.cells());
+  out.intervals.clear();
   std::vector<std::vector<VolumeInterval>> rows(size_t(grid.height));
   const std::vector<float> edges = slice_edges(grid);
   parallel_for(grid.height, [&](int y) {
@@ -85,7 +86,6 @@ FroxelColumns froxel_columns(const FroxelGrid& grid, const View& view, const Vol
     for (int x = 0; x < grid.width; ++x) out.columns[size_t(y) * size_t(grid.width) + size_t(x)].first += base;
     out.intervals.insert(out.intervals.end(), rows[size_t(y)].begin(), rows[size_t(y)].end());
   }
-  return out;
 }
 
 namespace {
@@ -104,14 +104,14 @@ void inject_media(const FroxelGrid& grid, const FroxelColumns& columns, const Vo
       const size_t c = size_t(y) * size_t(grid.width) + size_t(x);
       const FroxelColumns::Column& col = columns.columns[c];
       const float* t = columns.t.data() + c * size_t(grid.slices);
-      RGB* sigma_t = media.sigma_t.data() + c * size_t(grid.slices);
+      Froxel* cells = media.cells.data() + c * size_t(grid.slices);
       for (const VolumeInterval& iv : column_intervals(columns, col)) {
         const VolumePrimitive& prim = volumes.primitive(iv.primitive);
         const RGB sigma = prim.shader.sigma_a + prim.shader.sigma_s;
         // t grows with the slice: the interval covers one run of slices.
         const int s0 = int(std::lower_bound(t, t + grid.slices, iv.t0) - t);
         for (int s = s0; s < grid.slices && t[s] <= iv.t1; ++s)
-          sigma_t[s] += sigma * medium_density(prim, col.origin + col.dir * t[s]);
+          cells[s].sigma_t += sigma * medium_density(prim, col.origin + col.dir * t[s]);
       }
     }
   });
@@ -148,122 +148,72 @@ void inject_light(const FrameLight& light, const FroxelGrid& grid, const FroxelC
         for (int s = s0; s < s1; ++s)
           in[size_t(s - s0)] = inscatter_scalar(light, volumes, march, t[s], multiple_scattering_floor, far);
       }
-      RGB* scatter = media.scatter.data() + c * size_t(grid.slices);
-      for (int s = s0; s < s1; ++s) scatter[s] += in[size_t(s - s0)] * intensity;
+      Froxel* cells = media.cells.data() + c * size_t(grid.slices);
+      for (int s = s0; s < s1; ++s) cells[s].scatter += in[size_t(s - s0)] * intensity;
+    }
+  });
+}
+
+void mark_light_reach(const ShadedLight& light, const FroxelGrid& grid, const FroxelColumns& columns,
+                      std::vector<uint8_t>& fresh) {
+  fresh.resize(grid.cells(), 0);
+  parallel_for(grid.height, [&](int y) {
+    for (int x = 0; x < grid.width; ++x) {
+      const size_t c = size_t(y) * size_t(grid.width) + size_t(x);
+      const FroxelColumns::Column& col = columns.columns[c];
+      const float* t = columns.t.data() + c * size_t(grid.slices);
+      const auto reach = light_volume_interval(light, col.origin, col.dir, 0.0f, t[grid.slices - 1]);
+      if (!reach) continue;
+      // One slice more each way: the history's samples sat elsewhere in their slices.
+      const int s0 = std::max(0, int(std::lower_bound(t, t + grid.slices, reach->t0) - t) - 1);
+      const int s1 = std::min(grid.slices, int(std::upper_bound(t, t + grid.slices, reach->t1) - t) + 1);
+      for (int s = s0; s < s1; ++s) fresh[c * size_t(grid.slices) + size_t(s)] = 1;
+    }
+  });
+}
+
+void dilate_columns(const FroxelGrid& grid, std::vector<uint8_t>& mask) {
+  const size_t n = size_t(grid.slices), w = size_t(grid.width);
+  std::vector<uint8_t> across(mask.size());
+  parallel_for(grid.height, [&](int y) {
+    for (int x = 0; x < grid.width; ++x) {
+      uint8_t* o = across.data() + (size_t(y) * w + size_t(x)) * n;
+      for (int dx = std::max(0, x - 1); dx <= std::min(grid.width - 1, x + 1); ++dx) {
+        const uint8_t* m = mask.data() + (size_t(y) * w + size_t(dx)) * n;
+        for (size_t s = 0; s < n; ++s) o[s] |= m[s];
+      }
+    }
+  });
+  parallel_for(grid.height, [&](int y) {
+    for (int dy = std::max(0, y - 1); dy <= std::min(grid.height - 1, y + 1); ++dy) {
+      const uint8_t* a = across.data() + size_t(dy) * w * n;
+      uint8_t* o = mask.data() + size_t(y) * w * n;
+      for (size_t i = 0; i < w * n; ++i) o[i] |= a[i];
     }
   });
 }
 
 namespace {
 
-// Trilinear read of a froxel field at continuous cell coordinates (cell centres at integers);
-// false outside the grid.
-bool sample_field(const FroxelGrid& g, const std::vector<RGB>& field, float gx, float gy, float gs, RGB& out) {
-  if (gx < -0.5f || gy < -0.5f || gs < -0.5f || gx > float(g.width) - 0.5f || gy > float(g.height) - 0.5f ||
-      gs > float(g.slices) - 0.5f)
-    return false;
-  gx = std::clamp(gx, 0.0f, float(g.width - 1));
-  gy = std::clamp(gy, 0.0f, float(g.height - 1));
-  gs = std::clamp(gs, 0.0f, float(g.slices - 1));
-  const int x0 = std::min(int(gx), std::max(0, g.width - 2)), y0 = std::min(int(gy), std::max(0, g.height - 2)),
-            s0 = std::min(int(gs), g.slices - 2);
-  const int x1 = std::min(x0 + 1, g.width - 1), y1 = std::min(y0 + 1, g.height - 1), s1 = s0 + 1;
-  const float fx = gx - float(x0), fy = gy - float(y0), fs = gs - float(s0);
-  auto at = [&](int x, int y, int s) { return field[(size_t(y) * size_t(g.width) + size_t(x)) * size_t(g.slices) + size_t(s)]; };
-  auto lerp = [](RGB a, RGB b, float f) { return a + (b - a) * f; };
-  const RGB a = lerp(lerp(at(x0, y0, s0), at(x1, y0, s0), fx), lerp(at(x0, y1, s0), at(x1, y1, s0), fx), fy);
-  const RGB b = lerp(lerp(at(x0, y0, s1), at(x1, y0, s1), fx), lerp(at(x0, y1, s1), at(x1, y1, s1), fx), fy);
-  out = lerp(a, b, fs);
-  return true;
-}
+bool same(Vec3 a, Vec3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
 
 }  // namespace
 
-void reproject_froxels(const FroxelGrid& grid, const View& view, const FroxelMedia& history,
-                       const FroxelGrid& history_grid, const View& history_view, float blend, FroxelMedia& current) {
-  const std::vector<float> edges = slice_edges(grid);
-  parallel_for(grid.height, [&](int y) {
-    for (int x = 0; x < grid.width; ++x) {
-      const Vec2 film = grid.film(view, float(x), float(y));
-      const size_t c = size_t(y) * size_t(grid.width) + size_t(x);
-      for (int s = 0; s < grid.slices; ++s) {
-        const float z = 0.5f * (edges[size_t(s)] + edges[size_t(s) + 1]);
-        const Vec3 q = history_view.project(view.unproject(film, z));
-        if (!(q.z > 0.0f)) continue;
-        const float hx = q.x * float(history_grid.width) / float(history_view.resolution.x) - 0.5f;
-        const float hy = q.y * float(history_grid.height) / float(history_view.resolution.y) - 0.5f;
-        // Slice coordinate of the centre: the edge coordinate less half a slice.
-        const float hs = history_grid.edge_coordinate(q.z) - 0.5f;
-        RGB old_sigma, old_scatter;
-        if (!sample_field(history_grid, history.sigma_t, hx, hy, hs, old_sigma)) continue;
-        sample_field(history_grid, history.scatter, hx, hy, hs, old_scatter);
-        const size_t i = c * size_t(grid.slices) + size_t(s);
-        current.sigma_t[i] = old_sigma + (current.sigma_t[i] - old_sigma) * blend;
-        current.scatter[i] = old_scatter + (current.scatter[i] - old_scatter) * blend;
-      }
-    }
-  });
-}
-
-std::vector<RGB> integrate_froxels(const FroxelGrid& grid, const FroxelColumns& columns, const FroxelMedia& media) {
-  const size_t edges = size_t(grid.slices) + 1;
-  const std::vector<float> z = slice_edges(grid);
-  std::vector<RGB> out(grid.columns() * edges);
-  parallel_for(grid.height, [&](int y) {
-    for (int x = 0; x < grid.width; ++x) {
-      const size_t c = size_t(y) * size_t(grid.width) + size_t(x);
-      const float t_per_depth = columns.columns[c].t_per_depth;
-      RGB sum(0.0f), transmittance(1.0f);
-      RGB* o = out.data() + c * edges;
-      o[0] = sum;
-      for (int s = 0; s < grid.slices; ++s) {
-        const size_t i = c * size_t(grid.slices) + size_t(s);
-        const float dt = (z[size_t(s) + 1] - z[size_t(s)]) * t_per_depth;
-        const RGB sigma = media.sigma_t[i], in = media.scatter[i];
-        float step_t[3], step_l[3];
-        for (int ch = 0; ch < 3; ++ch) {
-          // (1 - e^(-x)) / sigma, by expm1 for a thin slice; in dt where there is no extinction.
-          const float x = sigma[ch] * dt;
-          step_t[ch] = std::exp(-x);
-          step_l[ch] = in[ch] * (x > 1e-6f ? -std::expm1(-x) / sigma[ch] : dt);
-        }
-        sum += transmittance * RGB(step_l[0], step_l[1], step_l[2]);
-        transmittance *= RGB(step_t[0], step_t[1], step_t[2]);
-        o[s + 1] = sum;
-      }
-    }
-  });
-  return out;
-}
-
-void lookup_froxels(const FroxelGrid& grid, std::span<const RGB> integrated, const Plane& depth, ColorPlanes& out) {
-  if (out.width() != depth.width || out.height() != depth.height) out = ColorPlanes(depth.width, depth.height);
-  const size_t edges = size_t(grid.slices) + 1;
-  const float sx = float(grid.width) / float(depth.width), sy = float(grid.height) / float(depth.height);
-  parallel_for(depth.height, [&](int y) {
-    const float gy = std::clamp((float(y) + 0.5f) * sy - 0.5f, 0.0f, float(grid.height - 1));
-    const int y0 = int(gy), y1 = std::min(y0 + 1, grid.height - 1);
-    const float fy = gy - float(y0);
-    const float* d = depth.row(y);
-    float *r = out.r.row(y), *g = out.g.row(y), *b = out.b.row(y);
-    for (int x = 0; x < depth.width; ++x) {
-      const float gx = std::clamp((float(x) + 0.5f) * sx - 0.5f, 0.0f, float(grid.width - 1));
-      const int x0 = int(gx), x1 = std::min(x0 + 1, grid.width - 1);
-      const float fx = gx - float(x0);
-      const float e = grid.edge_coordinate(d[x] >= kSkyDepth ? grid.far : d[x]);
-      const int e0 = std::min(int(e), grid.slices - 1);
-      const float fe = e - float(e0);
-      auto column = [&](int cx, int cy) {
-        const RGB* o = integrated.data() + (size_t(cy) * size_t(grid.width) + size_t(cx)) * edges;
-        return o[e0] + (o[e0 + 1] - o[e0]) * fe;
-      };
-      const RGB v = (column(x0, y0) * (1.0f - fx) + column(x1, y0) * fx) * (1.0f - fy) +
-                    (column(x0, y1) * (1.0f - fx) + column(x1, y1) * fx) * fy;
-      r[x] = v.r;
-      g[x] = v.g;
-      b[x] = v.b;
-    }
-  });
+bool same_pose(const ShadedLight& a, const ShadedLight& b) {
+  if (a.index() != b.index()) return false;
+  return std::visit(
+      [&](const auto& l) {
+        using L = std::decay_t<decltype(l)>;
+        const L& m = std::get<L>(b);
+        bool same_light = true;
+        if constexpr (requires { l.position; }) same_light = same_light && same(l.position, m.position);
+        if constexpr (requires { l.direction; }) same_light = same_light && same(l.direction, m.direction);
+        if constexpr (requires { l.gobo; })
+          same_light = same_light && l.gobo.offset.x == m.gobo.offset.x && l.gobo.offset.y == m.gobo.offset.y &&
+                       l.gobo.rotation == m.gobo.rotation;
+        return same_light;
+      },
+      a);
 }
 
 void FroxelFog::render(const std::vector<FrameLight>& lights, const VolumeScene& volumes, const View& view,
@@ -281,7 +231,8 @@ void FroxelFog::render(const std::vector<FrameLight>& lights, const VolumeScene&
   // sequence), and the blend averages them; without it, at the slices' middles.
   const bool temporal = settings.temporal;
   const float jitter = temporal ? std::fmod(0.5f + 0.6180340f * float(frame_index % 1024u), 1.0f) : 0.5f;
-  const FroxelColumns columns = froxel_columns(grid_, view, volumes, jitter);
+  froxel_columns(grid_, view, volumes, jitter, columns_);
+  const FroxelColumns& columns = columns_;
   times.columns = since(start);
   start = Clock::now();
   inject_media(grid_, columns, volumes, media_);
@@ -293,14 +244,30 @@ void FroxelFog::render(const std::vector<FrameLight>& lights, const VolumeScene&
     times.per_light[light.index] = since(start);
   }
   start = Clock::now();
-  if (temporal && has_history_)
-    reproject_froxels(grid_, view, history_, history_grid_, history_view_, settings.temporal_blend, media_);
+  if (temporal && has_history_) {
+    // A light that moved invalidates the history where it was and where it is: no trail.
+    fresh_.assign(grid_.cells(), 0);
+    bool any = false;
+    for (const FrameLight& light : lights) {
+      const auto old = std::find_if(history_lights_.begin(), history_lights_.end(),
+                                    [&](const FrameLight& h) { return h.index == light.index; });
+      if (old != history_lights_.end() && same_pose(old->light, light.light)) continue;
+      mark_light_reach(light.light, grid_, columns, fresh_);
+      if (old != history_lights_.end()) mark_light_reach(old->light, grid_, columns, fresh_);
+      any = true;
+    }
+    // The history is read trilinearly: a froxel next to a stale one reads it too.
+    if (any) dilate_columns(grid_, fresh_);
+    reproject_froxels(grid_, view, history_, history_grid_, history_view_, settings.temporal_blend,
+                      any ? std::span<const uint8_t>(fresh_) : std::span<const uint8_t>(), media_);
+  }
+  history_lights_ = lights;
   times.reproject = since(start);
   start = Clock::now();
-  const std::vector<RGB> integrated = integrate_froxels(grid_, columns, media_);
+  integrate_froxels(grid_, columns, media_, integrated_);
   times.integrate = since(start);
   start = Clock::now();
-  lookup_froxels(grid_, integrated, depth, out);
+  lookup_froxels(grid_, integrated_, depth, out);
   times.lookup = since(start);
   std::swap(media_, history_);
   history_grid_ = grid_;

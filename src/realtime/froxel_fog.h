@@ -66,16 +66,18 @@ struct FroxelColumns {
   std::vector<float> t;  // cells(), column-major: column c's slices at c * slices
   std::vector<VolumeInterval> intervals;
 };
-FroxelColumns froxel_columns(const FroxelGrid& grid, const View& view, const VolumeScene& volumes, float jitter);
+void froxel_columns(const FroxelGrid& grid, const View& view, const VolumeScene& volumes, float jitter,
+                    FroxelColumns& out);
 
 // What the grid holds per froxel before integration: extinction and in-scattered radiance
-// per unit length (towards the camera), both at the slice's sample.
+// per unit length (towards the camera), both at the slice's sample; together, since the
+// reprojection reads both at the same place.
+struct Froxel {
+  RGB sigma_t, scatter;
+};
 struct FroxelMedia {
-  std::vector<RGB> sigma_t, scatter;
-  void reset(size_t cells) {
-    sigma_t.assign(cells, RGB(0.0f));
-    scatter.assign(cells, RGB(0.0f));
-  }
+  std::vector<Froxel> cells;  // FroxelColumns::t's order
+  void reset(size_t n) { cells.assign(n, Froxel{}); }
 };
 
 // sigma_t of every primitive at each froxel's sample (media.h's medium_density).
@@ -86,16 +88,30 @@ void inject_media(const FroxelGrid& grid, const FroxelColumns& columns, const Vo
 void inject_light(const FrameLight& light, const FroxelGrid& grid, const FroxelColumns& columns,
                   const VolumeScene& volumes, float multiple_scattering_floor, bool simd, FroxelMedia& media);
 
+// Marks (sets to 1) the froxels whose sample `light` can reach (light_volume.h), and one slice
+// beyond each end of each run, in a mask of cells() entries: where a light that moved was or
+// is, the history is stale.
+void mark_light_reach(const ShadedLight& light, const FroxelGrid& grid, const FroxelColumns& columns,
+                      std::vector<uint8_t>& fresh);
+// Widens a mask of cells() entries by one column in x and y (the reprojection's trilinear
+// taps reach the neighbours).
+void dilate_columns(const FroxelGrid& grid, std::vector<uint8_t>& mask);
+// Whether a light has the same pose as in the previous frame: position, aim, gobo placement.
+bool same_pose(const ShadedLight& a, const ShadedLight& b);
+
 // Blends `current` with `history` (the previous frame's grid, of `history_grid` in
-// `history_view`) sampled at each froxel's centre: current = history + blend (current - history);
-// froxels whose centre the previous grid did not hold keep the current value.
+// `history_view`) sampled at each froxel's centre: current = history + blend (current - history).
+// Froxels whose centre the previous grid did not hold, or that `fresh` marks (empty: none),
+// keep the current value.
 void reproject_froxels(const FroxelGrid& grid, const View& view, const FroxelMedia& history,
-                       const FroxelGrid& history_grid, const View& history_view, float blend, FroxelMedia& current);
+                       const FroxelGrid& history_grid, const View& history_view, float blend,
+                       std::span<const uint8_t> fresh, FroxelMedia& current);
 
 // In-scattered radiance from the eye to each slice edge, per column ((slices + 1) per column,
 // edge 0 is black): each slice integrated with its sample's sigma_t and scatter held constant,
 // scatter (1 - e^(-sigma_t dt)) / sigma_t (Hillaire's energy-conserving step).
-std::vector<RGB> integrate_froxels(const FroxelGrid& grid, const FroxelColumns& columns, const FroxelMedia& media);
+void integrate_froxels(const FroxelGrid& grid, const FroxelColumns& columns, const FroxelMedia& media,
+                       std::vector<RGB>& out);
 
 // The integrated grid read at each pixel of `depth` (linear, kSkyDepth for none; the view's
 // resolution): bilinear across columns, linear between slice edges.
@@ -118,6 +134,10 @@ class FroxelFog {
   FroxelGrid grid_, history_grid_;
   View history_view_;
   FroxelMedia media_, history_;
+  FroxelColumns columns_;  // reused frame to frame
+  std::vector<RGB> integrated_;
+  std::vector<uint8_t> fresh_;
+  std::vector<FrameLight> history_lights_;  // the previous frame's, for their poses
   bool has_history_ = false;
 };
 

@@ -64,11 +64,9 @@ TEST(FroxelFog, IntegrationOfConstantMediaMatchesTheClosedForm) {
   FroxelMedia media;
   media.reset(g.cells());
   const RGB sigma(0.3f, 0.0f, 2.0f), in(0.7f, 0.2f, 1.5f);
-  for (size_t i = 0; i < g.cells(); ++i) {
-    media.sigma_t[i] = sigma;
-    media.scatter[i] = in;
-  }
-  const std::vector<RGB> out = integrate_froxels(g, columns, media);
+  for (Froxel& f : media.cells) f = {sigma, in};
+  std::vector<RGB> out;
+  integrate_froxels(g, columns, media, out);
   ASSERT_EQ(out.size(), 2u * 25u);
   for (int c = 0; c < 2; ++c) {
     for (int e = 0; e <= 24; ++e) {
@@ -136,7 +134,8 @@ TEST(FroxelFog, SimdInjectionMatchesScalar) {
   const View view = View::perspective_view({0.0f, 1.2f, 0.5f}, {0.0f, -0.05f, -1.0f}, {0, 1, 0}, radians(60.0f),
                                            {64, 36});
   const FroxelGrid g = fit_froxel_grid(view, volumes, Plane(64, 36, kSkyDepth), {20, 12, 37, 128.0f});
-  const FroxelColumns columns = froxel_columns(g, view, volumes, 0.3f);
+  FroxelColumns columns;
+  froxel_columns(g, view, volumes, 0.3f, columns);
   SpotLight spot;
   spot.position = {-1.0f, 2.5f, -4.0f};
   spot.direction = normalize(Vec3(0.3f, -1.0f, -0.2f));
@@ -164,11 +163,11 @@ TEST(FroxelFog, SimdInjectionMatchesScalar) {
     inject_light(fl, g, columns, volumes, 0.0f, true, simd);
     float peak = 0.0f;
     int lit = 0;
-    for (const RGB& v : scalar.scatter) peak = std::max(peak, v.g);
+    for (const Froxel& v : scalar.cells) peak = std::max(peak, v.scatter.g);
     ASSERT_GT(peak, 0.0f) << l.index();
     for (size_t i = 0; i < g.cells(); ++i) {
       for (int c = 0; c < 3; ++c) {
-        const float a = scalar.scatter[i][c], b = simd.scatter[i][c];
+        const float a = scalar.cells[i].scatter[c], b = simd.cells[i].scatter[c];
         lit += a > 0.0f;
         EXPECT_NEAR(a, b, 1e-4f * std::abs(a) + 1e-6f * peak) << "light " << l.index() << " froxel " << i;
       }
@@ -177,42 +176,68 @@ TEST(FroxelFog, SimdInjectionMatchesScalar) {
   }
 }
 
-// Constant fields: a still camera blends every froxel, history + blend (current - history);
-// a camera that moved forward keeps the current value where the old grid did not reach.
+// Constant fields: a still camera blends every froxel, history + blend (current - history),
+// but those marked fresh; a camera that moved keeps the current value where the old grid did
+// not reach.
 TEST(FroxelFog, ReprojectionBlendsWhereTheHistoryReaches) {
   const View before = View::perspective_view({0, 1, 0}, {0, 0, -1}, {0, 1, 0}, radians(60.0f), {32, 18});
   const FroxelGrid g = grid_of(16, 9, 32, 0.05f, 12.0f);
-  FroxelMedia history, current;
+  FroxelMedia history;
   history.reset(g.cells());
-  for (RGB& v : history.sigma_t) v = RGB(0.2f);
-  for (RGB& v : history.scatter) v = RGB(1.0f);
+  for (Froxel& f : history.cells) f = {RGB(0.2f), RGB(1.0f)};
   auto fresh = [&] {
     FroxelMedia m;
     m.reset(g.cells());
-    for (RGB& v : m.sigma_t) v = RGB(0.6f);
-    for (RGB& v : m.scatter) v = RGB(3.0f);
+    for (Froxel& f : m.cells) f = {RGB(0.6f), RGB(3.0f)};
     return m;
   };
-  current = fresh();
-  reproject_froxels(g, before, history, g, before, 0.25f, current);
+  const float blend = 0.25f, sigma = 0.2f + blend * 0.4f, scatter = 1.0f + blend * 2.0f;
+  FroxelMedia current = fresh();
+  std::vector<uint8_t> marked(g.cells(), 0);
+  for (size_t i = 0; i < g.cells(); i += 7) marked[i] = 1;
+  reproject_froxels(g, before, history, g, before, blend, marked, current);
   for (size_t i = 0; i < g.cells(); ++i) {
-    ASSERT_NEAR(current.sigma_t[i].r, 0.2f + 0.25f * 0.4f, 1e-6f) << i;
-    ASSERT_NEAR(current.scatter[i].b, 1.0f + 0.25f * 2.0f, 1e-6f) << i;
+    ASSERT_NEAR(current.cells[i].sigma_t.r, marked[i] ? 0.6f : sigma, 1e-6f) << i;
+    ASSERT_NEAR(current.cells[i].scatter.b, marked[i] ? 3.0f : scatter, 1e-6f) << i;
   }
-  // Backwards by 20 cm: the new grid's nearest slices (exponential: a quarter of them) were
-  // behind the old camera, and its edges outside the old frustum.
-  const View after = View::perspective_view({0, 1, 0.2f}, {0, 0, -1}, {0, 1, 0}, radians(60.0f), {32, 18});
+  // Backwards by 20 cm and turned a little, so the general path runs: the new grid's nearest
+  // slices (exponential: a quarter of them) were behind the old camera, its edges outside the
+  // old frustum.
+  const View after =
+      View::perspective_view({0, 1, 0.2f}, normalize(Vec3(0.05f, 0, -1)), {0, 1, 0}, radians(60.0f), {32, 18});
   current = fresh();
-  reproject_froxels(g, after, history, g, before, 0.25f, current);
+  reproject_froxels(g, after, history, g, before, blend, {}, current);
   int blended = 0, kept = 0;
   for (size_t i = 0; i < g.cells(); ++i) {
-    const float v = current.scatter[i].g;
-    if (std::abs(v - 1.5f) < 1e-5f) ++blended;
-    else if (v == 3.0f) ++kept;
-    else ADD_FAILURE() << "froxel " << i << " = " << v;
+    const Froxel& f = current.cells[i];
+    if (std::abs(f.scatter.g - scatter) < 1e-5f && std::abs(f.sigma_t.g - sigma) < 1e-6f) ++blended;
+    else if (f.scatter.g == 3.0f && f.sigma_t.g == 0.6f) ++kept;
+    else ADD_FAILURE() << "froxel " << i << " = " << f.scatter.g;
   }
   EXPECT_GT(blended, int(g.cells()) / 3);
   EXPECT_GT(kept, int(g.cells()) / 10);
+}
+
+// A light that jumps (a flashlight swung in one frame) leaves no trail: the first frame after
+// the jump equals a frame rendered without history, where the old light lit the fog before.
+TEST(FroxelFog, AMovedLightInvalidatesItsHistory) {
+  VolumeScene volumes({fog_box({-10, -10, -10}, {10, 10, 10}, RGB(0.05f), RGB(0.25f))});
+  const View view = View::perspective_view({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, radians(60.0f), {32, 18});
+  const Plane depth(32, 18, 8.0f);
+  RealtimeSettings s;
+  s.froxels = {16, 9, 32, 256.0f};
+  const FrameLight at_a = frame_light(PointLight{{-2.0f, 0.0f, -4.0f}, RGB(3.0f), 1.5f});
+  const FrameLight at_b = frame_light(PointLight{{2.0f, 0.0f, -4.0f}, RGB(3.0f), 1.5f});
+  FroxelFog fog;
+  ColorPlanes before, after, fresh;
+  FroxelFog::Times times;
+  for (uint32_t f = 0; f < 6; ++f) fog.render({at_a}, volumes, view, depth, s, f, 1, before, times);
+  fog.render({at_b}, volumes, view, depth, s, 6, 1, after, times);
+  FroxelFog clean;
+  clean.render({at_b}, volumes, view, depth, s, 6, 1, fresh, times);
+  const int ax = 9, ay = 9;  // where light A sits on screen (x = 32 (0.5 - 2/4 / (2 tan 30 deg 16/9)))
+  EXPECT_GT(before.r.at(ax, ay), 10.0f * before.r.at(31 - ax, ay));
+  for (size_t i = 0; i < after.r.data.size(); ++i) ASSERT_EQ(after.r.data[i], fresh.r.data[i]) << i;
 }
 
 // A point light in homogeneous HG fog seen in perspective: the grid converges to the

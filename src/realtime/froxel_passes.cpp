@@ -1,0 +1,200 @@
+// The froxel grid's image-to-image passes: reprojection of the previous grid, front-to-back
+// integration per column, and the per-pixel lookup (froxel_fog.h). Each touches every froxel
+// or pixel once per frame, so the transcendental functions are taken 8 lanes at a time and
+// the inner loops read contiguous memory.
+#include <xsimd/xsimd.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/parallel.h"
+#include "realtime/froxel_fog.h"
+#include "realtime/scene_buffers.h"
+
+namespace caligo {
+namespace {
+
+using Batch = xsimd::batch<float>;
+constexpr int kLanes = int(Batch::size);
+
+// FroxelGrid::edge_coordinate of n depths, 8 at a time.
+void edge_coordinates(const FroxelGrid& g, const float* z, int n, float* out) {
+  const float scale = float(g.slices - 1) / std::log(g.far / g.near), inv_near = 1.0f / g.near;
+  int i = 0;
+  for (; i + kLanes <= n; i += kLanes) {
+    const Batch d = Batch::load_unaligned(z + i) * inv_near;
+    const Batch near_part = xsimd::max(d, Batch(0.0f));
+    const Batch far_part = xsimd::min(1.0f + scale * xsimd::log(xsimd::max(d, Batch(1.0f))), Batch(float(g.slices)));
+    xsimd::select(d <= 1.0f, near_part, far_part).store_unaligned(out + i);
+  }
+  for (; i < n; ++i) out[i] = g.edge_coordinate(z[i]);
+}
+
+// The history's froxel (both fields) trilinearly at continuous cell coordinates (centres at
+// integers), clamped to the grid; the caller has checked the point lies in it.
+Froxel sample_history(const FroxelGrid& g, const Froxel* field, float gx, float gy, float gs) {
+  gx = std::clamp(gx, 0.0f, float(g.width - 1));
+  gy = std::clamp(gy, 0.0f, float(g.height - 1));
+  gs = std::clamp(gs, 0.0f, float(g.slices - 1));
+  const int x0 = std::min(int(gx), std::max(0, g.width - 2)), y0 = std::min(int(gy), std::max(0, g.height - 2));
+  const int s0 = std::min(int(gs), g.slices - 2);
+  const int dx = g.width > 1 ? g.slices : 0, dy = g.height > 1 ? g.width * g.slices : 0;
+  const float fx = gx - float(x0), fy = gy - float(y0), fs = gs - float(s0);
+  const Froxel* p = field + (size_t(y0) * size_t(g.width) + size_t(x0)) * size_t(g.slices) + size_t(s0);
+  // Weights of the 8 corners, slice pairs adjacent in memory.
+  const float w00 = (1 - fx) * (1 - fy), w10 = fx * (1 - fy), w01 = (1 - fx) * fy, w11 = fx * fy;
+  Froxel out;
+  auto add = [&](const Froxel* q, float w) {
+    out.sigma_t += (q[0].sigma_t * (1 - fs) + q[1].sigma_t * fs) * w;
+    out.scatter += (q[0].scatter * (1 - fs) + q[1].scatter * fs) * w;
+  };
+  add(p, w00);
+  add(p + dx, w10);
+  add(p + dy, w01);
+  add(p + dx + dy, w11);
+  return out;
+}
+
+// The exponential blend of one froxel towards the current frame.
+void blend_froxel(Froxel& current, const Froxel& old, float blend) {
+  current.sigma_t = old.sigma_t + (current.sigma_t - old.sigma_t) * blend;
+  current.scatter = old.scatter + (current.scatter - old.scatter) * blend;
+}
+
+bool same_view(const View& a, const View& b) {
+  auto eq = [](Vec3 u, Vec3 v) { return u.x == v.x && u.y == v.y && u.z == v.z; };
+  return a.projection == b.projection && eq(a.eye, b.eye) && eq(a.forward, b.forward) && eq(a.up, b.up) &&
+         a.resolution.x == b.resolution.x && a.resolution.y == b.resolution.y &&
+         a.tan_half_fov_y == b.tan_half_fov_y && a.aspect == b.aspect && a.half_width == b.half_width &&
+         a.half_height == b.half_height;
+}
+
+bool same_grid(const FroxelGrid& a, const FroxelGrid& b) {
+  return a.width == b.width && a.height == b.height && a.slices == b.slices && a.near == b.near && a.far == b.far;
+}
+
+}  // namespace
+
+void reproject_froxels(const FroxelGrid& grid, const View& view, const FroxelMedia& history,
+                       const FroxelGrid& history_grid, const View& history_view, float blend,
+                       std::span<const uint8_t> fresh, FroxelMedia& current) {
+  auto keeps_history = [&](size_t i) { return fresh.empty() || !fresh[i]; };
+  if (same_grid(grid, history_grid) && same_view(view, history_view)) {
+    // A still camera: every froxel's centre is its own in the history.
+    for (size_t i = 0; i < current.cells.size(); ++i)
+      if (keeps_history(i)) blend_froxel(current.cells[i], history.cells[i], blend);
+    return;
+  }
+  const std::vector<float> edges = slice_edges(grid);
+  std::vector<float> centre(size_t(grid.slices));
+  for (int s = 0; s < grid.slices; ++s) centre[size_t(s)] = 0.5f * (edges[size_t(s)] + edges[size_t(s) + 1]);
+  const float to_x = float(history_grid.width) / float(history_view.resolution.x);
+  const float to_y = float(history_grid.height) / float(history_view.resolution.y);
+  parallel_for(grid.height, [&](int y) {
+    std::vector<float> hx(size_t(grid.slices)), hy(size_t(grid.slices)), hz(size_t(grid.slices)),
+        hs(size_t(grid.slices));
+    for (int x = 0; x < grid.width; ++x) {
+      // The column's points are affine in depth: a + b z.
+      const Vec2 film = grid.film(view, float(x), float(y));
+      const Vec3 a = view.unproject(film, 0.0f), b = view.unproject(film, 1.0f) - a;
+      for (int s = 0; s < grid.slices; ++s) {
+        const Vec3 q = history_view.project(a + b * centre[size_t(s)]);
+        hx[size_t(s)] = q.x * to_x - 0.5f;
+        hy[size_t(s)] = q.y * to_y - 0.5f;
+        hz[size_t(s)] = q.z;
+      }
+      edge_coordinates(history_grid, hz.data(), grid.slices, hs.data());
+      const size_t first = (size_t(y) * size_t(grid.width) + size_t(x)) * size_t(grid.slices);
+      Froxel* cells = current.cells.data() + first;
+      for (int s = 0; s < grid.slices; ++s) {
+        if (!keeps_history(first + size_t(s))) continue;
+        // Slice coordinate of the centre: the edge coordinate less half a slice.
+        const float gx = hx[size_t(s)], gy = hy[size_t(s)], gs = hs[size_t(s)] - 0.5f;
+        if (!(hz[size_t(s)] > 0.0f) || gx < -0.5f || gy < -0.5f || gx > float(history_grid.width) - 0.5f ||
+            gy > float(history_grid.height) - 0.5f || gs > float(history_grid.slices) - 0.5f)
+          continue;
+        blend_froxel(cells[s], sample_history(history_grid, history.cells.data(), gx, gy, gs), blend);
+      }
+    }
+  });
+}
+
+void integrate_froxels(const FroxelGrid& grid, const FroxelColumns& columns, const FroxelMedia& media,
+                       std::vector<RGB>& out) {
+  const size_t edges = size_t(grid.slices) + 1;
+  const std::vector<float> z = slice_edges(grid);
+  out.resize(grid.columns() * edges);
+  parallel_for(grid.height, [&](int y) {
+    const size_t n = 3 * size_t(grid.slices);
+    std::vector<float> optical(n + kLanes), decay(n + kLanes);
+    for (int x = 0; x < grid.width; ++x) {
+      const size_t c = size_t(y) * size_t(grid.width) + size_t(x);
+      const float t_per_depth = columns.columns[c].t_per_depth;
+      const Froxel* cells = media.cells.data() + c * size_t(grid.slices);
+      for (int s = 0; s < grid.slices; ++s) {
+        const float dt = (z[size_t(s) + 1] - z[size_t(s)]) * t_per_depth;
+        for (int ch = 0; ch < 3; ++ch) optical[3 * size_t(s) + size_t(ch)] = cells[s].sigma_t[ch] * dt;
+      }
+      for (size_t i = 0; i < n; i += kLanes) xsimd::exp(-Batch::load_unaligned(&optical[i])).store_unaligned(&decay[i]);
+      RGB sum(0.0f), transmittance(1.0f);
+      RGB* o = out.data() + c * edges;
+      o[0] = sum;
+      for (int s = 0; s < grid.slices; ++s) {
+        const float dt = (z[size_t(s) + 1] - z[size_t(s)]) * t_per_depth;
+        float step_l[3];
+        for (int ch = 0; ch < 3; ++ch) {
+          // The slice's scatter S integrated: S (1 - e^(-x)) / sigma_t, x = sigma_t dt; its
+          // series S dt (1 - x/2 + x^2/6 - x^3/24) where 1 - e^(-x) would lose digits.
+          const float x = optical[3 * size_t(s) + size_t(ch)], e = decay[3 * size_t(s) + size_t(ch)];
+          const float in = cells[s].scatter[ch];
+          const float series = 1.0f - x * (0.5f - x * (1.0f / 6.0f - x * (1.0f / 24.0f)));
+          step_l[ch] = in * (x > 1e-2f ? (1.0f - e) * dt / x : dt * series);
+        }
+        sum += transmittance * RGB(step_l[0], step_l[1], step_l[2]);
+        transmittance *= RGB(decay[3 * size_t(s)], decay[3 * size_t(s) + 1], decay[3 * size_t(s) + 2]);
+        o[s + 1] = sum;
+      }
+    }
+  });
+}
+
+void lookup_froxels(const FroxelGrid& grid, std::span<const RGB> integrated, const Plane& depth, ColorPlanes& out) {
+  if (out.width() != depth.width || out.height() != depth.height) out = ColorPlanes(depth.width, depth.height);
+  const size_t edges = size_t(grid.slices) + 1;
+  const float sx = float(grid.width) / float(depth.width), sy = float(grid.height) / float(depth.height);
+  // The columns and weights of each output x, shared by every row.
+  std::vector<int> x0s(size_t(depth.width)), x1s(size_t(depth.width));
+  std::vector<float> fxs(size_t(depth.width));
+  for (int x = 0; x < depth.width; ++x) {
+    const float gx = std::clamp((float(x) + 0.5f) * sx - 0.5f, 0.0f, float(grid.width - 1));
+    x0s[size_t(x)] = int(gx);
+    x1s[size_t(x)] = std::min(int(gx) + 1, grid.width - 1);
+    fxs[size_t(x)] = gx - float(int(gx));
+  }
+  parallel_for(depth.height, [&](int y) {
+    const float gy = std::clamp((float(y) + 0.5f) * sy - 0.5f, 0.0f, float(grid.height - 1));
+    const int y0 = int(gy), y1 = std::min(y0 + 1, grid.height - 1);
+    const float fy = gy - float(y0);
+    std::vector<float> e(size_t(depth.width)), d(depth.row(y), depth.row(y) + depth.width);
+    for (float& v : d) v = v >= kSkyDepth ? grid.far : v;
+    edge_coordinates(grid, d.data(), depth.width, e.data());
+    const RGB* row0 = integrated.data() + size_t(y0) * size_t(grid.width) * edges;
+    const RGB* row1 = integrated.data() + size_t(y1) * size_t(grid.width) * edges;
+    float *r = out.r.row(y), *g = out.g.row(y), *b = out.b.row(y);
+    for (int x = 0; x < depth.width; ++x) {
+      const int e0 = std::min(int(e[size_t(x)]), grid.slices - 1);
+      const float fe = e[size_t(x)] - float(e0), fx = fxs[size_t(x)];
+      auto column = [&](const RGB* row, int cx) {
+        const RGB* o = row + size_t(cx) * edges + size_t(e0);
+        return o[0] + (o[1] - o[0]) * fe;
+      };
+      const RGB v = (column(row0, x0s[size_t(x)]) * (1.0f - fx) + column(row0, x1s[size_t(x)]) * fx) * (1.0f - fy) +
+                    (column(row1, x0s[size_t(x)]) * (1.0f - fx) + column(row1, x1s[size_t(x)]) * fx) * fy;
+      r[x] = v.r;
+      g[x] = v.g;
+      b[x] = v.b;
+    }
+  });
+}
+
+}  // namespace caligo
