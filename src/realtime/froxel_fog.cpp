@@ -154,9 +154,9 @@ void inject_light(const FrameLight& light, const FroxelGrid& grid, const FroxelC
   });
 }
 
-void mark_light_reach(const ShadedLight& light, const FroxelGrid& grid, const FroxelColumns& columns,
-                      std::vector<uint8_t>& fresh) {
-  fresh.resize(grid.cells(), 0);
+void mark_light_reach(const ShadedLight& light, const FroxelGrid& grid, const FroxelColumns& columns, uint8_t bit,
+                      std::vector<uint8_t>& mask) {
+  mask.resize(grid.cells(), 0);
   parallel_for(grid.height, [&](int y) {
     for (int x = 0; x < grid.width; ++x) {
       const size_t c = size_t(y) * size_t(grid.width) + size_t(x);
@@ -167,7 +167,7 @@ void mark_light_reach(const ShadedLight& light, const FroxelGrid& grid, const Fr
       // One slice more each way: the history's samples sat elsewhere in their slices.
       const int s0 = std::max(0, int(std::lower_bound(t, t + grid.slices, reach->t0) - t) - 1);
       const int s1 = std::min(grid.slices, int(std::upper_bound(t, t + grid.slices, reach->t1) - t) + 1);
-      for (int s = s0; s < s1; ++s) fresh[c * size_t(grid.slices) + size_t(s)] = 1;
+      for (int s = s0; s < s1; ++s) mask[c * size_t(grid.slices) + size_t(s)] |= bit;
     }
   });
 }
@@ -245,15 +245,19 @@ void FroxelFog::render(const std::vector<FrameLight>& lights, const VolumeScene&
   }
   start = Clock::now();
   if (temporal && has_history_) {
-    // A light that moved invalidates the history where it was and where it is: no trail.
+    // A light that moved invalidates the history where it lit before and no longer does, and
+    // where it lights now and did not: no trail, no lag. Where it lit in both poses the history
+    // is kept (a slowly turning spot keeps its averaged beam).
     fresh_.assign(grid_.cells(), 0);
     bool any = false;
     for (const FrameLight& light : lights) {
       const auto old = std::find_if(history_lights_.begin(), history_lights_.end(),
                                     [&](const FrameLight& h) { return h.index == light.index; });
       if (old != history_lights_.end() && same_pose(old->light, light.light)) continue;
-      mark_light_reach(light.light, grid_, columns, fresh_);
-      if (old != history_lights_.end()) mark_light_reach(old->light, grid_, columns, fresh_);
+      reach_.assign(grid_.cells(), 0);
+      mark_light_reach(light.light, grid_, columns, 1, reach_);
+      if (old != history_lights_.end()) mark_light_reach(old->light, grid_, columns, 2, reach_);
+      for (size_t i = 0; i < reach_.size(); ++i) fresh_[i] |= uint8_t(reach_[i] == 1 || reach_[i] == 2);
       any = true;
     }
     // The history is read trilinearly: a froxel next to a stale one reads it too.

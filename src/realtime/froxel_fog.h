@@ -88,11 +88,10 @@ void inject_media(const FroxelGrid& grid, const FroxelColumns& columns, const Vo
 void inject_light(const FrameLight& light, const FroxelGrid& grid, const FroxelColumns& columns,
                   const VolumeScene& volumes, float multiple_scattering_floor, bool simd, FroxelMedia& media);
 
-// Marks (sets to 1) the froxels whose sample `light` can reach (light_volume.h), and one slice
-// beyond each end of each run, in a mask of cells() entries: where a light that moved was or
-// is, the history is stale.
-void mark_light_reach(const ShadedLight& light, const FroxelGrid& grid, const FroxelColumns& columns,
-                      std::vector<uint8_t>& fresh);
+// Sets `bit` in the entries of `mask` (cells() of them) whose froxel sample `light` can reach
+// (light_volume.h), and one slice beyond each end of each run: the history there was lit by it.
+void mark_light_reach(const ShadedLight& light, const FroxelGrid& grid, const FroxelColumns& columns, uint8_t bit,
+                      std::vector<uint8_t>& mask);
 // Widens a mask of cells() entries by one column in x and y (the reprojection's trilinear
 // taps reach the neighbours).
 void dilate_columns(const FroxelGrid& grid, std::vector<uint8_t>& mask);
@@ -136,7 +135,7 @@ class FroxelFog {
   FroxelMedia media_, history_;
   FroxelColumns columns_;  // reused frame to frame
   std::vector<RGB> integrated_;
-  std::vector<uint8_t> fresh_;
+  std::vector<uint8_t> fresh_, reach_;
   std::vector<FrameLight> history_lights_;  // the previous frame's, for their poses
   bool has_history_ = false;
 };

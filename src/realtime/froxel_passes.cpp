@@ -55,10 +55,14 @@ Froxel sample_history(const FroxelGrid& g, const Froxel* field, float gx, float 
   return out;
 }
 
-// The exponential blend of one froxel towards the current frame.
-void blend_froxel(Froxel& current, const Froxel& old, float blend) {
-  current.sigma_t = old.sigma_t + (current.sigma_t - old.sigma_t) * blend;
-  current.scatter = old.scatter + (current.scatter - old.scatter) * blend;
+// One column's blend towards the current frame, old[s] the history at froxel s (used where
+// use[s]).
+void blend_column(Froxel* cells, const Froxel* old, const uint8_t* use, int n, float blend) {
+  for (int s = 0; s < n; ++s) {
+    if (!use[s]) continue;
+    cells[s].sigma_t = old[s].sigma_t + (cells[s].sigma_t - old[s].sigma_t) * blend;
+    cells[s].scatter = old[s].scatter + (cells[s].scatter - old[s].scatter) * blend;
+  }
 }
 
 bool same_view(const View& a, const View& b) {
@@ -78,43 +82,50 @@ bool same_grid(const FroxelGrid& a, const FroxelGrid& b) {
 void reproject_froxels(const FroxelGrid& grid, const View& view, const FroxelMedia& history,
                        const FroxelGrid& history_grid, const View& history_view, float blend,
                        std::span<const uint8_t> fresh, FroxelMedia& current) {
+  const size_t n = size_t(grid.slices);
   auto keeps_history = [&](size_t i) { return fresh.empty() || !fresh[i]; };
   if (same_grid(grid, history_grid) && same_view(view, history_view)) {
     // A still camera: every froxel's centre is its own in the history.
-    for (size_t i = 0; i < current.cells.size(); ++i)
-      if (keeps_history(i)) blend_froxel(current.cells[i], history.cells[i], blend);
+    parallel_for(grid.height, [&](int y) {
+      std::vector<uint8_t> use(n);
+      for (int x = 0; x < grid.width; ++x) {
+        const size_t first = (size_t(y) * size_t(grid.width) + size_t(x)) * n;
+        for (size_t s = 0; s < n; ++s) use[s] = keeps_history(first + s);
+        blend_column(current.cells.data() + first, history.cells.data() + first, use.data(), grid.slices, blend);
+      }
+    });
     return;
   }
   const std::vector<float> edges = slice_edges(grid);
-  std::vector<float> centre(size_t(grid.slices));
-  for (int s = 0; s < grid.slices; ++s) centre[size_t(s)] = 0.5f * (edges[size_t(s)] + edges[size_t(s) + 1]);
+  std::vector<float> centre(n);
+  for (size_t s = 0; s < n; ++s) centre[s] = 0.5f * (edges[s] + edges[s + 1]);
   const float to_x = float(history_grid.width) / float(history_view.resolution.x);
   const float to_y = float(history_grid.height) / float(history_view.resolution.y);
   parallel_for(grid.height, [&](int y) {
-    std::vector<float> hx(size_t(grid.slices)), hy(size_t(grid.slices)), hz(size_t(grid.slices)),
-        hs(size_t(grid.slices));
+    std::vector<float> hx(n), hy(n), hz(n), hs(n);
+    std::vector<Froxel> old(n);
+    std::vector<uint8_t> use(n);
     for (int x = 0; x < grid.width; ++x) {
       // The column's points are affine in depth: a + b z.
       const Vec2 film = grid.film(view, float(x), float(y));
       const Vec3 a = view.unproject(film, 0.0f), b = view.unproject(film, 1.0f) - a;
-      for (int s = 0; s < grid.slices; ++s) {
-        const Vec3 q = history_view.project(a + b * centre[size_t(s)]);
-        hx[size_t(s)] = q.x * to_x - 0.5f;
-        hy[size_t(s)] = q.y * to_y - 0.5f;
-        hz[size_t(s)] = q.z;
+      for (size_t s = 0; s < n; ++s) {
+        const Vec3 q = history_view.project(a + b * centre[s]);
+        hx[s] = q.x * to_x - 0.5f;
+        hy[s] = q.y * to_y - 0.5f;
+        hz[s] = q.z;
       }
       edge_coordinates(history_grid, hz.data(), grid.slices, hs.data());
-      const size_t first = (size_t(y) * size_t(grid.width) + size_t(x)) * size_t(grid.slices);
-      Froxel* cells = current.cells.data() + first;
-      for (int s = 0; s < grid.slices; ++s) {
-        if (!keeps_history(first + size_t(s))) continue;
+      const size_t first = (size_t(y) * size_t(grid.width) + size_t(x)) * n;
+      for (size_t s = 0; s < n; ++s) {
         // Slice coordinate of the centre: the edge coordinate less half a slice.
-        const float gx = hx[size_t(s)], gy = hy[size_t(s)], gs = hs[size_t(s)] - 0.5f;
-        if (!(hz[size_t(s)] > 0.0f) || gx < -0.5f || gy < -0.5f || gx > float(history_grid.width) - 0.5f ||
-            gy > float(history_grid.height) - 0.5f || gs > float(history_grid.slices) - 0.5f)
-          continue;
-        blend_froxel(cells[s], sample_history(history_grid, history.cells.data(), gx, gy, gs), blend);
+        const float gx = hx[s], gy = hy[s], gs = hs[s] - 0.5f;
+        use[s] = keeps_history(first + s) && hz[s] > 0.0f && gx >= -0.5f && gy >= -0.5f &&
+                 gx <= float(history_grid.width) - 0.5f && gy <= float(history_grid.height) - 0.5f &&
+                 gs <= float(history_grid.slices) - 0.5f;
+        if (use[s]) old[s] = sample_history(history_grid, history.cells.data(), gx, gy, gs);
       }
+      blend_column(current.cells.data() + first, old.data(), use.data(), grid.slices, blend);
     }
   });
 }
