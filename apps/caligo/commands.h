@@ -62,6 +62,7 @@ struct RealtimeOptions {
   std::optional<std::string> scale;          // full, half, quarter
   std::string method = "march";              // march (Lords of the Fallen), none, brute or hybrid
   std::string spot_model = "auto";           // textured spots: auto, airlight or hoffman-preetham
+  std::optional<std::string> froxels;        // --method froxel: the grid, WxHxD
   std::string scene_buffers = "raster";      // raster or embree
   std::optional<int> samples;
   std::optional<int> tile_size;

@@ -17,6 +17,7 @@
 #include "commands.h"
 #include "realtime_outputs.h"
 #include "core/median.h"
+#include "core/message_text.h"
 #include "hybrid/hybrid_pipeline.h"
 #include "realtime/pipeline.h"
 #include "realtime/reference_compare.h"
@@ -41,6 +42,7 @@ void add_realtime_command(CLI::App& app, RealtimeOptions& o) {
                   "none (airlight, no volumetric shadows), brute (150 steps, closed-form lit "
                   "intervals), hybrid (Wyman & Ramsey shadow volumes, 50 steps) or textured (hybrid, and spot lights by "
                   "the textured-spotlight march); other lights march");
+  cmd->add_option("--froxels", o.froxels, "--method froxel: the grid's columns and depth slices, WxHxD (default 160x90x64)");
   cmd->add_option("--spot-model", o.spot_model,
                   "Per-step in-scattering of --method textured spots: auto (airlight for a grey isotropic medium, "
                   "else Hoffman-Preetham), airlight (Sun et al.; isotropic only, a pass per channel of a coloured "
@@ -88,6 +90,23 @@ int check_int(std::optional<int> v, int lo, int hi, const char* option, int fall
   return *v;
 }
 
+// --froxels WxHxD: 1 to 1024 columns each way and 2 to 512 slices (a 512^3 grid would hold
+// 3 GB: the product is held to 2^26 froxels).
+FroxelSettings parse_froxels(const std::string& text, FroxelSettings s) {
+  int w = 0, h = 0, d = 0;
+  char x1 = 0, x2 = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c%d%c", &w, &x1, &h, &x2, &d, &extra) != 5 || x1 != 'x' || x2 != 'x')
+    throw InputError(kCommandLine, "--froxels: expected WxHxD such as 160x90x64, got " + quote_for_message(text));
+  if (w < 1 || h < 1 || w > 1024 || h > 1024 || d < 2 || d > 512 ||
+      uint64_t(w) * uint64_t(h) * uint64_t(d) > (uint64_t(1) << 26))
+    throw InputError(kCommandLine, "--froxels: expected 1 to 1024 columns each way, 2 to 512 slices and at most "
+                                   "2^26 froxels, got " + quote_for_message(text));
+  s.width = w;
+  s.height = h;
+  s.slices = d;
+  return s;
+}
+
 RealtimeSettings settings_from(const RealtimeOptions& o, const SceneDesc& desc) {
   RealtimeSettings s = realtime_settings(desc);
   if (o.resolution) s.resolution = parse_resolution(*o.resolution);
@@ -103,6 +122,7 @@ RealtimeSettings settings_from(const RealtimeOptions& o, const SceneDesc& desc) 
   if (!s.froxel && !parse_volumetric_method(o.method))
     throw InputError(kCommandLine,
                      "--method: expected march, froxel, none, brute, hybrid or textured, got \"" + o.method + "\"");
+  if (o.froxels) s.froxels = parse_froxels(*o.froxels, s.froxels);
   if (!spot_model_of(o.spot_model))
     throw InputError(kCommandLine,
                      "--spot-model: expected auto, airlight or hoffman-preetham, got \"" + o.spot_model + "\"");

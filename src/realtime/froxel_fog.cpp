@@ -117,16 +117,27 @@ void inject_media(const FroxelGrid& grid, const FroxelColumns& columns, const Vo
   });
 }
 
-void inject_light(const FrameLight& light, const FroxelGrid& grid, const FroxelColumns& columns,
+PixelRect froxel_rect(const ShadedLight& light, const FroxelGrid& grid, const View& view) {
+  View at_grid = view;
+  at_grid.resolution = {grid.width, grid.height};
+  const PixelRect r = light_screen_bounds(light, at_grid);
+  return {std::max(r.x0, 0), std::max(r.y0, 0), std::min(r.x1, grid.width), std::min(r.y1, grid.height)};
+}
+
+void inject_light(const FrameLight& light, const FroxelGrid& grid, const View& view, const FroxelColumns& columns,
                   const VolumeScene& volumes, float multiple_scattering_floor, bool simd, FroxelMedia& media) {
   if (!light.options.volumetric || volumes.empty()) return;
+  // Only the columns whose rays can meet the light's volume (a small lamp: a few).
+  const PixelRect rect = froxel_rect(light.light, grid, view);
+  if (rect.x0 >= rect.x1 || rect.y0 >= rect.y1) return;
   const float far = media_extent(volumes);
   const SimdMarcher marcher(light, volumes, multiple_scattering_floor, far);
   const bool use_simd = simd && marcher.supported();
   const RGB intensity(light.options.volumetric_intensity);
-  parallel_for(grid.height, [&](int y) {
+  parallel_for(rect.y1 - rect.y0, [&](int row) {
+    const int y = rect.y0 + row;
     std::vector<RGB> in(size_t(grid.slices));
-    for (int x = 0; x < grid.width; ++x) {
+    for (int x = rect.x0; x < rect.x1; ++x) {
       const size_t c = size_t(y) * size_t(grid.width) + size_t(x);
       const FroxelColumns::Column& col = columns.columns[c];
       if (col.count == 0) continue;
@@ -154,11 +165,13 @@ void inject_light(const FrameLight& light, const FroxelGrid& grid, const FroxelC
   });
 }
 
-void mark_light_reach(const ShadedLight& light, const FroxelGrid& grid, const FroxelColumns& columns, uint8_t bit,
-                      std::vector<uint8_t>& mask) {
+void mark_light_reach(const ShadedLight& light, const FroxelGrid& grid, const View& view,
+                      const FroxelColumns& columns, uint8_t bit, std::vector<uint8_t>& mask) {
   mask.resize(grid.cells(), 0);
-  parallel_for(grid.height, [&](int y) {
-    for (int x = 0; x < grid.width; ++x) {
+  const PixelRect rect = froxel_rect(light, grid, view);
+  parallel_for(std::max(rect.y1 - rect.y0, 0), [&](int row) {
+    const int y = rect.y0 + row;
+    for (int x = rect.x0; x < rect.x1; ++x) {
       const size_t c = size_t(y) * size_t(grid.width) + size_t(x);
       const FroxelColumns::Column& col = columns.columns[c];
       const float* t = columns.t.data() + c * size_t(grid.slices);
@@ -239,8 +252,8 @@ void FroxelFog::render(const std::vector<FrameLight>& lights, const VolumeScene&
   times.media = since(start);
   for (const FrameLight& light : lights) {
     start = Clock::now();
-    inject_light(light, grid_, columns, volumes, settings.accumulation.multiple_scattering_floor, settings.simd,
-                 media_);
+    inject_light(light, grid_, view, columns, volumes, settings.accumulation.multiple_scattering_floor,
+                 settings.simd, media_);
     times.per_light[light.index] = since(start);
   }
   start = Clock::now();
@@ -255,8 +268,8 @@ void FroxelFog::render(const std::vector<FrameLight>& lights, const VolumeScene&
                                     [&](const FrameLight& h) { return h.index == light.index; });
       if (old != history_lights_.end() && same_pose(old->light, light.light)) continue;
       reach_.assign(grid_.cells(), 0);
-      mark_light_reach(light.light, grid_, columns, 1, reach_);
-      if (old != history_lights_.end()) mark_light_reach(old->light, grid_, columns, 2, reach_);
+      mark_light_reach(light.light, grid_, view, columns, 1, reach_);
+      if (old != history_lights_.end()) mark_light_reach(old->light, grid_, view, columns, 2, reach_);
       for (size_t i = 0; i < reach_.size(); ++i) fresh_[i] |= uint8_t(reach_[i] == 1 || reach_[i] == 2);
       any = true;
     }

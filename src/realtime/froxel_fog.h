@@ -85,13 +85,14 @@ void inject_media(const FroxelGrid& grid, const FroxelColumns& columns, const Vo
                   FroxelMedia& media);
 // Adds `light`'s single scattering at each froxel its volume reaches (the march's integrand:
 // shadow map, the light's optical depth, phase; times the light's volumetric_intensity).
-void inject_light(const FrameLight& light, const FroxelGrid& grid, const FroxelColumns& columns,
+// Only the columns of light_screen_bounds (at the grid's resolution) are visited.
+void inject_light(const FrameLight& light, const FroxelGrid& grid, const View& view, const FroxelColumns& columns,
                   const VolumeScene& volumes, float multiple_scattering_floor, bool simd, FroxelMedia& media);
 
 // Sets `bit` in the entries of `mask` (cells() of them) whose froxel sample `light` can reach
 // (light_volume.h), and one slice beyond each end of each run: the history there was lit by it.
-void mark_light_reach(const ShadedLight& light, const FroxelGrid& grid, const FroxelColumns& columns, uint8_t bit,
-                      std::vector<uint8_t>& mask);
+void mark_light_reach(const ShadedLight& light, const FroxelGrid& grid, const View& view,
+                      const FroxelColumns& columns, uint8_t bit, std::vector<uint8_t>& mask);
 // Widens a mask of cells() entries by one column in x and y (the reprojection's trilinear
 // taps reach the neighbours).
 void dilate_columns(const FroxelGrid& grid, std::vector<uint8_t>& mask);

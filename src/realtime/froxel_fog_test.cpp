@@ -159,8 +159,8 @@ TEST(FroxelFog, SimdInjectionMatchesScalar) {
     FroxelMedia scalar, simd;
     scalar.reset(g.cells());
     simd.reset(g.cells());
-    inject_light(fl, g, columns, volumes, 0.0f, false, scalar);
-    inject_light(fl, g, columns, volumes, 0.0f, true, simd);
+    inject_light(fl, g, view, columns, volumes, 0.0f, false, scalar);
+    inject_light(fl, g, view, columns, volumes, 0.0f, true, simd);
     float peak = 0.0f;
     int lit = 0;
     for (const Froxel& v : scalar.cells) peak = std::max(peak, v.scatter.g);
