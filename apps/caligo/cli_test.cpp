@@ -457,6 +457,19 @@ TEST_F(Cli, RealtimeFroxelFogMatchesTheReference) {
   EXPECT_LT(relative_rmse, 4.0);
 }
 
+// Lights the real-time passes do not shade are named in a warning and in the table, never
+// dropped silently; the shaded ones say nothing.
+TEST_F(Cli, RealtimeNamesTheLightsItDoesNotShade) {
+  const RunResult r = run("realtime lights-showcase --res 64x36 --frames 1");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* name : {"light 1 (sphere)", "light 3 (quad)", "light 5 (environment)"})
+    EXPECT_NE(r.err.find(std::string("warning: ") + name + " is not shaded"), std::string::npos) << name << r.err;
+  for (const char* name : {"light 0 (", "light 2 (", "light 4 ("})
+    EXPECT_EQ(r.err.find(std::string("warning: ") + name), std::string::npos) << name << r.err;
+  EXPECT_NE(r.out.find("light 1 (sphere, not shaded)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("light 2 (point, march)"), std::string::npos) << r.out;
+}
+
 // The Wyman & Ramsey hybrid on its built-in scene: every occluder (the ground box, the
 // sphere) is closed, so the point light really takes the hybrid, not a fallback.
 TEST_F(Cli, RealtimeRunsTheHybridMethodOnAWymanScene) {

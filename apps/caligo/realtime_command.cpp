@@ -19,6 +19,7 @@
 #include "core/median.h"
 #include "core/message_text.h"
 #include "hybrid/hybrid_pipeline.h"
+#include "realtime/frame_light.h"
 #include "realtime/pipeline.h"
 #include "realtime/reference_compare.h"
 #include "render/render.h"
@@ -155,8 +156,11 @@ std::string light_kind(const Light& light) {
   return std::string(light_type_name(light)) + (spot && spot->gobo.image ? "+gobo" : "");
 }
 
-// "froxel", "march", or what the scatterer used for the light in the last frame.
-std::string light_method(const RealtimeSettings& settings, const HybridScatterer* scatterer, size_t light) {
+// "not shaded" (a light type the passes leave to the path tracer), "froxel", "march", or what
+// the scatterer used for the light in the last frame.
+std::string light_method(const SceneDesc& desc, const RealtimeSettings& settings, const HybridScatterer* scatterer,
+                         size_t light) {
+  if (!shaded_light(desc.lights[light])) return "not shaded";
   if (settings.froxel) return "froxel";
   return volumetric_method_name(scatterer ? scatterer->used(light) : VolumetricMethod::kMarch);
 }
@@ -177,7 +181,7 @@ void print_table(const SceneDesc& desc, const RealtimeSettings& settings, const 
     if (!desc.options(i).volumetric) continue;
     char name[64];
     std::snprintf(name, sizeof name, "  light %zu (%s, %s)", i, light_kind(desc.lights[i]).c_str(),
-                  light_method(settings, scatterer, i).c_str());
+                  light_method(desc, settings, scatterer, i).c_str());
     row(name, [i](const PassTimes& t) { return i < t.per_light.size() ? t.per_light[i] : 0.0; });
   }
   row("gather", [](const PassTimes& t) { return t.gather; });
@@ -297,7 +301,7 @@ void print_summary(const RealtimeOptions& o, const SceneDesc& desc, const Realti
   std::string methods;
   for (size_t i = 0; i < desc.lights.size(); ++i)
     if (desc.options(i).volumetric)
-      methods += (methods.empty() ? "" : ", ") + std::to_string(i) + " " + light_method(settings, scatterer, i);
+      methods += (methods.empty() ? "" : ", ") + std::to_string(i) + " " + light_method(desc, settings, scatterer, i);
   std::printf("volumetric method (--method %s) per light: %s\n", o.method.c_str(),
               methods.empty() ? "no volumetric lights" : methods.c_str());
   if (!changes.empty())
@@ -314,6 +318,14 @@ int run_realtime(const RealtimeOptions& o) {
   check_realtime_options(o, desc);
   RealtimeOutputs outputs(o, desc, frames);  // every output is checked before any work
 
+  // The passes shade point, spot, box and directional lights; the others are named, never
+  // dropped silently (the --compare-reference path tracer does include them).
+  for (size_t i = 0; i < desc.lights.size(); ++i)
+    if (!shaded_light(desc.lights[i]))
+      std::fprintf(stderr,
+                   "caligo: warning: light %zu (%s) is not shaded by the real-time passes (they shade point, spot, box "
+                   "and directional lights); it is left out of every frame\n",
+                   i, light_type_name(desc.lights[i]));
   RealtimePipeline pipeline(Scene::build(desc), settings);
   const VolumetricMethod method = settings.froxel ? VolumetricMethod::kMarch : *parse_volumetric_method(o.method);
   HybridScatterer* scatterer = nullptr;  // owned by the pipeline
