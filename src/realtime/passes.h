@@ -26,9 +26,11 @@ Plane downsample_depth(const Plane& full_depth, int scale);
 void accumulate_light(const FrameLight& light, const VolumeScene& volumes, const View& view,
                       const Plane& depth, const AccumulationSettings& settings, ColorPlanes& accum);
 
-// Separable (2 radius + 1)-tap Gaussian with depth weights exp(-falloff |d - d0| / d0).
+// Separable (2 radius + 1)-tap Gaussian with depth weights exp(-falloff |d - d0 - k s| / d0),
+// s the depth's slope at the centre along the pass (gather.cpp; 0 with follow_slope false,
+// the seed's weight).
 ColorPlanes bilateral_gather(const ColorPlanes& in, const Plane& depth, int radius, float depth_falloff,
-                             bool simd = true);
+                             bool simd = true, bool follow_slope = true);
 
 // Full-resolution result from the low-resolution one: bilinear where the four
 // low-resolution depths around a pixel agree with its depth, the tap of nearest depth where

@@ -151,7 +151,8 @@ void RealtimePipeline::accumulate_lights(const std::vector<FrameLight>& lights, 
 
 ColorPlanes RealtimePipeline::gather(ColorPlanes& accum, bool marched, bool scattered, const RealtimeFrame& next) {
   const auto pass = [&](ColorPlanes& in, int radius) {
-    return radius > 0 ? bilateral_gather(in, next.low_depth, radius, settings_.gather_depth_falloff, settings_.simd)
+    return radius > 0 ? bilateral_gather(in, next.low_depth, radius, settings_.gather_depth_falloff, settings_.simd,
+                                         settings_.gather_follow_slope)
                       : std::move(in);
   };
   ColorPlanes gathered = scattered && !marched ? pass(scatter_accum_, settings_.scatter_gather_radius)

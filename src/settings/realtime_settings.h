@@ -44,6 +44,9 @@ struct RealtimeSettings {
   // noise to blur, only low-resolution edges, so Wyman & Ramsey's 3x3 bilateral filter.
   int scatter_gather_radius = 1;
   float gather_depth_falloff = 1000.0f;  // weight exp(-falloff * |relative depth difference|)
+  // The depth difference taken from the plane through the centre along the pass (a wall seen
+  // edge-on keeps its taps: realtime/gather.cpp); false: the seed's weight on depth alone.
+  bool gather_follow_slope = true;
   bool temporal = true;                  // temporal reprojection
   // Every light and medium into one camera-aligned froxel grid instead of a march per light
   // (realtime/froxel_fog.h); the cost does not grow with each light's screen coverage.
