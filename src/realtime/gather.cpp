@@ -13,7 +13,9 @@
 // interleaving pattern stays as vertical streaks. Predicted along the plane, the taps on the
 // wall agree again; across a depth edge the smaller one-sided difference is the near side's,
 // so taps beyond the edge still miss the prediction by the jump and are rejected.
-// `follow_slope` false gives the seed's weight (kept for comparison).
+// The one-sided slope is not the central one on curved depth (a floor's rows, 1/y), so the
+// taps of one side fit better than the other's and the blur leans: opt-in
+// (RealtimeSettings::gather_follow_slope), the seed's weight by default.
 #include <xsimd/xsimd.hpp>
 
 #include <cmath>

@@ -30,7 +30,7 @@ void accumulate_light(const FrameLight& light, const VolumeScene& volumes, const
 // s the depth's slope at the centre along the pass (gather.cpp; 0 with follow_slope false,
 // the seed's weight).
 ColorPlanes bilateral_gather(const ColorPlanes& in, const Plane& depth, int radius, float depth_falloff,
-                             bool simd = true, bool follow_slope = true);
+                             bool simd = true, bool follow_slope = false);
 
 // Full-resolution result from the low-resolution one: bilinear where the four
 // low-resolution depths around a pixel agree with its depth, the tap of nearest depth where

@@ -229,8 +229,8 @@ RenderSettings parse_render(const JsonCursor& c) {
 
 RealtimeSettings parse_realtime(const JsonCursor& c) {
   ObjectReader r(c, "the realtime settings");
-  r.allow({"scale", "tile_size", "samples", "gather_radius", "gather_depth_falloff", "temporal",
-           "temporal_blend", "multiple_scattering_floor", "steps", "fps", "frames"});
+  r.allow({"scale", "tile_size", "samples", "gather_radius", "gather_depth_falloff", "gather_follow_slope",
+           "temporal", "temporal_blend", "multiple_scattering_floor", "steps", "froxels", "fps", "frames"});
   RealtimeSettings d;
   if (r.has("scale")) {
     const std::string scale = r.choice("scale", {"full", "half", "quarter"});
@@ -240,7 +240,18 @@ RealtimeSettings parse_realtime(const JsonCursor& c) {
   d.accumulation.samples = int(r.integer_or("samples", d.accumulation.samples, Range::closed(1, 1024)));
   d.gather_radius = int(r.integer_or("gather_radius", d.gather_radius, Range::closed(0, 16)));
   d.gather_depth_falloff = r.number_or("gather_depth_falloff", d.gather_depth_falloff, Range::positive());
+  d.gather_follow_slope = r.boolean_or("gather_follow_slope", d.gather_follow_slope);
   d.temporal = r.boolean_or("temporal", d.temporal);
+  if (auto f = r.optional("froxels")) {
+    // The grid of `caligo realtime --method froxel`.
+    ObjectReader fr(*f, "the froxel grid");
+    fr.allow({"width", "height", "slices", "near_ratio"});
+    d.froxels.width = int(fr.integer_or("width", d.froxels.width, Range::closed(1, 1024)));
+    d.froxels.height = int(fr.integer_or("height", d.froxels.height, Range::closed(1, 1024)));
+    d.froxels.slices = int(fr.integer_or("slices", d.froxels.slices, Range::closed(2, 512)));
+    d.froxels.near_ratio = fr.number_or("near_ratio", d.froxels.near_ratio, Range::closed(2, 1e6));
+    fr.finish();
+  }
   d.temporal_blend = r.number_or("temporal_blend", d.temporal_blend, Range::above_up_to(0, 1));
   d.accumulation.multiple_scattering_floor =
       r.number_or("multiple_scattering_floor", d.accumulation.multiple_scattering_floor, Range::closed(0, 1));
