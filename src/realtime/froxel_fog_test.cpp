@@ -3,6 +3,7 @@
 // against the analytic slab and the per-light march.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -106,6 +107,42 @@ TEST(FroxelFog, DirectionalLightInASlabMatchesTheAnalyticIntegral) {
       const float h = 2.0f - (1.5f - (float(y) + 0.5f) / 8.0f);
       const float want = ss * 2.0f * kInv4Pi * std::exp(-st * h) * (1.0f - std::exp(-st * depth)) / st;
       for (int x = 0; x < 4; ++x) EXPECT_NEAR(out.r.at(x, y), want, 1e-4f * want) << simd << " y " << y;
+    }
+  }
+}
+
+// The lookup against the trilinear read written out: bilinear across the four columns around
+// the pixel, linear between the slice edges around its depth (8-lane rows and their tails).
+TEST(FroxelFog, LookupIsBilinearAcrossColumnsAndLinearInSlices) {
+  const FroxelGrid g = grid_of(7, 5, 12, 0.1f, 20.0f);
+  std::vector<RGB> integrated(g.columns() * 13);
+  uint32_t state = 7u;
+  auto rnd = [&] {
+    state = state * 1664525u + 1013904223u;
+    return float(state >> 8) / float(1u << 24);
+  };
+  for (RGB& v : integrated) v = RGB(rnd(), rnd(), rnd());
+  Plane depth(37, 23);
+  for (float& d : depth.data) d = 25.0f * rnd();
+  depth.at(3, 4) = kSkyDepth;
+  ColorPlanes out;
+  lookup_froxels(g, integrated, depth, out);
+  for (int y = 0; y < 23; ++y) {
+    for (int x = 0; x < 37; ++x) {
+      const float gx = std::clamp((x + 0.5f) * 7 / 37.0f - 0.5f, 0.0f, 6.0f);
+      const float gy = std::clamp((y + 0.5f) * 5 / 23.0f - 0.5f, 0.0f, 4.0f);
+      const float d = depth.at(x, y) >= kSkyDepth ? g.far : depth.at(x, y);
+      const float e = g.edge_coordinate(d);
+      const int e0 = std::min(int(e), 11);
+      RGB want;
+      for (int cy = 0; cy < 5; ++cy) {
+        for (int cx = 0; cx < 7; ++cx) {
+          const float w = std::max(0.0f, 1 - std::abs(gx - cx)) * std::max(0.0f, 1 - std::abs(gy - cy));
+          const RGB* o = &integrated[(size_t(cy) * 7 + size_t(cx)) * 13];
+          want += (o[e0] + (o[e0 + 1] - o[e0]) * (e - float(e0))) * w;
+        }
+      }
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(out.at(x, y)[c], want[c], 1e-4f) << x << "," << y << " " << c;
     }
   }
 }

@@ -9,6 +9,7 @@
 
 #include "core/parallel.h"
 #include "realtime/froxel_fog.h"
+#include "realtime/light_profile_simd.h"
 #include "realtime/scene_buffers.h"
 
 namespace caligo {
@@ -183,6 +184,7 @@ void lookup_froxels(const FroxelGrid& grid, std::span<const RGB> integrated, con
     fxs[size_t(x)] = gx - float(int(gx));
   }
   parallel_for(depth.height, [&](int y) {
+    using IBatch = xsimd::batch<int32_t>;
     const float gy = std::clamp((float(y) + 0.5f) * sy - 0.5f, 0.0f, float(grid.height - 1));
     const int y0 = int(gy), y1 = std::min(y0 + 1, grid.height - 1);
     const float fy = gy - float(y0);
@@ -192,7 +194,30 @@ void lookup_froxels(const FroxelGrid& grid, std::span<const RGB> integrated, con
     const RGB* row0 = integrated.data() + size_t(y0) * size_t(grid.width) * edges;
     const RGB* row1 = integrated.data() + size_t(y1) * size_t(grid.width) * edges;
     float *r = out.r.row(y), *g = out.g.row(y), *b = out.b.row(y);
-    for (int x = 0; x < depth.width; ++x) {
+    int x = 0;
+    // 8 pixels at a time: the four columns' two edges around each depth by AVX2 gathers.
+    const float* f0 = reinterpret_cast<const float*>(row0);
+    const float* f1 = reinterpret_cast<const float*>(row1);
+    for (; x + kLanes <= depth.width; x += kLanes) {
+      const Batch ev = Batch::load_unaligned(&e[size_t(x)]);
+      const IBatch e0 = xsimd::min(xsimd::batch_cast<int32_t>(ev), IBatch(grid.slices - 1));
+      const Batch fe = ev - xsimd::batch_cast<float>(e0), fx = Batch::load_unaligned(&fxs[size_t(x)]);
+      const IBatch i0 = (IBatch::load_unaligned(&x0s[size_t(x)]) * int32_t(edges) + e0) * 3;
+      const IBatch i1 = (IBatch::load_unaligned(&x1s[size_t(x)]) * int32_t(edges) + e0) * 3;
+      auto at = [&](const float* f, const IBatch& i, int ch) {
+        const Batch lo = profile_simd::gather(f + ch, i), hi = profile_simd::gather(f + ch + 3, i);
+        return lo + (hi - lo) * fe;
+      };
+      auto channel = [&](int ch) {
+        const Batch top = at(f0, i0, ch) * (1.0f - fx) + at(f0, i1, ch) * fx;
+        const Batch bottom = at(f1, i0, ch) * (1.0f - fx) + at(f1, i1, ch) * fx;
+        return top * (1.0f - fy) + bottom * fy;
+      };
+      channel(0).store_unaligned(r + x);
+      channel(1).store_unaligned(g + x);
+      channel(2).store_unaligned(b + x);
+    }
+    for (; x < depth.width; ++x) {
       const int e0 = std::min(int(e[size_t(x)]), grid.slices - 1);
       const float fe = e[size_t(x)] - float(e0), fx = fxs[size_t(x)];
       auto column = [&](const RGB* row, int cx) {
