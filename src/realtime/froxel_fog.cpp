@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <utility>
 
 #include "core/parallel.h"
 #include "realtime/accumulate_internal.h"
@@ -165,43 +166,64 @@ void inject_light(const FrameLight& light, const FroxelGrid& grid, const View& v
   });
 }
 
-void mark_light_reach(const ShadedLight& light, const FroxelGrid& grid, const View& view,
-                      const FroxelColumns& columns, uint8_t bit, std::vector<uint8_t>& mask) {
-  mask.resize(grid.cells(), 0);
-  const PixelRect rect = froxel_rect(light, grid, view);
-  parallel_for(std::max(rect.y1 - rect.y0, 0), [&](int row) {
-    const int y = rect.y0 + row;
-    for (int x = rect.x0; x < rect.x1; ++x) {
-      const size_t c = size_t(y) * size_t(grid.width) + size_t(x);
-      const FroxelColumns::Column& col = columns.columns[c];
-      const float* t = columns.t.data() + c * size_t(grid.slices);
-      const auto reach = light_volume_interval(light, col.origin, col.dir, 0.0f, t[grid.slices - 1]);
-      if (!reach) continue;
-      // One slice more each way: the history's samples sat elsewhere in their slices.
-      const int s0 = std::max(0, int(std::lower_bound(t, t + grid.slices, reach->t0) - t) - 1);
-      const int s1 = std::min(grid.slices, int(std::upper_bound(t, t + grid.slices, reach->t1) - t) + 1);
-      for (int s = s0; s < s1; ++s) mask[c * size_t(grid.slices) + size_t(s)] |= bit;
-    }
-  });
+namespace {
+
+// Slices [s0, s1) of a column whose samples `light` can reach, one more each way (the
+// history's samples sat elsewhere in their slices); empty when none.
+std::pair<int, int> reached_slices(const ShadedLight& light, const FroxelGrid& grid, const FroxelColumns& columns,
+                                   size_t c) {
+  const FroxelColumns::Column& col = columns.columns[c];
+  const float* t = columns.t.data() + c * size_t(grid.slices);
+  const auto reach = light_volume_interval(light, col.origin, col.dir, 0.0f, t[grid.slices - 1]);
+  if (!reach) return {0, 0};
+  const int s0 = int(std::lower_bound(t, t + grid.slices, reach->t0) - t);
+  const int s1 = int(std::upper_bound(t, t + grid.slices, reach->t1) - t);
+  if (s1 <= s0) return {0, 0};
+  return {std::max(0, s0 - 1), std::min(grid.slices, s1 + 1)};
 }
 
-void dilate_columns(const FroxelGrid& grid, std::vector<uint8_t>& mask) {
-  const size_t n = size_t(grid.slices), w = size_t(grid.width);
-  std::vector<uint8_t> across(mask.size());
-  parallel_for(grid.height, [&](int y) {
-    for (int x = 0; x < grid.width; ++x) {
-      uint8_t* o = across.data() + (size_t(y) * w + size_t(x)) * n;
-      for (int dx = std::max(0, x - 1); dx <= std::min(grid.width - 1, x + 1); ++dx) {
-        const uint8_t* m = mask.data() + (size_t(y) * w + size_t(dx)) * n;
-        for (size_t s = 0; s < n; ++s) o[s] |= m[s];
-      }
+PixelRect united(PixelRect a, PixelRect b) {
+  if (a.x0 >= a.x1 || a.y0 >= a.y1) return b;
+  if (b.x0 >= b.x1 || b.y0 >= b.y1) return a;
+  return {std::min(a.x0, b.x0), std::min(a.y0, b.y0), std::max(a.x1, b.x1), std::max(a.y1, b.y1)};
+}
+
+}  // namespace
+
+void mark_moved_light(const ShadedLight* before, const ShadedLight& now, const FroxelGrid& grid, const View& view,
+                      const FroxelColumns& columns, std::vector<uint8_t>& fresh) {
+  PixelRect rect =
+      before ? united(froxel_rect(*before, grid, view), froxel_rect(now, grid, view)) : froxel_rect(now, grid, view);
+  if (rect.x0 >= rect.x1 || rect.y0 >= rect.y1) return;
+  // The history is read trilinearly, so a froxel next to a stale one reads it too: each column
+  // takes the runs of its 3x3 neighbourhood, found once per column first.
+  rect = {std::max(rect.x0 - 1, 0), std::max(rect.y0 - 1, 0), std::min(rect.x1 + 1, grid.width),
+          std::min(rect.y1 + 1, grid.height)};
+  const int w = rect.x1 - rect.x0, h = rect.y1 - rect.y0;
+  struct Runs {
+    std::pair<int, int> now, before;
+  };
+  std::vector<Runs> runs(size_t(w) * size_t(h));
+  parallel_for(h, [&](int row) {
+    for (int col = 0; col < w; ++col) {
+      const size_t c = size_t(rect.y0 + row) * size_t(grid.width) + size_t(rect.x0 + col);
+      Runs& r = runs[size_t(row) * size_t(w) + size_t(col)];
+      r.now = reached_slices(now, grid, columns, c);
+      r.before = before ? reached_slices(*before, grid, columns, c) : std::pair<int, int>{0, 0};
     }
   });
-  parallel_for(grid.height, [&](int y) {
-    for (int dy = std::max(0, y - 1); dy <= std::min(grid.height - 1, y + 1); ++dy) {
-      const uint8_t* a = across.data() + size_t(dy) * w * n;
-      uint8_t* o = mask.data() + size_t(y) * w * n;
-      for (size_t i = 0; i < w * n; ++i) o[i] |= a[i];
+  parallel_for(h, [&](int row) {
+    for (int col = 0; col < w; ++col) {
+      uint8_t* m = fresh.data() + (size_t(rect.y0 + row) * size_t(grid.width) + size_t(rect.x0 + col)) *
+                                      size_t(grid.slices);
+      for (int dy = std::max(row - 1, 0); dy <= std::min(row + 1, h - 1); ++dy) {
+        for (int dx = std::max(col - 1, 0); dx <= std::min(col + 1, w - 1); ++dx) {
+          const auto [a, b] = runs[size_t(dy) * size_t(w) + size_t(dx)];
+          // The slices in exactly one of the two runs.
+          for (int s = std::min(a.first, b.first); s < std::max(a.second, b.second); ++s)
+            m[s] |= uint8_t((s >= a.first && s < a.second) != (s >= b.first && s < b.second));
+        }
+      }
     }
   });
 }
@@ -267,14 +289,10 @@ void FroxelFog::render(const std::vector<FrameLight>& lights, const VolumeScene&
       const auto old = std::find_if(history_lights_.begin(), history_lights_.end(),
                                     [&](const FrameLight& h) { return h.index == light.index; });
       if (old != history_lights_.end() && same_pose(old->light, light.light)) continue;
-      reach_.assign(grid_.cells(), 0);
-      mark_light_reach(light.light, grid_, view, columns, 1, reach_);
-      if (old != history_lights_.end()) mark_light_reach(old->light, grid_, view, columns, 2, reach_);
-      for (size_t i = 0; i < reach_.size(); ++i) fresh_[i] |= uint8_t(reach_[i] == 1 || reach_[i] == 2);
+      mark_moved_light(old != history_lights_.end() ? &old->light : nullptr, light.light, grid_, view, columns,
+                       fresh_);
       any = true;
     }
-    // The history is read trilinearly: a froxel next to a stale one reads it too.
-    if (any) dilate_columns(grid_, fresh_);
     reproject_froxels(grid_, view, history_, history_grid_, history_view_, settings.temporal_blend,
                       any ? std::span<const uint8_t>(fresh_) : std::span<const uint8_t>(), media_);
   }

@@ -89,13 +89,13 @@ void inject_media(const FroxelGrid& grid, const FroxelColumns& columns, const Vo
 void inject_light(const FrameLight& light, const FroxelGrid& grid, const View& view, const FroxelColumns& columns,
                   const VolumeScene& volumes, float multiple_scattering_floor, bool simd, FroxelMedia& media);
 
-// Sets `bit` in the entries of `mask` (cells() of them) whose froxel sample `light` can reach
-// (light_volume.h), and one slice beyond each end of each run: the history there was lit by it.
-void mark_light_reach(const ShadedLight& light, const FroxelGrid& grid, const View& view,
-                      const FroxelColumns& columns, uint8_t bit, std::vector<uint8_t>& mask);
-// Widens a mask of cells() entries by one column in x and y (the reprojection's trilinear
-// taps reach the neighbours).
-void dilate_columns(const FroxelGrid& grid, std::vector<uint8_t>& mask);
+// Sets to 1 the entries of `fresh` (cells() of them) whose froxel sample one pose of a moved
+// light reaches and the other does not (`before` null: a new light, every froxel it reaches),
+// each run one slice wider (the history's samples sat elsewhere in their slices) and one
+// column wider each way (its trilinear taps): there the history is stale. Where both poses
+// reach, the history is kept.
+void mark_moved_light(const ShadedLight* before, const ShadedLight& now, const FroxelGrid& grid, const View& view,
+                      const FroxelColumns& columns, std::vector<uint8_t>& fresh);
 // Whether a light has the same pose as in the previous frame: position, aim, gobo placement.
 bool same_pose(const ShadedLight& a, const ShadedLight& b);
 
@@ -136,7 +136,7 @@ class FroxelFog {
   FroxelMedia media_, history_;
   FroxelColumns columns_;  // reused frame to frame
   std::vector<RGB> integrated_;
-  std::vector<uint8_t> fresh_, reach_;
+  std::vector<uint8_t> fresh_;
   std::vector<FrameLight> history_lights_;  // the previous frame's, for their poses
   bool has_history_ = false;
 };
