@@ -294,7 +294,7 @@ void FroxelFog::render(const std::vector<FrameLight>& lights, const VolumeScene&
       any = true;
     }
     reproject_froxels(grid_, view, history_, history_grid_, history_view_, settings.temporal_blend,
-                      any ? std::span<const uint8_t>(fresh_) : std::span<const uint8_t>(), media_);
+                      any ? std::span<const uint8_t>(fresh_) : std::span<const uint8_t>(), media_, settings.simd);
   }
   history_lights_ = lights;
   times.reproject = since(start);

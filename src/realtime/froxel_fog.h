@@ -76,8 +76,10 @@ struct Froxel {
   RGB sigma_t, scatter;
 };
 struct FroxelMedia {
-  std::vector<Froxel> cells;  // FroxelColumns::t's order
-  void reset(size_t n) { cells.assign(n, Froxel{}); }
+  // FroxelColumns::t's order, and one padding froxel at the end (the reprojection's 8-lane
+  // loads of a slice pair read 2 floats past the pair).
+  std::vector<Froxel> cells;
+  void reset(size_t n) { cells.assign(n + 1, Froxel{}); }
 };
 
 // sigma_t of every primitive at each froxel's sample (media.h's medium_density).
@@ -105,7 +107,7 @@ bool same_pose(const ShadedLight& a, const ShadedLight& b);
 // keep the current value.
 void reproject_froxels(const FroxelGrid& grid, const View& view, const FroxelMedia& history,
                        const FroxelGrid& history_grid, const View& history_view, float blend,
-                       std::span<const uint8_t> fresh, FroxelMedia& current);
+                       std::span<const uint8_t> fresh, FroxelMedia& current, bool simd = true);
 
 // In-scattered radiance from the eye to each slice edge, per column ((slices + 1) per column,
 // edge 0 is black): each slice integrated with its sample's sigma_t and scatter held constant,

@@ -255,6 +255,37 @@ TEST(FroxelFog, ReprojectionBlendsWhereTheHistoryReaches) {
   EXPECT_GT(kept, int(g.cells()) / 10);
 }
 
+// The reprojection's 8-lane slice-pair reads against the scalar ones, on random fields and a
+// camera that moved and turned (slices 37: lanes and a tail).
+TEST(FroxelFog, SimdReprojectionMatchesScalar) {
+  const View before = View::perspective_view({0, 1, 0}, {0, 0, -1}, {0, 1, 0}, radians(60.0f), {40, 24});
+  const View after =
+      View::perspective_view({0.3f, 1.1f, 0.4f}, normalize(Vec3(0.1f, -0.05f, -1)), {0, 1, 0}, radians(55.0f), {40, 24});
+  const FroxelGrid g = grid_of(20, 12, 37, 0.05f, 15.0f);
+  uint32_t state = 3u;
+  auto rnd = [&] {
+    state = state * 1664525u + 1013904223u;
+    return float(state >> 8) / float(1u << 24);
+  };
+  FroxelMedia history, current;
+  history.reset(g.cells());
+  current.reset(g.cells());
+  for (Froxel& f : history.cells) f = {RGB(rnd(), rnd(), rnd()), RGB(rnd(), rnd(), rnd())};
+  for (Froxel& f : current.cells) f = {RGB(rnd(), rnd(), rnd()), RGB(rnd(), rnd(), rnd())};
+  FroxelMedia scalar = current, simd = current;
+  reproject_froxels(g, after, history, g, before, 0.3f, {}, scalar, false);
+  reproject_froxels(g, after, history, g, before, 0.3f, {}, simd, true);
+  int changed = 0;
+  for (size_t i = 0; i < g.cells(); ++i) {
+    changed += scalar.cells[i].scatter.r != current.cells[i].scatter.r;
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_NEAR(simd.cells[i].sigma_t[c], scalar.cells[i].sigma_t[c], 1e-5f) << i;
+      ASSERT_NEAR(simd.cells[i].scatter[c], scalar.cells[i].scatter[c], 1e-5f) << i;
+    }
+  }
+  EXPECT_GT(changed, int(g.cells()) / 4);
+}
+
 // A light that jumps (a flashlight swung in one frame) leaves no trail: the first frame after
 // the jump equals a frame rendered without history, where the old light lit the fog before.
 TEST(FroxelFog, AMovedLightInvalidatesItsHistory) {
