@@ -326,6 +326,11 @@ int run_realtime(const RealtimeOptions& o) {
                    "caligo: warning: light %zu (%s) is not shaded by the real-time passes (they shade point, spot, box "
                    "and directional lights); it is left out of every frame\n",
                    i, light_type_name(desc.lights[i]));
+  if (settings.scene_buffers == SceneBufferMethod::embree &&
+      std::any_of(desc.materials.begin(), desc.materials.end(),
+                  [](const Material& m) { return std::holds_alternative<DielectricBsdf>(m.bsdf); }))
+    std::fprintf(stderr, "caligo: warning: --scene-buffers embree draws glass (dielectric) surfaces opaque; the "
+                         "rasteriser (the default) shows what lies behind them\n");
   RealtimePipeline pipeline(Scene::build(desc), settings);
   const VolumetricMethod method = settings.froxel ? VolumetricMethod::kMarch : *parse_volumetric_method(o.method);
   HybridScatterer* scatterer = nullptr;  // owned by the pipeline

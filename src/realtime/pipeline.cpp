@@ -65,6 +65,11 @@ RealtimePipeline::RealtimePipeline(std::shared_ptr<const Scene> scene, const Rea
                                              "lens (\"aperture_radius\" or \"fstop\"); use `caligo render`");
   // Geometry never moves: its triangles are set up once.
   raster_ = std::make_unique<RasterScene>(RasterScene::build(*scene_));
+  RasterScene glass = RasterScene::build(*scene_, RasterScene::Layer::glass);
+  if (glass.triangle_count() > 0) {
+    glass_raster_ = std::make_unique<RasterScene>(std::move(glass));
+    camera_raster_ = std::make_unique<RasterScene>(RasterScene::build(*scene_, RasterScene::Layer::opaque));
+  }
   gbuffer_ = std::make_unique<GBuffer>();
   shadows_.resize(desc.lights.size());
 }
@@ -102,10 +107,12 @@ void timed(double& micros, Stage&& stage) {
 }  // namespace
 
 void RealtimePipeline::draw_scene_buffers(RealtimeFrame& next) {
-  if (settings_.scene_buffers == SceneBufferMethod::raster)
-    rasterize_gbuffer(*raster_, next.view, *gbuffer_, settings_.simd);
-  else
+  if (settings_.scene_buffers == SceneBufferMethod::embree) {
     *gbuffer_ = trace_gbuffer(*scene_, next.view);
+    return;
+  }
+  rasterize_gbuffer(camera_raster_ ? *camera_raster_ : *raster_, next.view, *gbuffer_, settings_.simd);
+  if (glass_raster_) glass_transmission_ = glass_transmission(*glass_raster_, *scene_, next.view, gbuffer_->depth);
 }
 
 // The camera side of the march is built on the first light that marches: when a scatterer takes
@@ -208,6 +215,14 @@ void RealtimePipeline::composite(RealtimeFrame& next) {
     add_row(next.color.r, next.surfaces.r, next.volumetric.r);
     add_row(next.color.g, next.surfaces.g, next.volumetric.g);
     add_row(next.color.b, next.surfaces.b, next.volumetric.b);
+    // Glass in front: what lies behind it, through its two interfaces.
+    if (glass_transmission_.width == next.color.width() && glass_transmission_.height == next.color.height()) {
+      const float* t = glass_transmission_.row(y);
+      for (Plane* p : {&next.color.r, &next.color.g, &next.color.b}) {
+        float* o = p->row(y);
+        for (int x = 0; x < p->width; ++x) o[x] *= t[x];
+      }
+    }
   });
 }
 

@@ -109,7 +109,11 @@ class RealtimePipeline {
 
   RealtimeSettings settings_;
   std::shared_ptr<const Scene> scene_;
-  std::unique_ptr<RasterScene> raster_;
+  std::unique_ptr<RasterScene> raster_;  // every surface: the shadow maps
+  // With glass in the scene: the camera's surfaces without it, the glass alone, and per pixel
+  // the glass's transmission (1 where none; glass_transmission()).
+  std::unique_ptr<RasterScene> camera_raster_, glass_raster_;
+  Plane glass_transmission_;
   std::vector<CachedShadow> shadows_;
   AccumulationRays accumulation_rays_;  // per-frame camera side of accumulation, storage reused
   std::unique_ptr<GBuffer> gbuffer_;  // reused frame to frame (allocation costs as much as drawing it)

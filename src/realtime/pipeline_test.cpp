@@ -99,3 +99,45 @@ TEST(RealtimePipeline, NonVolumetricLightsLightOnlySurfaces) {
 
 }  // namespace
 }  // namespace caligo
+
+namespace caligo {
+namespace {
+
+// A pane of glass between the camera and a lit wall: the wall shows through it, dimmed by the
+// two interfaces' Fresnel transmission, (1 - F)^2 = 0.9216 at normal incidence for n = 1.5;
+// the pixels beside the pane are untouched. (It was drawn as opaque black.)
+TEST(RealtimePipeline, GlassShowsWhatIsBehindItThroughItsTransmission) {
+  auto scene = [](bool pane) {
+    std::string json = R"({
+      "camera": {"position": [0, 1, 5], "look_at": [0, 1, 0], "fov": 40, "resolution": [48, 32]},
+      "materials": {"grey": {"type": "diffuse", "reflectance": 0.5}, "glass": {"type": "dielectric", "ior": 1.5}},
+      "lights": [{"type": "point", "position": [0, 1, 1], "intensity": 4}],
+      "shapes": [{"type": "rectangle", "corner": [-4, -2, 0], "edge1": [8, 0, 0], "edge2": [0, 6, 0], "material": "grey"})";
+    if (pane)
+      json += R"(, {"type": "rectangle", "corner": [-0.5, 0.5, 3], "edge1": [1, 0, 0], "edge2": [0, 1, 0], "material": "glass"})";
+    return parse_scene_text(json + "]}", "glass-test", ".");
+  };
+  const SceneDesc with = scene(true), without = scene(false);
+  RealtimeSettings s = realtime_settings(with);
+  s.temporal = false;
+  RealtimePipeline a(Scene::build(with), s), b(Scene::build(without), s);
+  const ColorPlanes seen = a.render(0.0f, 0).color, bare = b.render(0.0f, 0).color;
+  int behind = 0;
+  for (int y = 0; y < 32; ++y) {
+    for (int x = 0; x < 48; ++x) {
+      const float ratio = seen.g.at(x, y) / bare.g.at(x, y);
+      ASSERT_GT(bare.g.at(x, y), 0.0f) << x << "," << y;
+      if (ratio < 0.999f) {
+        ++behind;
+        EXPECT_NEAR(ratio, 0.9216f, 0.004f) << x << "," << y;  // the pane spans +-4 degrees
+      } else {
+        EXPECT_EQ(ratio, 1.0f) << x << "," << y;
+      }
+    }
+  }
+  EXPECT_GT(behind, 20);
+  EXPECT_NEAR(seen.g.at(24, 16) / bare.g.at(24, 16), 0.9216f, 1e-3f);
+}
+
+}  // namespace
+}  // namespace caligo

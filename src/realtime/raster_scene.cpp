@@ -73,13 +73,16 @@ void RasterScene::add_triangle(Vec3 p0, Vec3 p1, Vec3 p2, Vec3 n0, Vec3 n1, Vec3
   materials_.push_back(material);
 }
 
-RasterScene RasterScene::build(const Scene& scene) {
+RasterScene RasterScene::build(const Scene& scene, Layer layer) {
   RasterScene out;
   const EmbreeScene& surfaces = scene.surfaces();
   for (uint32_t g = 0; g < uint32_t(surfaces.geometry_count()); ++g) {
     const int32_t m = material_index(scene, g);
+    const Bsdf& bsdf = scene.materials()[size_t(m)].bsdf;
     // Null surfaces are invisible to the path tracer's camera and shadow rays alike.
-    if (std::holds_alternative<NullBsdf>(scene.materials()[size_t(m)].bsdf)) continue;
+    if (std::holds_alternative<NullBsdf>(bsdf)) continue;
+    const bool glass = std::holds_alternative<DielectricBsdf>(bsdf);
+    if ((layer == Layer::opaque && glass) || (layer == Layer::glass && !glass)) continue;
     if (surfaces.is_sphere(g))
       add_sphere(out, surfaces.sphere(g), m);
     else

@@ -39,7 +39,11 @@ class RasterScene {
   static constexpr int kSphereSegments = 64;  // around the pole axis
   static constexpr int kSphereRings = 32;     // pole to pole
 
-  static RasterScene build(const Scene& scene);
+  // Which surfaces: every one the light sees (shadow maps: glass occludes direct light, as a
+  // path tracer's shadow ray through a dielectric finds), those the camera sees as surfaces
+  // (glass left out, so what lies behind it shows), or the glass alone (its transmission).
+  enum class Layer { all, opaque, glass };
+  static RasterScene build(const Scene& scene, Layer layer = Layer::all);
   // One triangle in world space with unit shading normals at its vertices; material indexes
   // Scene::materials(). Degenerate (zero-area) triangles are dropped.
   void add_triangle(Vec3 p0, Vec3 p1, Vec3 p2, Vec3 n0, Vec3 n1, Vec3 n2, int32_t material);
@@ -68,5 +72,10 @@ void rasterize_gbuffer(const RasterScene& scene, const View& view, GBuffer& out,
 Plane rasterize_depth(const RasterScene& scene, const View& view, bool simd = true);
 // The same buffers from Embree primary rays (one per pixel centre), for comparison.
 GBuffer trace_gbuffer(const Scene& scene, const View& view);
+
+// Per pixel of `view`, what the glass (a RasterScene::Layer::glass scene) in front of the
+// opaque surfaces at `opaque_depth` lets through: (1 - F)^2 at the nearest glass face
+// (realtime/glass.cpp), 1 where no glass is in front.
+Plane glass_transmission(const RasterScene& glass, const Scene& scene, const View& view, const Plane& opaque_depth);
 
 }  // namespace caligo
