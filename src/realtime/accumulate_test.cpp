@@ -1,9 +1,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "lights/gobo.h"
 #include "lights/ies.h"
+#include "lights/light_profile.h"
 #include "realtime/accumulate_internal.h"
 #include "realtime/media.h"
 #include "realtime/passes.h"
@@ -405,6 +407,49 @@ TEST(Accumulate, EquiangularStepsResolveARayPassingNearAPointLight) {
   s.equiangular = false;
   const double uniform = run(light, volumes, view, depth, s).r.at(0, 0);
   EXPECT_GT(std::abs(uniform - want), 0.2 * want);  // what equiangular placement fixes
+}
+
+}  // namespace
+}  // namespace caligo
+
+namespace caligo {
+namespace {
+
+// The artefact "small lights missed by long rays": a lamp of range 0.5 m, 40 m down a 60 m
+// ray through fog, the ray passing 10 cm from it. The march clips each light to its volume
+// (light_volume.h), so its 16 steps land in the lamp's metre of ray (6 cm apart), not one step
+// in 3.75 m that would hit or miss it by luck. Measured (2026-12): uniform -0.01 %,
+// equiangular +1.03 % (the range window's smooth edge); held within 2 %.
+TEST(Accumulate, ASmallLightFarAlongALongRayIsNotMissed) {
+  const float sa = 0.01f, ss = 0.05f, st = sa + ss;
+  VolumeScene volumes({fog_box({-10, -10, -70}, {10, 10, 10}, RGB(sa), RGB(ss), IsotropicPhase{})});
+  const Vec3 lamp{0.1f, 0.0f, -40.0f};
+  const float range = 0.5f;
+  const FrameLight light = frame_light(PointLight{lamp, RGB(1.0f), range});
+  const View view = View::perspective_view({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, radians(1e-3f), {1, 1});
+  const Plane depth(1, 1, 60.0f);
+  const Ray r = view.ray({0.5f, 0.5f});
+  // The dense integral, with the lamp's range window as light_profile.h applies it.
+  double want = 0.0;
+  const int n = 4'000'000;
+  for (int i = 0; i < n; ++i) {
+    const double t = 39.0 + (i + 0.5) * 2.0 / n;
+    const Vec3 p = r.at(float(t));
+    const auto arrival = delta_arrival(std::get<PointLight>(light.light), p);
+    if (!arrival) continue;
+    want += ss * arrival->radiance.r * kInv4Pi * std::exp(-st * (t + arrival->distance)) * (2.0 / n);
+  }
+  ASSERT_GT(want, 0.0);
+  for (bool equiangular : {false, true}) {
+    AccumulationSettings s;
+    s.samples = 16;
+    s.tile_size = 1;
+    s.equiangular = equiangular;
+    const ColorPlanes out = run(light, volumes, view, depth, s);
+    const double error = out.r.at(0, 0) / want - 1.0;
+    std::printf("small far lamp, %s steps: %+.2f %%\n", equiangular ? "equiangular" : "uniform", 100.0 * error);
+    EXPECT_LT(std::abs(error), 0.02);
+  }
 }
 
 }  // namespace
