@@ -11,18 +11,12 @@
 #include "realtime/passes.h"
 #include "realtime/shadow_map.h"
 #include "realtime/shadow_map_simd.h"
+#include "realtime/test_scenes.h"
 
 namespace caligo {
 namespace {
 
-VolumePrimitive fog_box(Vec3 lo, Vec3 hi, RGB sigma_a, RGB sigma_s, PhaseFunction phase = IsotropicPhase{}) {
-  VolumePrimitive p;
-  p.shape = BoxVolumeShape{Transform(), lo, hi};
-  p.shader.sigma_a = sigma_a;
-  p.shader.sigma_s = sigma_s;
-  p.shader.phase = phase;
-  return p;
-}
+using test_scenes::fog_box;
 
 VolumePrimitive fog_sphere(Vec3 c, float r, RGB sigma_s, PhaseFunction phase) {
   VolumePrimitive p;
@@ -42,27 +36,7 @@ ColorPlanes run(const FrameLight& light, const VolumeScene& volumes, const View&
   return out;
 }
 
-// The lights of the comparison scene, one per type the passes march.
-std::vector<Light> test_lights() {
-  PointLight point{{0.5f, 1.0f, -3.0f}, RGB(5.0f, 4.0f, 3.0f), 4.0f};
-  SpotLight spot;
-  spot.position = {-1.0f, 2.5f, -4.0f};
-  spot.direction = normalize(Vec3(0.3f, -1.0f, -0.2f));
-  spot.cos_inner = std::cos(radians(18.0f));
-  spot.cos_outer = std::cos(radians(30.0f));
-  spot.intensity = RGB(20.0f);
-  spot.range = 8.0f;
-  BoxLight box;
-  box.position = {1.0f, 3.0f, -5.0f};
-  box.direction = {0.0f, -1.0f, 0.0f};
-  box.up = {0.0f, 0.0f, 1.0f};
-  box.half_width = 0.7f;
-  box.half_height = 1.5f;
-  box.range = 4.0f;
-  box.irradiance = RGB(2.0f, 3.0f, 4.0f);
-  DirectionalLight sun{normalize(Vec3(0.4f, -1.0f, -0.3f)), RGB(1.5f)};
-  return {point, spot, box, sun};
-}
+std::vector<Light> test_lights() { return test_scenes::delta_lights(); }
 
 struct TestScene {
   VolumeScene volumes;

@@ -11,19 +11,13 @@
 #include "realtime/froxel_fog.h"
 #include "realtime/passes.h"
 #include "realtime/scene_buffers.h"
+#include "realtime/test_scenes.h"
 #include "volumes/volume_scene.h"
 
 namespace caligo {
 namespace {
 
-VolumePrimitive fog_box(Vec3 lo, Vec3 hi, RGB sigma_a, RGB sigma_s, PhaseFunction phase = IsotropicPhase{}) {
-  VolumePrimitive p;
-  p.shape = BoxVolumeShape{Transform(), lo, hi};
-  p.shader.sigma_a = sigma_a;
-  p.shader.sigma_s = sigma_s;
-  p.shader.phase = phase;
-  return p;
-}
+using test_scenes::fog_box;
 
 FrameLight frame_light(const Light& l, size_t index = 0) {
   FrameLight f{*shaded_light(l), LightOptions{}, nullptr};
@@ -173,23 +167,7 @@ TEST(FroxelFog, SimdInjectionMatchesScalar) {
   const FroxelGrid g = fit_froxel_grid(view, volumes, Plane(64, 36, kSkyDepth), {20, 12, 37, 128.0f});
   FroxelColumns columns;
   froxel_columns(g, view, volumes, 0.3f, columns);
-  SpotLight spot;
-  spot.position = {-1.0f, 2.5f, -4.0f};
-  spot.direction = normalize(Vec3(0.3f, -1.0f, -0.2f));
-  spot.cos_inner = std::cos(radians(18.0f));
-  spot.cos_outer = std::cos(radians(30.0f));
-  spot.intensity = RGB(20.0f);
-  spot.range = 8.0f;
-  BoxLight box;
-  box.position = {1.0f, 3.0f, -5.0f};
-  box.direction = {0.0f, -1.0f, 0.0f};
-  box.up = {0.0f, 0.0f, 1.0f};
-  box.half_width = 0.7f;
-  box.half_height = 1.5f;
-  box.range = 4.0f;
-  box.irradiance = RGB(2.0f, 3.0f, 4.0f);
-  const std::vector<Light> lights{PointLight{{0.5f, 1.0f, -3.0f}, RGB(5.0f, 4.0f, 3.0f), 4.0f}, spot, box,
-                                  DirectionalLight{normalize(Vec3(0.4f, -1.0f, -0.3f)), RGB(1.5f)}};
+  const std::vector<Light> lights = test_scenes::delta_lights();
   for (const Light& l : lights) {
     const FrameLight fl = frame_light(l);
     ASSERT_TRUE(SimdMarcher(fl, volumes, 0.0f, 100.0f).supported());

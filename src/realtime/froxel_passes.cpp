@@ -31,28 +31,37 @@ void edge_coordinates(const FroxelGrid& g, const float* z, int n, float* out) {
   for (; i < n; ++i) out[i] = g.edge_coordinate(z[i]);
 }
 
-// The history's froxel (both fields) trilinearly at continuous cell coordinates (centres at
-// integers), clamped to the grid; the caller has checked the point lies in it.
-Froxel sample_history(const FroxelGrid& g, const Froxel* field, float gx, float gy, float gs) {
+// Where a trilinear read of the history at continuous cell coordinates (centres at integers,
+// clamped to the grid; the caller has checked the point lies in it) takes its 8 corners: the
+// slice pairs at p, p + dx, p + dy, p + dx + dy, and the weights.
+struct HistoryTaps {
+  const Froxel* p;
+  size_t dx, dy;
+  float fx, fy, fs;
+};
+HistoryTaps history_taps(const FroxelGrid& g, const Froxel* field, float gx, float gy, float gs) {
   gx = std::clamp(gx, 0.0f, float(g.width - 1));
   gy = std::clamp(gy, 0.0f, float(g.height - 1));
   gs = std::clamp(gs, 0.0f, float(g.slices - 1));
   const int x0 = std::min(int(gx), std::max(0, g.width - 2)), y0 = std::min(int(gy), std::max(0, g.height - 2));
   const int s0 = std::min(int(gs), g.slices - 2);
-  const int dx = g.width > 1 ? g.slices : 0, dy = g.height > 1 ? g.width * g.slices : 0;
-  const float fx = gx - float(x0), fy = gy - float(y0), fs = gs - float(s0);
-  const Froxel* p = field + (size_t(y0) * size_t(g.width) + size_t(x0)) * size_t(g.slices) + size_t(s0);
-  // Weights of the 8 corners, slice pairs adjacent in memory.
-  const float w00 = (1 - fx) * (1 - fy), w10 = fx * (1 - fy), w01 = (1 - fx) * fy, w11 = fx * fy;
+  return {field + (size_t(y0) * size_t(g.width) + size_t(x0)) * size_t(g.slices) + size_t(s0),
+          g.width > 1 ? size_t(g.slices) : 0, g.height > 1 ? size_t(g.width) * size_t(g.slices) : 0,
+          gx - float(x0), gy - float(y0), gs - float(s0)};
+}
+
+// The history's froxel (both fields) by the taps (the scalar reference).
+Froxel sample_history(const FroxelGrid& g, const Froxel* field, float gx, float gy, float gs) {
+  const HistoryTaps h = history_taps(g, field, gx, gy, gs);
   Froxel out;
   auto add = [&](const Froxel* q, float w) {
-    out.sigma_t += (q[0].sigma_t * (1 - fs) + q[1].sigma_t * fs) * w;
-    out.scatter += (q[0].scatter * (1 - fs) + q[1].scatter * fs) * w;
+    out.sigma_t += (q[0].sigma_t * (1 - h.fs) + q[1].sigma_t * h.fs) * w;
+    out.scatter += (q[0].scatter * (1 - h.fs) + q[1].scatter * h.fs) * w;
   };
-  add(p, w00);
-  add(p + dx, w10);
-  add(p + dy, w01);
-  add(p + dx + dy, w11);
+  add(h.p, (1 - h.fx) * (1 - h.fy));
+  add(h.p + h.dx, h.fx * (1 - h.fy));
+  add(h.p + h.dy, (1 - h.fx) * h.fy);
+  add(h.p + h.dx + h.dy, h.fx * h.fy);
   return out;
 }
 
@@ -61,20 +70,14 @@ Froxel sample_history(const FroxelGrid& g, const Froxel* field, float gx, float 
 // are the neighbours' and are dropped (FroxelMedia's padding froxel keeps the last pair's
 // second load inside the buffer). AVX2 gathers of each field cost more than the arithmetic.
 Froxel sample_history_lanes(const FroxelGrid& g, const Froxel* field, float gx, float gy, float gs) {
-  gx = std::clamp(gx, 0.0f, float(g.width - 1));
-  gy = std::clamp(gy, 0.0f, float(g.height - 1));
-  gs = std::clamp(gs, 0.0f, float(g.slices - 1));
-  const int x0 = std::min(int(gx), std::max(0, g.width - 2)), y0 = std::min(int(gy), std::max(0, g.height - 2));
-  const int s0 = std::min(int(gs), g.slices - 2);
-  const size_t dx = g.width > 1 ? size_t(g.slices) : 0, dy = g.height > 1 ? size_t(g.width) * size_t(g.slices) : 0;
-  const float fx = gx - float(x0), fy = gy - float(y0), fs = gs - float(s0);
-  const Froxel* p = field + (size_t(y0) * size_t(g.width) + size_t(x0)) * size_t(g.slices) + size_t(s0);
+  const HistoryTaps h = history_taps(g, field, gx, gy, gs);
   auto pair = [&](const Froxel* q) {
     const float* f = reinterpret_cast<const float*>(q);
     const Batch lo = Batch::load_unaligned(f), hi = Batch::load_unaligned(f + 6);
-    return lo + (hi - lo) * fs;
+    return lo + (hi - lo) * h.fs;
   };
-  const Batch v = (pair(p) * (1 - fx) + pair(p + dx) * fx) * (1 - fy) + (pair(p + dy) * (1 - fx) + pair(p + dx + dy) * fx) * fy;
+  const Batch v = (pair(h.p) * (1 - h.fx) + pair(h.p + h.dx) * h.fx) * (1 - h.fy) +
+                  (pair(h.p + h.dy) * (1 - h.fx) + pair(h.p + h.dx + h.dy) * h.fx) * h.fy;
   alignas(32) float o[kLanes];
   v.store_aligned(o);
   return {RGB(o[0], o[1], o[2]), RGB(o[3], o[4], o[5])};
