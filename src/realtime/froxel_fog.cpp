@@ -251,6 +251,23 @@ bool same_pose(const ShadedLight& a, const ShadedLight& b) {
       a);
 }
 
+// A light that moved invalidates the history where it lit before and no longer does, and where
+// it lights now and did not: no trail, no lag. Where it lit in both poses the history is kept
+// (a slowly turning spot keeps its averaged beam).
+bool FroxelFog::mark_moved_lights(const std::vector<FrameLight>& lights, const View& view,
+                                  const FroxelColumns& columns) {
+  fresh_.assign(grid_.cells(), 0);
+  bool any = false;
+  for (const FrameLight& light : lights) {
+    const auto old = std::find_if(history_lights_.begin(), history_lights_.end(),
+                                  [&](const FrameLight& h) { return h.index == light.index; });
+    if (old != history_lights_.end() && same_pose(old->light, light.light)) continue;
+    mark_moved_light(old != history_lights_.end() ? &old->light : nullptr, light.light, grid_, view, columns, fresh_);
+    any = true;
+  }
+  return any;
+}
+
 void FroxelFog::render(const std::vector<FrameLight>& lights, const VolumeScene& volumes, const View& view,
                        const Plane& depth, const RealtimeSettings& settings, uint32_t frame_index,
                        size_t scene_lights, ColorPlanes& out, Times& times) {
@@ -280,19 +297,7 @@ void FroxelFog::render(const std::vector<FrameLight>& lights, const VolumeScene&
   }
   start = Clock::now();
   if (temporal && has_history_) {
-    // A light that moved invalidates the history where it lit before and no longer does, and
-    // where it lights now and did not: no trail, no lag. Where it lit in both poses the history
-    // is kept (a slowly turning spot keeps its averaged beam).
-    fresh_.assign(grid_.cells(), 0);
-    bool any = false;
-    for (const FrameLight& light : lights) {
-      const auto old = std::find_if(history_lights_.begin(), history_lights_.end(),
-                                    [&](const FrameLight& h) { return h.index == light.index; });
-      if (old != history_lights_.end() && same_pose(old->light, light.light)) continue;
-      mark_moved_light(old != history_lights_.end() ? &old->light : nullptr, light.light, grid_, view, columns,
-                       fresh_);
-      any = true;
-    }
+    const bool any = mark_moved_lights(lights, view, columns);
     reproject_froxels(grid_, view, history_, history_grid_, history_view_, settings.temporal_blend,
                       any ? std::span<const uint8_t>(fresh_) : std::span<const uint8_t>(), media_, settings.simd);
   }

@@ -130,9 +130,12 @@ class FroxelFog {
   void render(const std::vector<FrameLight>& lights, const VolumeScene& volumes, const View& view, const Plane& depth,
               const RealtimeSettings& settings, uint32_t frame_index, size_t scene_lights, ColorPlanes& out,
               Times& times);
-  void reset_history() { has_history_ = false; }
 
  private:
+  // Marks fresh_ where lights that moved since the previous frame make the history stale;
+  // false when none moved.
+  bool mark_moved_lights(const std::vector<FrameLight>& lights, const View& view, const FroxelColumns& columns);
+
   FroxelGrid grid_, history_grid_;
   View history_view_;
   FroxelMedia media_, history_;
