@@ -43,7 +43,7 @@ void add_realtime_command(CLI::App& app, RealtimeOptions& o) {
                   "none (airlight, no volumetric shadows), brute (150 steps, closed-form lit "
                   "intervals), hybrid (Wyman & Ramsey shadow volumes, 50 steps) or textured (hybrid, and spot lights by "
                   "the textured-spotlight march); other lights march");
-  cmd->add_option("--froxels", o.froxels, "--method froxel: the grid's columns and depth slices, WxHxD (default 160x90x64)");
+  cmd->add_option("--froxels", o.froxels, "--method froxel: the grid's columns and depth slices, WxHxD (default: a column per 12x12 pixels and 64 slices, 160x90x64 at 1920x1080)");
   cmd->add_option("--spot-model", o.spot_model,
                   "Per-step in-scattering of --method textured spots: auto (airlight for a grey isotropic medium, "
                   "else Hoffman-Preetham), airlight (Sun et al.; isotropic only, a pass per channel of a coloured "

@@ -34,8 +34,13 @@ std::vector<float> slice_edges(const FroxelGrid& grid) {
 FroxelGrid fit_froxel_grid(const View& view, const VolumeScene& volumes, const Plane& depth,
                            const FroxelSettings& settings) {
   FroxelGrid g;
-  g.width = std::max(1, settings.width);
-  g.height = std::max(1, settings.height);
+  // Columns by the screen's size, and at least kMinColumns each way (or one per pixel) so a
+  // small preview is not a handful of columns.
+  constexpr int kMinColumns = 32;
+  const int px = std::max(1, settings.column_pixels);
+  auto columns_for = [&](int pixels) { return std::max((pixels + px - 1) / px, std::min(pixels, kMinColumns)); };
+  g.width = settings.width > 0 ? settings.width : columns_for(view.resolution.x);
+  g.height = settings.height > 0 ? settings.height : columns_for(view.resolution.y);
   g.slices = std::max(2, settings.slices);
   float far = 1e-3f;
   for (const VolumePrimitive& p : volumes.primitives()) {

@@ -49,7 +49,9 @@ struct FroxelGrid {
 // The depths of edges 0 .. slices (FroxelGrid::edge of each).
 std::vector<float> slice_edges(const FroxelGrid& grid);
 
-// The grid for `view`: far at the farthest linear depth of the media's bounds, or of `depth`'s
+// The grid for `view`: columns as `settings` gives them or one per column_pixels^2 of the view
+// (at least 32 each way, or one per pixel);
+// far at the farthest linear depth of the media's bounds, or of `depth`'s
 // surfaces where it is nearer and no pixel sees the sky (at least 1e-3); near = far / near_ratio.
 FroxelGrid fit_froxel_grid(const View& view, const VolumeScene& volumes, const Plane& depth,
                            const FroxelSettings& settings);

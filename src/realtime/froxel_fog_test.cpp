@@ -151,6 +151,15 @@ TEST(FroxelFog, GridEndsAtTheMediaOrTheFarthestSurface) {
   const FroxelGrid g = fit_froxel_grid(view, volumes, depth, {});
   EXPECT_FLOAT_EQ(g.far, 20.0f);
   EXPECT_FLOAT_EQ(g.near, 20.0f / 256.0f);
+  // One column per 12 x 12 pixels, rounded up, at least 32 (or one a pixel), unless the
+  // settings name the columns.
+  EXPECT_EQ(g.width, 8);
+  EXPECT_EQ(g.height, 6);
+  const View hd = View::perspective_view({0, 1, 0}, {0, 0, -1}, {0, 1, 0}, radians(60.0f), {1920, 1080});
+  const FroxelGrid full = fit_froxel_grid(hd, volumes, Plane(2, 2, 5.0f), {});
+  EXPECT_EQ(full.width, 160);
+  EXPECT_EQ(full.height, 90);
+  EXPECT_EQ(fit_froxel_grid(hd, volumes, Plane(2, 2, 5.0f), {20, 10, 8, 256.0f, 12}).width, 20);
 }
 
 // Injection by SIMD lanes and by the scalar integrand agree to float rounding, for every

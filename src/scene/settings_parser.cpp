@@ -245,9 +245,10 @@ RealtimeSettings parse_realtime(const JsonCursor& c) {
   if (auto f = r.optional("froxels")) {
     // The grid of `caligo realtime --method froxel`.
     ObjectReader fr(*f, "the froxel grid");
-    fr.allow({"width", "height", "slices", "near_ratio"});
+    fr.allow({"width", "height", "column_pixels", "slices", "near_ratio"});
     d.froxels.width = int(fr.integer_or("width", d.froxels.width, Range::closed(1, 1024)));
     d.froxels.height = int(fr.integer_or("height", d.froxels.height, Range::closed(1, 1024)));
+    d.froxels.column_pixels = int(fr.integer_or("column_pixels", d.froxels.column_pixels, Range::closed(1, 256)));
     d.froxels.slices = int(fr.integer_or("slices", d.froxels.slices, Range::closed(2, 512)));
     d.froxels.near_ratio = fr.number_or("near_ratio", d.froxels.near_ratio, Range::closed(2, 1e6));
     fr.finish();

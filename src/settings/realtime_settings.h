@@ -30,9 +30,13 @@ enum class SceneBufferMethod { raster, embree };
 // The camera-aligned froxel grid of `--method froxel` (realtime/froxel_fog.h; Wronski 2014,
 // Hillaire 2015): columns across and down, slices in depth (exponentially spaced).
 struct FroxelSettings {
-  int width = 160, height = 90, slices = 64;
+  // Columns across and down; 0: one per column_pixels x column_pixels of the output (160 x 90
+  // at 1920 x 1080, as Unreal's 16-pixel and HDRP's 8-pixel grids scale with the screen), at
+  // least 32 each way (or one per pixel).
+  int width = 0, height = 0, slices = 64;
   // Slice 1 starts at far / near_ratio (slice 0 covers the depths before it).
   float near_ratio = 256.0f;
+  int column_pixels = 12;
 };
 
 struct RealtimeSettings {
