@@ -295,6 +295,41 @@ TEST(FroxelFog, AMovedLightInvalidatesItsHistory) {
   for (size_t i = 0; i < after.r.data.size(); ++i) ASSERT_EQ(after.r.data[i], fresh.r.data[i]) << i;
 }
 
+// A camera cut: the grid's history is world-space lighting, so the first frame after the cut
+// reprojects valid fog wherever the old grid saw it and takes the new frame elsewhere. Against
+// the frame the new camera converges to (48 frames there), the frame after the cut must be no
+// further off than a frame without history: no flash, no stale picture. Measured (2026-12):
+// mean -10.4 % after the cut, -11.4 % without history (one jitter of the 64 slices misses part
+// of the point light's 1/d^2 peak that 48 jittered frames average in).
+TEST(FroxelFog, ACameraCutNeitherFlashesNorLags) {
+  VolumeScene volumes({fog_box({-10, -10, -10}, {10, 10, 10}, RGB(0.05f), RGB(0.25f))});
+  const View a = View::perspective_view({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, radians(60.0f), {48, 27});
+  const View b = View::perspective_view({3, 1, -2}, normalize(Vec3(-1, -0.2f, -0.6f)), {0, 1, 0}, radians(50.0f),
+                                        {48, 27});
+  const Plane depth(48, 27, 9.0f);
+  const std::vector<FrameLight> lights{frame_light(PointLight{{-0.5f, 0.3f, -4.0f}, RGB(3.0f), 5.0f})};
+  RealtimeSettings s;
+  FroxelFog cut, clean, settled;
+  ColorPlanes after_cut, fresh, converged;
+  FroxelFog::Times times;
+  for (uint32_t f = 0; f < 8; ++f) cut.render(lights, volumes, a, depth, s, f, 1, after_cut, times);
+  cut.render(lights, volumes, b, depth, s, 8, 1, after_cut, times);
+  clean.render(lights, volumes, b, depth, s, 8, 1, fresh, times);
+  for (uint32_t f = 0; f < 48; ++f) settled.render(lights, volumes, b, depth, s, f, 1, converged, times);
+  auto mean_error = [&](const ColorPlanes& img) {
+    double sum = 0.0, want = 0.0;
+    for (size_t i = 0; i < img.r.data.size(); ++i) {
+      sum += img.r.data[i];
+      want += converged.r.data[i];
+    }
+    return sum / want - 1.0;
+  };
+  const double e_cut = mean_error(after_cut), e_fresh = mean_error(fresh);
+  std::printf("against the converged frame: after the cut %+.2f %%, without history %+.2f %%\n", 100 * e_cut,
+              100 * e_fresh);
+  EXPECT_LT(std::abs(e_cut), std::max(2.0 * std::abs(e_fresh), 0.01));
+}
+
 // A point light in homogeneous HG fog seen in perspective: the grid converges to the
 // per-light march (400 midpoints a pixel) as the slices get finer. Measured (2026-12) mean
 // relative differences: 32 slices 0.77 %, 256 slices 0.003 %; held within 1.5 % and 0.05 %.
