@@ -55,7 +55,7 @@ FroxelGrid fit_froxel_grid(const View& view, const VolumeScene& volumes, const P
   float deepest = 0.0f;
   for (float d : depth.data) deepest = std::max(deepest, d);
   g.far = deepest >= kSkyDepth ? far : std::min(far, std::max(deepest, 1e-3f));
-  g.near = far / std::max(settings.near_ratio, 1.001f);
+  g.near = g.far / std::max(settings.near_ratio, 1.001f);
   return g;
 }
 

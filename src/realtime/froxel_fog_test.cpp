@@ -146,7 +146,9 @@ TEST(FroxelFog, GridEndsAtTheMediaOrTheFarthestSurface) {
   VolumeScene volumes({fog_box({-5, 0, -20}, {5, 3, -2}, RGB(0.1f), RGB(0.1f))});
   const View view = View::perspective_view({0, 1, 0}, {0, 0, -1}, {0, 1, 0}, radians(60.0f), {8, 6});
   Plane depth(8, 6, 7.0f);
-  EXPECT_FLOAT_EQ(fit_froxel_grid(view, volumes, depth, {}).far, 7.0f);
+  const FroxelGrid room = fit_froxel_grid(view, volumes, depth, {});
+  EXPECT_FLOAT_EQ(room.far, 7.0f);
+  EXPECT_FLOAT_EQ(room.near, 7.0f / 256.0f);
   depth.at(3, 3) = kSkyDepth;
   const FroxelGrid g = fit_froxel_grid(view, volumes, depth, {});
   EXPECT_FLOAT_EQ(g.far, 20.0f);
