@@ -43,7 +43,9 @@ void add_realtime_command(CLI::App& app, RealtimeOptions& o) {
                   "none (airlight, no volumetric shadows), brute (150 steps, closed-form lit "
                   "intervals), hybrid (Wyman & Ramsey shadow volumes, 50 steps) or textured (hybrid, and spot lights by "
                   "the textured-spotlight march); other lights march");
-  cmd->add_option("--froxels", o.froxels, "--method froxel: the grid's columns and depth slices, WxHxD (default: a column per 12x12 pixels and 64 slices, 160x90x64 at 1920x1080)");
+  cmd->add_option("--froxels", o.froxels,
+                  "--method froxel: the grid's columns and depth slices, WxHxD (default: a column per 12x12 "
+                  "pixels and 64 slices, 160x90x64 at 1920x1080)");
   cmd->add_option("--spot-model", o.spot_model,
                   "Per-step in-scattering of --method textured spots: auto (airlight for a grey isotropic medium, "
                   "else Hoffman-Preetham), airlight (Sun et al.; isotropic only, a pass per channel of a coloured "
@@ -309,17 +311,10 @@ void print_summary(const RealtimeOptions& o, const SceneDesc& desc, const Realti
                 changes.size());
 }
 
-}  // namespace
-
-int run_realtime(const RealtimeOptions& o) {
-  const SceneDesc desc = load_scene(o.scene);
-  const RealtimeSettings settings = settings_from(o, desc);
-  const int frames = check_int(o.frames, 1, 100000, "--frames", desc.realtime.frames);
-  check_realtime_options(o, desc);
-  RealtimeOutputs outputs(o, desc, frames);  // every output is checked before any work
-
-  // The passes shade point, spot, box and directional lights; the others are named, never
-  // dropped silently (the --compare-reference path tracer does include them).
+// The passes shade point, spot, box and directional lights; the others are named, never
+// dropped silently (the --compare-reference path tracer does include them). Likewise glass the
+// Embree scene buffers draw opaque.
+void warn_about_what_is_not_drawn(const SceneDesc& desc, const RealtimeSettings& settings) {
   for (size_t i = 0; i < desc.lights.size(); ++i)
     if (!shaded_light(desc.lights[i]))
       std::fprintf(stderr,
@@ -331,6 +326,18 @@ int run_realtime(const RealtimeOptions& o) {
                   [](const Material& m) { return std::holds_alternative<DielectricBsdf>(m.bsdf); }))
     std::fprintf(stderr, "caligo: warning: --scene-buffers embree draws glass (dielectric) surfaces opaque; the "
                          "rasteriser (the default) shows what lies behind them\n");
+}
+
+}  // namespace
+
+int run_realtime(const RealtimeOptions& o) {
+  const SceneDesc desc = load_scene(o.scene);
+  const RealtimeSettings settings = settings_from(o, desc);
+  const int frames = check_int(o.frames, 1, 100000, "--frames", desc.realtime.frames);
+  check_realtime_options(o, desc);
+  RealtimeOutputs outputs(o, desc, frames);  // every output is checked before any work
+
+  warn_about_what_is_not_drawn(desc, settings);
   RealtimePipeline pipeline(Scene::build(desc), settings);
   const VolumetricMethod method = settings.froxel ? VolumetricMethod::kMarch : *parse_volumetric_method(o.method);
   HybridScatterer* scatterer = nullptr;  // owned by the pipeline

@@ -17,4 +17,25 @@ std::optional<ShadedLight> shaded_light(const Light& light) {
       light);
 }
 
+namespace {
+
+struct PlacementKey {
+  std::vector<float> operator()(const PointLight& l) const { return {0, l.position.x, l.position.y, l.position.z}; }
+  std::vector<float> operator()(const SpotLight& l) const {
+    return {1,           l.position.x,  l.position.y,  l.position.z, l.direction.x, l.direction.y,
+            l.direction.z, l.cos_outer, l.up.x,        l.up.y,       l.up.z};
+  }
+  std::vector<float> operator()(const BoxLight& l) const {
+    return {2,           l.position.x, l.position.y, l.position.z, l.direction.x, l.direction.y, l.direction.z,
+            l.up.x,      l.up.y,       l.up.z,       l.half_width, l.half_height, l.range};
+  }
+  std::vector<float> operator()(const DirectionalLight& l) const {
+    return {3, l.direction.x, l.direction.y, l.direction.z};
+  }
+};
+
+}  // namespace
+
+std::vector<float> placement_key(const ShadedLight& light) { return std::visit(PlacementKey{}, light); }
+
 }  // namespace caligo

@@ -8,6 +8,7 @@
 
 #include <optional>
 #include <variant>
+#include <vector>
 
 #include "lights/light.h"
 #include "scene/scene_desc.h"
@@ -20,6 +21,10 @@ using ShadedLight = std::variant<PointLight, SpotLight, BoxLight, DirectionalLig
 
 // The light as the real-time passes shade it; nullopt for the lights they leave out.
 std::optional<ShadedLight> shaded_light(const Light& light);
+
+// What a shadow map depends on: the light's type, placement and shape, as numbers to compare
+// frame to frame (a light whose key is unchanged keeps last frame's map).
+std::vector<float> placement_key(const ShadedLight& light);
 
 struct FrameLight {
   ShadedLight light;  // at the frame's time

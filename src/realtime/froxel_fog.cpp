@@ -123,12 +123,29 @@ void inject_media(const FroxelGrid& grid, const FroxelColumns& columns, const Vo
   });
 }
 
+namespace {
+
+// light_screen_bounds at the grid's resolution: the columns whose rays can meet the light.
 PixelRect froxel_rect(const ShadedLight& light, const FroxelGrid& grid, const View& view) {
   View at_grid = view;
   at_grid.resolution = {grid.width, grid.height};
   const PixelRect r = light_screen_bounds(light, at_grid);
   return {std::max(r.x0, 0), std::max(r.y0, 0), std::min(r.x1, grid.width), std::min(r.y1, grid.height)};
 }
+
+// The run of slices [s0, s1) of column c whose samples the light's volume holds (t grows with
+// the slice); s1 <= s0 when none.
+std::pair<int, int> slices_in_reach(const ShadedLight& light, const FroxelGrid& grid, const FroxelColumns& columns,
+                                    size_t c) {
+  const FroxelColumns::Column& col = columns.columns[c];
+  const float* t = columns.t.data() + c * size_t(grid.slices);
+  const auto reach = light_volume_interval(light, col.origin, col.dir, 0.0f, t[grid.slices - 1]);
+  if (!reach) return {0, 0};
+  return {int(std::lower_bound(t, t + grid.slices, reach->t0) - t),
+          int(std::upper_bound(t, t + grid.slices, reach->t1) - t)};
+}
+
+}  // namespace
 
 void inject_light(const FrameLight& light, const FroxelGrid& grid, const View& view, const FroxelColumns& columns,
                   const VolumeScene& volumes, float multiple_scattering_floor, bool simd, FroxelMedia& media) {
@@ -148,11 +165,7 @@ void inject_light(const FrameLight& light, const FroxelGrid& grid, const View& v
       const FroxelColumns::Column& col = columns.columns[c];
       if (col.count == 0) continue;
       const float* t = columns.t.data() + c * size_t(grid.slices);
-      const auto reach = light_volume_interval(light.light, col.origin, col.dir, 0.0f, t[grid.slices - 1]);
-      if (!reach) continue;
-      // The run of slices whose samples the light's volume holds.
-      const int s0 = int(std::lower_bound(t, t + grid.slices, reach->t0) - t);
-      const int s1 = int(std::upper_bound(t, t + grid.slices, reach->t1) - t);
+      const auto [s0, s1] = slices_in_reach(light.light, grid, columns, c);
       if (s1 <= s0) continue;
       PixelMarch march;
       march.origin = col.origin;
@@ -173,16 +186,10 @@ void inject_light(const FrameLight& light, const FroxelGrid& grid, const View& v
 
 namespace {
 
-// Slices [s0, s1) of a column whose samples `light` can reach, one more each way (the
-// history's samples sat elsewhere in their slices); empty when none.
+// slices_in_reach, one more each way (the history's samples sat elsewhere in their slices).
 std::pair<int, int> reached_slices(const ShadedLight& light, const FroxelGrid& grid, const FroxelColumns& columns,
                                    size_t c) {
-  const FroxelColumns::Column& col = columns.columns[c];
-  const float* t = columns.t.data() + c * size_t(grid.slices);
-  const auto reach = light_volume_interval(light, col.origin, col.dir, 0.0f, t[grid.slices - 1]);
-  if (!reach) return {0, 0};
-  const int s0 = int(std::lower_bound(t, t + grid.slices, reach->t0) - t);
-  const int s1 = int(std::upper_bound(t, t + grid.slices, reach->t1) - t);
+  const auto [s0, s1] = slices_in_reach(light, grid, columns, c);
   if (s1 <= s0) return {0, 0};
   return {std::max(0, s0 - 1), std::min(grid.slices, s1 + 1)};
 }
@@ -233,25 +240,16 @@ void mark_moved_light(const ShadedLight* before, const ShadedLight& now, const F
   });
 }
 
-namespace {
-
-bool same(Vec3 a, Vec3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
-
-}  // namespace
-
 bool same_pose(const ShadedLight& a, const ShadedLight& b) {
-  if (a.index() != b.index()) return false;
+  if (placement_key(a) != placement_key(b)) return false;
+  // The gobo moves the light's pattern without moving its shadow map.
   return std::visit(
       [&](const auto& l) {
-        using L = std::decay_t<decltype(l)>;
-        const L& m = std::get<L>(b);
-        bool same_light = true;
-        if constexpr (requires { l.position; }) same_light = same_light && same(l.position, m.position);
-        if constexpr (requires { l.direction; }) same_light = same_light && same(l.direction, m.direction);
+        const auto& m = std::get<std::decay_t<decltype(l)>>(b);
         if constexpr (requires { l.gobo; })
-          same_light = same_light && l.gobo.offset.x == m.gobo.offset.x && l.gobo.offset.y == m.gobo.offset.y &&
-                       l.gobo.rotation == m.gobo.rotation;
-        return same_light;
+          return l.gobo.offset.x == m.gobo.offset.x && l.gobo.offset.y == m.gobo.offset.y &&
+                 l.gobo.rotation == m.gobo.rotation;
+        return true;
       },
       a);
 }

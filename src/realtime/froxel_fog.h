@@ -1,6 +1,6 @@
 // Froxel volumetric fog (`caligo realtime --method froxel`; Wronski 2014, "Volumetric fog",
 // Hillaire 2015, "Physically based and unified volumetric rendering in Frostbite"): every
-// medium and every light the passes shade are injected into one camera-aligned grid of
+// volume primitive and every light the passes shade are injected into one camera-aligned grid of
 // frustum voxels, width x height columns of `slices` exponentially spaced depth slices; the
 // grid is blended with the previous frame's reprojected grid (the slice sample jittered per
 // frame), integrated front to back per column, and read per output pixel at its depth. A
@@ -100,7 +100,8 @@ void inject_light(const FrameLight& light, const FroxelGrid& grid, const View& v
 // reach, the history is kept.
 void mark_moved_light(const ShadedLight* before, const ShadedLight& now, const FroxelGrid& grid, const View& view,
                       const FroxelColumns& columns, std::vector<uint8_t>& fresh);
-// Whether a light has the same pose as in the previous frame: position, aim, gobo placement.
+// Whether a light has the same pose as in the previous frame: its placement_key (position, aim,
+// shape; frame_light.h) and its gobo's placement.
 bool same_pose(const ShadedLight& a, const ShadedLight& b);
 
 // Blends `current` with `history` (the previous frame's grid, of `history_grid` in
@@ -110,6 +111,7 @@ bool same_pose(const ShadedLight& a, const ShadedLight& b);
 void reproject_froxels(const FroxelGrid& grid, const View& view, const FroxelMedia& history,
                        const FroxelGrid& history_grid, const View& history_view, float blend,
                        std::span<const uint8_t> fresh, FroxelMedia& current, bool simd = true);
+// (simd: each history read as two 8-lane loads per slice pair; false: the scalar reference.)
 
 // In-scattered radiance from the eye to each slice edge, per column ((slices + 1) per column,
 // edge 0 is black): each slice integrated with its sample's sigma_t and scatter held constant,

@@ -94,9 +94,8 @@ void blend_column(Froxel* cells, const Froxel* old, const uint8_t* use, int n, f
 }
 
 bool same_view(const View& a, const View& b) {
-  auto eq = [](Vec3 u, Vec3 v) { return u.x == v.x && u.y == v.y && u.z == v.z; };
-  return a.projection == b.projection && eq(a.eye, b.eye) && eq(a.forward, b.forward) && eq(a.up, b.up) &&
-         a.resolution.x == b.resolution.x && a.resolution.y == b.resolution.y &&
+  return a.projection == b.projection && a.eye == b.eye && a.forward == b.forward && a.up == b.up &&
+         a.resolution == b.resolution &&
          a.tan_half_fov_y == b.tan_half_fov_y && a.aspect == b.aspect && a.half_width == b.half_width &&
          a.half_height == b.half_height;
 }
@@ -203,6 +202,56 @@ void integrate_froxels(const FroxelGrid& grid, const FroxelColumns& columns, con
   });
 }
 
+namespace {
+
+// One output row's lookup: its two grid rows, and per output x the columns and weights.
+struct LookupRow {
+  const RGB *row0, *row1;  // the integrated edges of grid rows y0 and y1
+  float fy;
+  size_t edges;            // slices + 1
+  int last_slice;          // slices - 1
+  const float* e;          // edge coordinate of each pixel's depth
+  const int *x0s, *x1s;
+  const float* fxs;
+
+  // 8 pixels from x: the four columns' two edges around each depth by AVX2 gathers.
+  void lanes(int x, float* r, float* g, float* b) const {
+    using IBatch = xsimd::batch<int32_t>;
+    const Batch ev = Batch::load_unaligned(e + x);
+    const IBatch e0 = xsimd::min(xsimd::batch_cast<int32_t>(ev), IBatch(last_slice));
+    const Batch fe = ev - xsimd::batch_cast<float>(e0), fx = Batch::load_unaligned(fxs + x);
+    const IBatch i0 = (IBatch::load_unaligned(x0s + x) * int32_t(edges) + e0) * 3;
+    const IBatch i1 = (IBatch::load_unaligned(x1s + x) * int32_t(edges) + e0) * 3;
+    const float* f0 = reinterpret_cast<const float*>(row0);
+    const float* f1 = reinterpret_cast<const float*>(row1);
+    auto at = [&](const float* f, const IBatch& i, int ch) {
+      const Batch lo = profile_simd::gather(f + ch, i), hi = profile_simd::gather(f + ch + 3, i);
+      return lo + (hi - lo) * fe;
+    };
+    auto channel = [&](int ch) {
+      const Batch top = at(f0, i0, ch) * (1.0f - fx) + at(f0, i1, ch) * fx;
+      const Batch bottom = at(f1, i0, ch) * (1.0f - fx) + at(f1, i1, ch) * fx;
+      return top * (1.0f - fy) + bottom * fy;
+    };
+    channel(0).store_unaligned(r + x);
+    channel(1).store_unaligned(g + x);
+    channel(2).store_unaligned(b + x);
+  }
+
+  RGB pixel(int x) const {
+    const int e0 = std::min(int(e[x]), last_slice);
+    const float fe = e[x] - float(e0), fx = fxs[x];
+    auto column = [&](const RGB* row, int cx) {
+      const RGB* o = row + size_t(cx) * edges + size_t(e0);
+      return o[0] + (o[1] - o[0]) * fe;
+    };
+    return (column(row0, x0s[x]) * (1.0f - fx) + column(row0, x1s[x]) * fx) * (1.0f - fy) +
+           (column(row1, x0s[x]) * (1.0f - fx) + column(row1, x1s[x]) * fx) * fy;
+  }
+};
+
+}  // namespace
+
 void lookup_froxels(const FroxelGrid& grid, std::span<const RGB> integrated, const Plane& depth, ColorPlanes& out) {
   if (out.width() != depth.width || out.height() != depth.height) out = ColorPlanes(depth.width, depth.height);
   const size_t edges = size_t(grid.slices) + 1;
@@ -217,48 +266,19 @@ void lookup_froxels(const FroxelGrid& grid, std::span<const RGB> integrated, con
     fxs[size_t(x)] = gx - float(int(gx));
   }
   parallel_for(depth.height, [&](int y) {
-    using IBatch = xsimd::batch<int32_t>;
     const float gy = std::clamp((float(y) + 0.5f) * sy - 0.5f, 0.0f, float(grid.height - 1));
     const int y0 = int(gy), y1 = std::min(y0 + 1, grid.height - 1);
-    const float fy = gy - float(y0);
     std::vector<float> e(size_t(depth.width)), d(depth.row(y), depth.row(y) + depth.width);
     for (float& v : d) v = v >= kSkyDepth ? grid.far : v;
     edge_coordinates(grid, d.data(), depth.width, e.data());
-    const RGB* row0 = integrated.data() + size_t(y0) * size_t(grid.width) * edges;
-    const RGB* row1 = integrated.data() + size_t(y1) * size_t(grid.width) * edges;
+    const LookupRow row{integrated.data() + size_t(y0) * size_t(grid.width) * edges,
+                        integrated.data() + size_t(y1) * size_t(grid.width) * edges,
+                        gy - float(y0), edges, grid.slices - 1, e.data(), x0s.data(), x1s.data(), fxs.data()};
     float *r = out.r.row(y), *g = out.g.row(y), *b = out.b.row(y);
     int x = 0;
-    // 8 pixels at a time: the four columns' two edges around each depth by AVX2 gathers.
-    const float* f0 = reinterpret_cast<const float*>(row0);
-    const float* f1 = reinterpret_cast<const float*>(row1);
-    for (; x + kLanes <= depth.width; x += kLanes) {
-      const Batch ev = Batch::load_unaligned(&e[size_t(x)]);
-      const IBatch e0 = xsimd::min(xsimd::batch_cast<int32_t>(ev), IBatch(grid.slices - 1));
-      const Batch fe = ev - xsimd::batch_cast<float>(e0), fx = Batch::load_unaligned(&fxs[size_t(x)]);
-      const IBatch i0 = (IBatch::load_unaligned(&x0s[size_t(x)]) * int32_t(edges) + e0) * 3;
-      const IBatch i1 = (IBatch::load_unaligned(&x1s[size_t(x)]) * int32_t(edges) + e0) * 3;
-      auto at = [&](const float* f, const IBatch& i, int ch) {
-        const Batch lo = profile_simd::gather(f + ch, i), hi = profile_simd::gather(f + ch + 3, i);
-        return lo + (hi - lo) * fe;
-      };
-      auto channel = [&](int ch) {
-        const Batch top = at(f0, i0, ch) * (1.0f - fx) + at(f0, i1, ch) * fx;
-        const Batch bottom = at(f1, i0, ch) * (1.0f - fx) + at(f1, i1, ch) * fx;
-        return top * (1.0f - fy) + bottom * fy;
-      };
-      channel(0).store_unaligned(r + x);
-      channel(1).store_unaligned(g + x);
-      channel(2).store_unaligned(b + x);
-    }
+    for (; x + kLanes <= depth.width; x += kLanes) row.lanes(x, r, g, b);
     for (; x < depth.width; ++x) {
-      const int e0 = std::min(int(e[size_t(x)]), grid.slices - 1);
-      const float fe = e[size_t(x)] - float(e0), fx = fxs[size_t(x)];
-      auto column = [&](const RGB* row, int cx) {
-        const RGB* o = row + size_t(cx) * edges + size_t(e0);
-        return o[0] + (o[1] - o[0]) * fe;
-      };
-      const RGB v = (column(row0, x0s[size_t(x)]) * (1.0f - fx) + column(row0, x1s[size_t(x)]) * fx) * (1.0f - fy) +
-                    (column(row1, x0s[size_t(x)]) * (1.0f - fx) + column(row1, x1s[size_t(x)]) * fx) * fy;
+      const RGB v = row.pixel(x);
       r[x] = v.r;
       g[x] = v.g;
       b[x] = v.b;

@@ -3,6 +3,8 @@
 // path tracer's; what a game's forward-rendered glass does cheaply is kept: each glass pixel
 // passes (1 - F(cos theta))^2 of the light behind it, F the dielectric Fresnel reflectance at
 // the front face's angle (materials/bsdf.h, the path tracer's own), taken again for the exit.
+// The composite multiplies the whole pixel by it, the fog between the camera and the glass
+// included (the volumetric buffer is not split at the glass): a slight darkening of that fog.
 #include <cmath>
 
 #include "core/parallel.h"

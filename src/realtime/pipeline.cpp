@@ -20,23 +20,6 @@ double micros_since(Clock::time_point start) {
   return std::chrono::duration<double, std::micro>(Clock::now() - start).count();
 }
 
-// What a shadow map depends on: the light's placement and shape. Lights whose placement
-// key is unchanged keep last frame's map.
-struct PlacementKey {
-  std::vector<float> operator()(const PointLight& l) const { return {0, l.position.x, l.position.y, l.position.z}; }
-  std::vector<float> operator()(const SpotLight& l) const {
-    return {1,           l.position.x,  l.position.y,  l.position.z, l.direction.x, l.direction.y,
-            l.direction.z, l.cos_outer, l.up.x,        l.up.y,       l.up.z};
-  }
-  std::vector<float> operator()(const BoxLight& l) const {
-    return {2,           l.position.x, l.position.y, l.position.z, l.direction.x, l.direction.y, l.direction.z,
-            l.up.x,      l.up.y,       l.up.z,       l.half_width, l.half_height, l.range};
-  }
-  std::vector<float> operator()(const DirectionalLight& l) const {
-    return {3, l.direction.x, l.direction.y, l.direction.z};
-  }
-};
-
 }  // namespace
 
 struct RealtimePipeline::CachedShadow {
@@ -85,7 +68,7 @@ void RealtimePipeline::update_shadow_maps(const std::vector<FrameLight>& lights,
       cache.map.reset();
       continue;
     }
-    std::vector<float> key = std::visit(PlacementKey{}, light.light);
+    std::vector<float> key = placement_key(light.light);
     if (cache.size == light.options.shadow_map_size && cache.key == key && !cache.key.empty()) continue;
     cache.map = render_shadow_map(*raster_, light.light, light.options.shadow_map_size, bounds);
     cache.key = std::move(key);
