@@ -158,13 +158,26 @@ std::string light_kind(const Light& light) {
   return std::string(light_type_name(light)) + (spot && spot->gobo.image ? "+gobo" : "");
 }
 
+// What stands in for a light the passes do not shade as it is ("" for the others): "point"
+// for an area light, "N suns" for the environment (realtime/light_stand_ins.h).
+std::string stand_in_name(const Light& light, const RealtimeSettings& settings) {
+  if (std::holds_alternative<EnvironmentLight>(light))
+    return std::to_string(shaded_lights(light, settings.environment_lights).size()) + " suns";
+  const auto one = shaded_light(light);
+  if (!one) return "";
+  const bool same = std::visit([&](const auto& l) { return std::holds_alternative<std::decay_t<decltype(l)>>(light); }, *one);
+  return same ? "" : std::string(std::visit([](const auto& l) { return l.kTypeName; }, *one));
+}
+
 // "not shaded" (a light type the passes leave to the path tracer), "froxel", "march", or what
-// the scatterer used for the light in the last frame.
+// the scatterer used for the light in the last frame; ", as <stand-in>" for a stand-in.
 std::string light_method(const SceneDesc& desc, const RealtimeSettings& settings, const HybridScatterer* scatterer,
                          size_t light) {
-  if (!shaded_light(desc.lights[light])) return "not shaded";
-  if (settings.froxel) return "froxel";
-  return volumetric_method_name(scatterer ? scatterer->used(light) : VolumetricMethod::kMarch);
+  if (!is_shaded(desc.lights[light])) return "not shaded";
+  const std::string as = stand_in_name(desc.lights[light], settings);
+  const std::string method =
+      settings.froxel ? "froxel" : volumetric_method_name(scatterer ? scatterer->used(light) : VolumetricMethod::kMarch);
+  return as.empty() ? method : method + " as " + as;
 }
 
 void print_table(const SceneDesc& desc, const RealtimeSettings& settings, const std::vector<PassTimes>& timed,
@@ -172,9 +185,9 @@ void print_table(const SceneDesc& desc, const RealtimeSettings& settings, const 
   const auto row = [&](const char* name, auto get) {
     std::vector<double> v;
     for (const PassTimes& t : timed) v.push_back(get(t));
-    std::printf("  %-28s %10.0f\n", name, median(v));
+    std::printf("  %-40s %10.0f\n", name, median(v));
   };
-  std::printf("pass (median over %zu frames)         us\n", timed.size());
+  std::printf("pass (median over %zu frames)                     us\n", timed.size());
   row("depth + normals", [](const PassTimes& t) { return t.depth; });
   row("shadow maps", [](const PassTimes& t) { return t.shadows; });
   row("accumulation", [](const PassTimes& t) { return t.accumulation; });
@@ -311,16 +324,24 @@ void print_summary(const RealtimeOptions& o, const SceneDesc& desc, const Realti
                 changes.size());
 }
 
-// The passes shade point, spot, box and directional lights; the others are named, never
-// dropped silently (the --compare-reference path tracer does include them). Likewise glass the
-// Embree scene buffers draw opaque.
+// The passes shade point, spot, box and directional lights, and stand-ins for area lights and
+// the environment (each named in a note); any other is named, never dropped silently (the
+// --compare-reference path tracer does include it). Likewise glass the Embree scene buffers
+// draw opaque.
 void warn_about_what_is_not_drawn(const SceneDesc& desc, const RealtimeSettings& settings) {
-  for (size_t i = 0; i < desc.lights.size(); ++i)
-    if (!shaded_light(desc.lights[i]))
+  for (size_t i = 0; i < desc.lights.size(); ++i) {
+    const Light& light = desc.lights[i];
+    if (!is_shaded(light))
       std::fprintf(stderr,
                    "caligo: warning: light %zu (%s) is not shaded by the real-time passes (they shade point, spot, box "
                    "and directional lights); it is left out of every frame\n",
-                   i, light_type_name(desc.lights[i]));
+                   i, light_type_name(light));
+    else if (const std::string as = stand_in_name(light, settings); !as.empty())
+      std::fprintf(stderr, "caligo: note: light %zu (%s) is shaded in real time as %s\n", i, light_type_name(light),
+                   std::holds_alternative<EnvironmentLight>(light)
+                       ? (as + " by median cut, each with its shadow map (realtime.environment_lights)").c_str()
+                       : ("a " + as + " light at its centre with its far-field intensity and a hard shadow").c_str());
+  }
   if (settings.scene_buffers == SceneBufferMethod::embree &&
       std::any_of(desc.materials.begin(), desc.materials.end(),
                   [](const Material& m) { return std::holds_alternative<DielectricBsdf>(m.bsdf); }))

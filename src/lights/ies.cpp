@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/error.h"
 #include "core/math.h"
@@ -149,6 +150,29 @@ IesProfile IesProfile::parse(const std::string& text, const std::string& file) {
   p.mean_ = p.mean_over_sphere();
   // Only an angle-less sliver could emit nothing; the tree and power samplers would never choose it.
   if (!(p.mean_ > 0.0f)) r.fail("the profile's intensity integrates to zero over the sphere (no light is emitted)");
+  return p;
+}
+
+IesProfile IesProfile::tabulated(std::vector<float> vertical, std::vector<float> horizontal,
+                                 std::vector<float> values) {
+  const auto increasing = [](const std::vector<float>& a) {
+    for (size_t i = 1; i < a.size(); ++i)
+      if (!(a[i] > a[i - 1])) return false;
+    return !a.empty();
+  };
+  if (!increasing(vertical) || !increasing(horizontal) || vertical.front() < 0.0f || vertical.back() > 180.0f ||
+      horizontal.front() != 0.0f || horizontal.back() > 360.0f || values.size() != vertical.size() * horizontal.size())
+    throw std::invalid_argument("IesProfile::tabulated: angles not increasing within range, or a table of the wrong size");
+  const float peak = values.empty() ? 0.0f : *std::max_element(values.begin(), values.end());
+  for (float v : values)
+    if (!(v >= 0.0f) || !std::isfinite(v)) throw std::invalid_argument("IesProfile::tabulated: a negative or non-finite value");
+  if (!(peak > 0.0f)) throw std::invalid_argument("IesProfile::tabulated: every value is zero");
+  IesProfile p;
+  p.vertical_ = std::move(vertical);
+  p.horizontal_ = std::move(horizontal);
+  p.values_ = std::move(values);
+  for (float& c : p.values_) c /= peak;
+  p.mean_ = p.mean_over_sphere();
   return p;
 }
 

@@ -21,6 +21,12 @@ class IesProfile {
   static IesProfile parse(const std::string& text, const std::string& file);
   // Reads and parses a file (InputError if it cannot be read).
   static IesProfile load(const std::string& path);
+  // A profile from its table, for profiles the program makes itself (the real-time stand-in
+  // of an area light: realtime/light_stand_ins.h). Angles in degrees as in a file (vertical
+  // increasing from 0 or 90 to 90 or 180, horizontal from 0); values [h * vertical.size() + v],
+  // non-negative, normalised here. Throws std::invalid_argument for a table a file could not hold.
+  static IesProfile tabulated(std::vector<float> vertical_degrees, std::vector<float> horizontal_degrees,
+                              std::vector<float> values);
 
   // Relative intensity in [0, 1], bilinear in the tables. Angles in radians.
   // Directions outside the measured vertical range receive 0.

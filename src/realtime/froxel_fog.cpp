@@ -296,7 +296,7 @@ void FroxelFog::render(const std::vector<FrameLight>& lights, const VolumeScene&
     start = Clock::now();
     inject_light(light, grid_, view, columns, volumes, settings.accumulation.multiple_scattering_floor,
                  settings.simd, media_);
-    times.per_light[light.index] = since(start);
+    times.per_light[light.scene_light] += since(start);
   }
   start = Clock::now();
   if (temporal && has_history_) {

@@ -7,6 +7,7 @@
 #include "realtime/light_cores.h"
 #include "realtime/scene_buffers.h"
 #include "realtime/shadow_map.h"
+#include "realtime/sky.h"
 #include "realtime/surface_shading.h"
 #include "scene/scene.h"
 #include "volumes/volume_scene.h"
@@ -63,6 +64,7 @@ void RealtimePipeline::update_shadow_maps(const std::vector<FrameLight>& lights,
   const Bounds3 bounds = scene_->surfaces().bounds();
   frame.shadow_maps_rendered = 0;
   for (const FrameLight& light : lights) {
+    if (light.index >= shadows_.size()) shadows_.resize(light.index + 1);
     CachedShadow& cache = shadows_[light.index];
     if (!light.options.shadow) {
       cache.map.reset();
@@ -70,7 +72,7 @@ void RealtimePipeline::update_shadow_maps(const std::vector<FrameLight>& lights,
     }
     std::vector<float> key = placement_key(light.light);
     if (cache.size == light.options.shadow_map_size && cache.key == key && !cache.key.empty()) continue;
-    cache.map = render_shadow_map(*raster_, light.light, light.options.shadow_map_size, bounds);
+    cache.map = render_shadow_map(*raster_, light.light, light.options.shadow_map_size, bounds, light.skip_emitter);
     cache.key = std::move(key);
     cache.size = light.options.shadow_map_size;
     ++frame.shadow_maps_rendered;
@@ -135,7 +137,7 @@ void RealtimePipeline::accumulate_lights(const std::vector<FrameLight>& lights, 
       accumulate_light(lights[i], volumes, accumulation_rays_, acc, accum);
     }
     // rays reported apart
-    times.per_light[lights[i].index] = micros_since(light_start) - (times.rays - rays_before);
+    times.per_light[lights[i].scene_light] += micros_since(light_start) - (times.rays - rays_before);
   }
 }
 
@@ -224,10 +226,7 @@ const RealtimeFrame& RealtimePipeline::render(float time, uint32_t frame_index) 
 
   timed(times.depth, [&] { draw_scene_buffers(next); });
   // The lights the passes shade, posed at `time`; their shadow maps follow.
-  std::vector<FrameLight> lights;
-  const std::vector<Light> posed = desc.lights_at(time);
-  for (size_t i = 0; i < posed.size(); ++i)
-    if (auto shaded = shaded_light(posed[i])) lights.push_back({std::move(*shaded), desc.options(i), nullptr, i});
+  std::vector<FrameLight> lights = frame_lights(desc, desc.lights_at(time), settings_.environment_lights);
   timed(times.shadows, [&] { update_shadow_maps(lights, next); });
   for (FrameLight& l : lights) l.shadow = shadows_[l.index].map ? &*shadows_[l.index].map : nullptr;
   // Media in the wind are rebuilt at the frame's time; still ones are the scene's own.
@@ -252,7 +251,10 @@ const RealtimeFrame& RealtimePipeline::render(float time, uint32_t frame_index) 
                             {kLightCoreRadius * float(settings_.scale), 4, 32}, next.volumetric);
     });
   }
-  timed(times.surfaces, [&] { shade_surfaces(*gbuffer_, next.view, *scene_, lights, next.surfaces, settings_.simd); });
+  timed(times.surfaces, [&] {
+    shade_surfaces(*gbuffer_, next.view, *scene_, lights, next.surfaces, settings_.simd);
+    shade_sky(*gbuffer_, next.view, *scene_, next.surfaces);
+  });
   timed(times.composite, [&] { composite(next); });
   times.total = micros_since(frame_start);
   has_history_ = true;

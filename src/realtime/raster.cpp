@@ -210,8 +210,8 @@ void raster_tile(const Setup& s, const Tile& tile, Target& t, bool write_id, boo
 
 }  // namespace
 
-Plane rasterize_depth(const RasterScene& scene, const View& view, bool simd) {
-  const Setup s = raster::setup_triangles(scene, view, false);
+Plane rasterize_depth(const RasterScene& scene, const View& view, bool simd, int32_t skip_emitter) {
+  const Setup s = raster::setup_triangles(scene, view, false, skip_emitter);
   Plane depth(s.width, s.height);
   parallel_for_tiles(make_tiles(view.resolution, raster::kTileSize), [&](const Tile& tile) {
     thread_local Target t;

@@ -14,7 +14,7 @@ int32_t material_index(const Scene& scene, uint32_t geom_id) {
   return int32_t(&scene.material(hit) - scene.materials().data());
 }
 
-void add_mesh(RasterScene& out, const TriangleMesh& mesh, int32_t material) {
+void add_mesh(RasterScene& out, const TriangleMesh& mesh, int32_t material, int32_t emitter) {
   const bool has_normals = !mesh.normals.empty();
   for (size_t t = 0; t < mesh.triangle_count(); ++t) {
     const uint32_t* tri = &mesh.indices[3 * t];
@@ -27,13 +27,13 @@ void add_mesh(RasterScene& out, const TriangleMesh& mesh, int32_t material) {
       if (!has_normals || !(length_squared(mesh.normals[v]) > 0.0f)) return ng;
       return face_forward(normalize(mesh.normals[v]), ng);
     };
-    out.add_triangle(p0, p1, p2, shading(tri[0]), shading(tri[1]), shading(tri[2]), material);
+    out.add_triangle(p0, p1, p2, shading(tri[0]), shading(tri[1]), shading(tri[2]), material, emitter);
   }
 }
 
 // A UV sphere through the sphere's transform (ellipsoids stay ellipsoids); triangles wound
 // so their geometric normals point outwards like Embree's sphere normals.
-void add_sphere(RasterScene& out, const Sphere& sphere, int32_t material) {
+void add_sphere(RasterScene& out, const Sphere& sphere, int32_t material, int32_t emitter) {
   constexpr int kSeg = RasterScene::kSphereSegments, kRings = RasterScene::kSphereRings;
   const Transform& t = sphere.object_to_world;
   const Vec3 centre = t.point({0, 0, 0});
@@ -49,7 +49,7 @@ void add_sphere(RasterScene& out, const Sphere& sphere, int32_t material) {
       std::swap(p[1], p[2]);
       std::swap(n[1], n[2]);
     }
-    out.add_triangle(p[0], p[1], p[2], n[0], n[1], n[2], material);
+    out.add_triangle(p[0], p[1], p[2], n[0], n[1], n[2], material, emitter);
   };
   for (int r = 0; r < kRings; ++r)
     for (int s = 0; s < kSeg; ++s) {
@@ -61,7 +61,8 @@ void add_sphere(RasterScene& out, const Sphere& sphere, int32_t material) {
 
 }  // namespace
 
-void RasterScene::add_triangle(Vec3 p0, Vec3 p1, Vec3 p2, Vec3 n0, Vec3 n1, Vec3 n2, int32_t material) {
+void RasterScene::add_triangle(Vec3 p0, Vec3 p1, Vec3 p2, Vec3 n0, Vec3 n1, Vec3 n2, int32_t material,
+                               int32_t emitter) {
   const Vec3 c = cross(p1 - p0, p2 - p0);
   if (!(length_squared(c) > 0.0f)) return;
   for (Vec3 p : {p0, p1, p2}) {
@@ -71,6 +72,7 @@ void RasterScene::add_triangle(Vec3 p0, Vec3 p1, Vec3 p2, Vec3 n0, Vec3 n1, Vec3
   normals_.insert(normals_.end(), {n0, n1, n2});
   geometric_normals_.push_back(normalize(c));
   materials_.push_back(material);
+  emitters_.push_back(emitter);
 }
 
 RasterScene RasterScene::build(const Scene& scene, Layer layer) {
@@ -83,10 +85,11 @@ RasterScene RasterScene::build(const Scene& scene, Layer layer) {
     if (std::holds_alternative<NullBsdf>(bsdf)) continue;
     const bool glass = std::holds_alternative<DielectricBsdf>(bsdf);
     if ((layer == Layer::opaque && glass) || (layer == Layer::glass && !glass)) continue;
+    const int32_t emitter = scene.geometry_light(g);
     if (surfaces.is_sphere(g))
-      add_sphere(out, surfaces.sphere(g), m);
+      add_sphere(out, surfaces.sphere(g), m, emitter);
     else
-      add_mesh(out, surfaces.mesh(g), m);
+      add_mesh(out, surfaces.mesh(g), m, emitter);
   }
   return out;
 }

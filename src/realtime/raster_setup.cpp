@@ -194,7 +194,7 @@ void setup_one(const RasterScene& scene, size_t i, const Projector& proj, bool a
 
 }  // namespace
 
-Setup setup_triangles(const RasterScene& scene, const View& view, bool attributes) {
+Setup setup_triangles(const RasterScene& scene, const View& view, bool attributes, int32_t skip_emitter) {
   Setup s;
   s.width = view.resolution.x;
   s.height = view.resolution.y;
@@ -209,7 +209,8 @@ Setup setup_triangles(const RasterScene& scene, const View& view, bool attribute
   parallel_for(chunks, [&](int c) {
     const size_t begin = size_t(c) * kChunk, end = std::min(n, begin + kChunk);
     parts[size_t(c)].reserve(end - begin);
-    for (size_t i = begin; i < end; ++i) setup_one(scene, i, proj, attributes, parts[size_t(c)]);
+    for (size_t i = begin; i < end; ++i)
+      if (skip_emitter < 0 || scene.emitter(i) != skip_emitter) setup_one(scene, i, proj, attributes, parts[size_t(c)]);
   });
 
   size_t total = 0;

@@ -45,7 +45,7 @@ struct Setup {
 
 // Projects, clips (near plane and a guard band) and bins every triangle. With
 // `attributes`, also fills the normal planes.
-Setup setup_triangles(const RasterScene& scene, const View& view, bool attributes);
+Setup setup_triangles(const RasterScene& scene, const View& view, bool attributes, int32_t skip_emitter = -1);
 
 // The depth key's value for "nothing here".
 inline constexpr float kEmptyKey = -3.0e38f;

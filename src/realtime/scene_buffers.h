@@ -45,14 +45,16 @@ class RasterScene {
   enum class Layer { all, opaque, glass };
   static RasterScene build(const Scene& scene, Layer layer = Layer::all);
   // One triangle in world space with unit shading normals at its vertices; material indexes
-  // Scene::materials(). Degenerate (zero-area) triangles are dropped.
-  void add_triangle(Vec3 p0, Vec3 p1, Vec3 p2, Vec3 n0, Vec3 n1, Vec3 n2, int32_t material);
+  // Scene::materials(); emitter the scene light whose visible surface it is, or -1.
+  // Degenerate (zero-area) triangles are dropped.
+  void add_triangle(Vec3 p0, Vec3 p1, Vec3 p2, Vec3 n0, Vec3 n1, Vec3 n2, int32_t material, int32_t emitter = -1);
 
   size_t triangle_count() const { return materials_.size(); }
   const Vec3* vertices(size_t t) const { return &positions_[3 * t]; }
   const Vec3* vertex_normals(size_t t) const { return &normals_[3 * t]; }
   Vec3 geometric_normal(size_t t) const { return geometric_normals_[t]; }  // cross(p1 - p0, p2 - p0), unit
   int32_t material(size_t t) const { return materials_[t]; }
+  int32_t emitter(size_t t) const { return emitters_[t]; }
   const Bounds3& bounds() const { return bounds_; }
 
  private:
@@ -60,6 +62,7 @@ class RasterScene {
   std::vector<Vec3> normals_;    // 3 per triangle
   std::vector<Vec3> geometric_normals_;
   std::vector<int32_t> materials_;
+  std::vector<int32_t> emitters_;
   Bounds3 bounds_;
 };
 
@@ -69,7 +72,8 @@ GBuffer rasterize_gbuffer(const RasterScene& scene, const View& view, bool simd 
 // or clearing of ~21 bytes per pixel).
 void rasterize_gbuffer(const RasterScene& scene, const View& view, GBuffer& out, bool simd = true);
 // Depth only (shadow maps): the same rasteriser without normals or materials.
-Plane rasterize_depth(const RasterScene& scene, const View& view, bool simd = true);
+// skip_emitter >= 0 leaves out that light's visible surface (a stand-in's shadow map).
+Plane rasterize_depth(const RasterScene& scene, const View& view, bool simd = true, int32_t skip_emitter = -1);
 // The same buffers from Embree primary rays (one per pixel centre), for comparison.
 GBuffer trace_gbuffer(const Scene& scene, const View& view);
 

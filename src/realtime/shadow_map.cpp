@@ -11,21 +11,21 @@ namespace {
 // near 180 degrees and spend its texels at the rim.
 constexpr float kMaxSpotHalfAngle = 75.0f * kPi / 180.0f;
 
-ShadowMap cube_map(const RasterScene& scene, Vec3 position, int size) {
+ShadowMap cube_map(const RasterScene& scene, Vec3 position, int size, int32_t skip) {
   const Vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
   ShadowMap map;
   for (int f = 0; f < 6; ++f) {
     const Vec3 up_hint = (f == 2 || f == 3) ? Vec3{0, 0, 1} : Vec3{0, 1, 0};
     map.faces.push_back(View::perspective_view(position, axes[f], up_hint, 0.5f * kPi, {size, size}));
-    map.depth.push_back(rasterize_depth(scene, map.faces.back()));
+    map.depth.push_back(rasterize_depth(scene, map.faces.back(), true, skip));
   }
   return map;
 }
 
-ShadowMap single_face(const RasterScene& scene, const View& face) {
+ShadowMap single_face(const RasterScene& scene, const View& face, int32_t skip) {
   ShadowMap map;
   map.faces.push_back(face);
-  map.depth.push_back(rasterize_depth(scene, face));
+  map.depth.push_back(rasterize_depth(scene, face, true, skip));
   return map;
 }
 
@@ -58,21 +58,22 @@ struct Render {
   const RasterScene& scene;
   int size;
   const Bounds3& bounds;
+  int32_t skip;
 
-  std::optional<ShadowMap> operator()(const PointLight& l) const { return cube_map(scene, l.position, size); }
+  std::optional<ShadowMap> operator()(const PointLight& l) const { return cube_map(scene, l.position, size, skip); }
   std::optional<ShadowMap> operator()(const SpotLight& l) const {
     const float half_angle = std::acos(std::clamp(l.cos_outer, -1.0f, 1.0f));
-    if (half_angle > kMaxSpotHalfAngle) return cube_map(scene, l.position, size);
+    if (half_angle > kMaxSpotHalfAngle) return cube_map(scene, l.position, size, skip);
     return single_face(
-        scene, View::perspective_view(l.position, l.direction, l.up, 2.0f * half_angle, {size, size}));
+        scene, View::perspective_view(l.position, l.direction, l.up, 2.0f * half_angle, {size, size}), skip);
   }
   std::optional<ShadowMap> operator()(const BoxLight& l) const {
     return single_face(scene, View::orthographic_view(l.position, l.direction, l.up, l.half_width,
-                                                      l.half_height, {size, size}));
+                                                      l.half_height, {size, size}), skip);
   }
   std::optional<ShadowMap> operator()(const DirectionalLight& l) const {
     if (bounds.empty()) return std::nullopt;
-    return single_face(scene, fit_directional_face(bounds, l.direction, size));
+    return single_face(scene, fit_directional_face(bounds, l.direction, size), skip);
   }
 };
 
@@ -135,8 +136,8 @@ float ShadowMap::visibility(Vec3 p) const {
 }
 
 std::optional<ShadowMap> render_shadow_map(const RasterScene& scene, const ShadedLight& light, int size,
-                                           const Bounds3& scene_bounds) {
-  return std::visit(Render{scene, size, scene_bounds}, light);
+                                           const Bounds3& scene_bounds, int32_t skip_emitter) {
+  return std::visit(Render{scene, size, scene_bounds, skip_emitter}, light);
 }
 
 }  // namespace caligo

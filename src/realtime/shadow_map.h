@@ -45,7 +45,9 @@ struct ShadowMap {
 };
 
 // std::nullopt when there is nothing to shadow (a directional light over an empty scene).
+// skip_emitter >= 0 leaves that scene light's visible surface out (a stand-in inside its own
+// emitter: FrameLight::skip_emitter).
 std::optional<ShadowMap> render_shadow_map(const RasterScene& scene, const ShadedLight& light, int size,
-                                           const Bounds3& scene_bounds);
+                                           const Bounds3& scene_bounds, int32_t skip_emitter = -1);
 
 }  // namespace caligo

@@ -117,15 +117,6 @@ TEST(ShadowMap, DirectionalAgreesWithEmbree) {
   expect_agreement(l, "directional");
 }
 
-// Area and environment lights are left to the path tracer: the passes never see them.
-TEST(ShadowMap, AreaLightsAreNotShaded) {
-  EXPECT_FALSE(shaded_light(SphereLight{{0, 3, 0}, 0.2f, RGB(1.0f)}));
-  EXPECT_FALSE(shaded_light(QuadLight{{0, 3, 0}, {1, 0, 0}, {0, 0, 1}, RGB(1.0f), false}));
-  EXPECT_FALSE(shaded_light(TriangleLight{{0, 3, 0}, {1, 3, 0}, {0, 3, 1}, RGB(1.0f), false}));
-  EXPECT_FALSE(shaded_light(EnvironmentLight{RGB(1.0f)}));
-  EXPECT_TRUE(shaded_light(PointLight{{0, 3, 0}, RGB(1.0f)}));
-}
-
 // A wide spot (outer angle > 75 degrees) gets a cube and still agrees.
 TEST(ShadowMap, WideSpotUsesCube) {
   const Fixture f;

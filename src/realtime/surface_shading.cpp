@@ -85,6 +85,13 @@ bool spot_cone_may_reach(const SpotLight& l, const Bounds3& b) {
   return outside <= radius * 1.001f + 1e-4f && along >= -radius;
 }
 
+// Far enough along any direction to leave every surface and volume from inside them.
+float escape_distance(const Scene& scene) {
+  Bounds3 b = scene.surfaces().bounds();
+  for (const VolumePrimitive& v : scene.volumes().primitives()) b.extend(volume_bounds(v.shape));
+  return b.empty() ? 1.0f : 2.0f * length(b.diagonal()) + 1.0f;
+}
+
 RGB transmittance(const VolumeScene& volumes, Vec3 a, Vec3 b) {
   if (volumes.empty()) return RGB(1.0f);
   const RGB tau = segment_optical_depth(volumes, a, b);
@@ -186,13 +193,6 @@ std::vector<Tile> shading_tiles(int w, int h) {
   return tiles;
 }
 
-// Far enough along any direction to leave every surface and volume from inside them.
-float escape_distance(const Scene& scene) {
-  Bounds3 b = scene.surfaces().bounds();
-  for (const VolumePrimitive& v : scene.volumes().primitives()) b.extend(volume_bounds(v.shape));
-  return b.empty() ? 1.0f : 2.0f * length(b.diagonal()) + 1.0f;
-}
-
 }  // namespace
 
 ColorPlanes shade_surfaces(const GBuffer& gbuffer, const View& camera, const Scene& scene,
@@ -207,7 +207,7 @@ void shade_surfaces(const GBuffer& gbuffer, const View& camera, const Scene& sce
   const int w = gbuffer.depth.width, h = gbuffer.depth.height;
   // Every pixel is written below: a buffer of the right size is reused as it is.
   if (out.width() != w || out.height() != h) out = ColorPlanes(w, h);
-  const ShadeContext context{gbuffer, camera, scene, lights, escape_distance(scene), simd};
+  const ShadeContext context{gbuffer, camera, scene, lights, shading::escape_distance(scene), simd};
   const shading::SimdFramePtr frame = simd ? shading::prepare_simd(context) : nullptr;
   parallel_for_tiles(shading_tiles(w, h),
                      [&](const Tile& tile) { shade_tile(context, frame.get(), tile, out); });

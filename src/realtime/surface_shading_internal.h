@@ -25,6 +25,8 @@ struct ShadeContext {
 // (tile culling); cones of 90 degrees or wider always may.
 bool spot_cone_may_reach(const SpotLight& light, const Bounds3& box);
 RGB transmittance(const VolumeScene& volumes, Vec3 a, Vec3 b);
+// Far enough along any direction to leave every surface and volume from inside them.
+float escape_distance(const Scene& scene);
 // What the real-time passes shade a material's surface with: f = albedo / pi of a diffuse BSDF,
 // or nothing (emission only) for the others, which they cannot shade: glass, black and null
 // surfaces. A visit, so a new BSDF does not compile until it is decided here.

@@ -91,6 +91,8 @@ class Scene {
   }
   // A holdout shape (ShapeDesc::holdout).
   bool is_holdout(uint32_t geom_id) const { return geometry_[geom_id].holdout; }
+  // The light whose surface a geometry is (its first light for an emissive mesh), or -1.
+  int geometry_light(uint32_t geom_id) const { return geometry_[geom_id].light; }
   const Material& material(const SurfaceHit& hit) const {
     return materials_[size_t(geometry_[hit.geom_id].material)];
   }

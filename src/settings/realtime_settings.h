@@ -64,6 +64,9 @@ struct RealtimeSettings {
   // by default: on `arena` at 1080p it costs ~108 ms a frame (docs/techniques.md).
   bool resolve_light_cores = false;
   float temporal_blend = 0.1f;           // weight of the current frame in the history blend
+  // The suns an environment light is shaded by (median cut: realtime/light_stand_ins.h); each
+  // costs what a directional light costs, shadow map included.
+  int environment_lights = 16;
   bool simd = true;
   SceneBufferMethod scene_buffers = SceneBufferMethod::raster;
   // The animation `caligo realtime` renders: frame i is at time i / fps.
