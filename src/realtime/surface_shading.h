@@ -4,12 +4,13 @@
 // light's shadow-map visibility, times the transmittance of the media between the surface
 // and the light, plus the material's emission; all times the camera ray's transmittance.
 // For diffuse surfaces lit by delta lights this is what the path tracer renders with
-// --max-depth 1 (sphere, quad, triangle and environment lights are not shaded here; a sun
-// with an angular radius is shaded as a delta direction).
+// --max-depth 1 (area lights and the environment arrive as their delta stand-ins,
+// realtime/light_stand_ins.h; a sun with an angular radius is shaded as a delta direction).
 //
 // Lights are culled per 64 x 4 pixel tile against the tile's world-space bounds (range
 // spheres, spot cones, box-light volumes), as a Forward+ renderer does; tiles are wide
-// because their rows are what the G-buffer loads stream through. Sky pixels are black.
+// because their rows are what the G-buffer loads stream through. Sky pixels are black here;
+// realtime/sky.h draws the visible environment in them.
 // The SIMD path (surface_shading_simd.cpp) evaluates every delta light 8 pixels at a time,
 // gobos and media transmittance included; only IES profiles and cube-map lookups that
 // straddle faces call the scalar functions lane by lane.
