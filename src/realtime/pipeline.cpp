@@ -73,6 +73,7 @@ void RealtimePipeline::update_shadow_maps(const std::vector<FrameLight>& lights,
     std::vector<float> key = placement_key(light.light);
     if (cache.size == light.options.shadow_map_size && cache.key == key && !cache.key.empty()) continue;
     cache.map = render_shadow_map(*raster_, light.light, light.options.shadow_map_size, bounds, light.skip_emitter);
+    if (cache.map) cache.map->filter_surfaces = settings_.filter_surface_shadows;
     cache.key = std::move(key);
     cache.size = light.options.shadow_map_size;
     ++frame.shadow_maps_rendered;

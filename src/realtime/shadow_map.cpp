@@ -135,6 +135,34 @@ float ShadowMap::visibility(Vec3 p) const {
   return q.z <= stored + (bias + texel_bias * q.texel) ? 1.0f : 0.0f;
 }
 
+// The same arithmetic, in the same order, as filtered_face_visibility in shadow_map_simd.h.
+float ShadowMap::surface_visibility(Vec3 p) const {
+  if (!filter_surfaces) return visibility(p);
+  const int f = face_index(p);
+  const View& v = faces[size_t(f)];
+  const Plane& d = depth[size_t(f)];
+  const FaceLookup q = project_face(v, p);
+  if (v.projection == Projection::perspective && !(q.z > 0.0f)) return 1.0f;
+  if (!is_cube() && !(q.x >= 0.0f && q.x < float(d.width) && q.y >= 0.0f && q.y < float(d.height))) return 1.0f;
+  const float slack = bias + texel_bias * q.texel;
+  const float gx = q.x - 0.5f, gy = q.y - 0.5f;
+  const float x0 = std::floor(gx), y0 = std::floor(gy);
+  const float tx = gx - x0, ty = gy - y0;
+  const auto tap = [&](int x, int y) {
+    if (is_cube()) {
+      x = std::clamp(x, 0, d.width - 1);
+      y = std::clamp(y, 0, d.height - 1);
+    } else if (x < 0 || x >= d.width || y < 0 || y >= d.height) {
+      return 1.0f;
+    }
+    return q.z <= d.data[size_t(y) * size_t(d.width) + size_t(x)] + slack ? 1.0f : 0.0f;
+  };
+  const int ix = int(x0), iy = int(y0);
+  const float top = tap(ix, iy) + tx * (tap(ix + 1, iy) - tap(ix, iy));
+  const float bottom = tap(ix, iy + 1) + tx * (tap(ix + 1, iy + 1) - tap(ix, iy + 1));
+  return top + ty * (bottom - top);
+}
+
 std::optional<ShadowMap> render_shadow_map(const RasterScene& scene, const ShadedLight& light, int size,
                                            const Bounds3& scene_bounds, int32_t skip_emitter) {
   return std::visit(Render{scene, size, scene_bounds, skip_emitter}, light);

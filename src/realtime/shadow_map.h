@@ -34,9 +34,18 @@ struct ShadowMap {
   float bias = 1.0e-4f;      // metres of slack in the depth comparison
   float texel_bias = 1.5f;   // extra slack in texel footprints at the lookup depth
 
+  // Surfaces take the 2 x 2 bilinear percentage-closer filter (Reeves et al. 1987, with the
+  // bilinear weights of hardware PCF): edges ramp over one texel instead of stair-stepping.
+  // false: one tap, as the volumetric march always takes (it averages over its steps).
+  bool filter_surfaces = true;
+
   // 1 where p is lit (not farther than the stored depth + bias), 0 in shadow; points
   // outside every face are lit.
   float visibility(Vec3 p) const;
+  // What surfaces see: the four texels around p compared one by one and weighted bilinearly
+  // (in [0, 1]), or visibility(p) when !filter_surfaces. Taps outside a single face are lit;
+  // a cube face clamps them to its rim.
+  float surface_visibility(Vec3 p) const;
   // The face p is looked up in: 0, or the cube face of p's dominant axis from the light.
   int face_index(Vec3 p) const;
   // World size of one texel at p (for normal offsets).

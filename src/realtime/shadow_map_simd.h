@@ -57,6 +57,61 @@ inline xsimd::batch<float> face_visibility(const ShadowMap& map, int face, const
   return xsimd::select(lit | !valid, B(1.0f), B(0.0f));
 }
 
+// face_visibility's bilinear 2 x 2 filter (ShadowMap::surface_visibility, same arithmetic).
+inline xsimd::batch<float> filtered_face_visibility(const ShadowMap& map, int face, const xsimd::batch<float>& px,
+                                                    const xsimd::batch<float>& py, const xsimd::batch<float>& pz,
+                                                    bool cube) {
+  using B = xsimd::batch<float>;
+  using I = xsimd::batch<int32_t>;
+  const View& v = map.faces[size_t(face)];
+  const Plane& d = map.depth[size_t(face)];
+  const B dx = px - B(v.eye.x), dy = py - B(v.eye.y), dz = pz - B(v.eye.z);
+  const B z = dx * B(v.forward.x) + dy * B(v.forward.y) + dz * B(v.forward.z);
+  const B xr = dx * B(v.right.x) + dy * B(v.right.y) + dz * B(v.right.z);
+  const B yu = dx * B(v.up.x) + dy * B(v.up.y) + dz * B(v.up.z);
+  const float w = float(v.resolution.x), h = float(v.resolution.y);
+  B ndc_x, ndc_y, texel;
+  xsimd::batch_bool<float> lit_anyway(false);
+  if (v.projection == Projection::perspective) {
+    const B inv = B(1.0f) / (z * B(v.tan_half_fov_y));
+    ndc_x = xr * inv / B(v.aspect);
+    ndc_y = yu * inv;
+    texel = z * B(2.0f * v.tan_half_fov_y / h);
+    lit_anyway = !(z > B(0.0f));
+  } else {
+    ndc_x = xr / B(v.half_width);
+    ndc_y = yu / B(v.half_height);
+    texel = B(2.0f * v.half_height / h);
+  }
+  const B sx = (ndc_x + B(1.0f)) * B(0.5f) * B(w);
+  const B sy = (B(1.0f) - ndc_y) * B(0.5f) * B(h);
+  if (!cube) lit_anyway = lit_anyway | !((sx >= B(0.0f)) & (sx < B(w)) & (sy >= B(0.0f)) & (sy < B(h)));
+  const B slack = B(map.bias) + B(map.texel_bias) * texel;
+  const B gx = xsimd::select(lit_anyway, B(0.0f), sx - B(0.5f)), gy = xsimd::select(lit_anyway, B(0.0f), sy - B(0.5f));
+  const B x0 = xsimd::floor(gx), y0 = xsimd::floor(gy);
+  const B tx = gx - x0, ty = gy - y0;
+  const auto tap = [&](const B& x, const B& y) {
+    B cx = x, cy = y;
+    xsimd::batch_bool<float> outside(false);
+    if (cube) {
+      cx = xsimd::clip(x, B(0.0f), B(w - 1.0f));
+      cy = xsimd::clip(y, B(0.0f), B(h - 1.0f));
+    } else {
+      outside = (x < B(0.0f)) | (x >= B(w)) | (y < B(0.0f)) | (y >= B(h));
+      cx = xsimd::select(outside, B(0.0f), x);
+      cy = xsimd::select(outside, B(0.0f), y);
+    }
+    const I index = xsimd::to_int(cy) * I(d.width) + xsimd::to_int(cx);
+    const B stored(_mm256_i32gather_ps(d.data.data(), index, 4));
+    return xsimd::select((z <= stored + slack) | outside, B(1.0f), B(0.0f));
+  };
+  const B x1 = x0 + B(1.0f), y1 = y0 + B(1.0f);
+  const B t00 = tap(x0, y0), t10 = tap(x1, y0), t01 = tap(x0, y1), t11 = tap(x1, y1);
+  const B top = t00 + tx * (t10 - t00);
+  const B bottom = t01 + tx * (t11 - t01);
+  return xsimd::select(lit_anyway, B(1.0f), top + ty * (bottom - top));
+}
+
 // The cube face every lane would pick (ShadowMap::face_index), or -1 when they differ.
 inline int common_cube_face(const ShadowMap& map, const xsimd::batch<float>& px,
                             const xsimd::batch<float>& py, const xsimd::batch<float>& pz) {
@@ -194,6 +249,22 @@ inline xsimd::batch<float> shadow_visibility(const ShadowMap& map, const xsimd::
   py.store_aligned(y);
   pz.store_aligned(z);
   for (size_t i = 0; i < B::size; ++i) out[i] = map.visibility({x[i], y[i], z[i]});
+  return B::load_aligned(out);
+}
+
+// ShadowMap::surface_visibility per lane, as shadow_visibility is visibility.
+inline xsimd::batch<float> surface_shadow_visibility(const ShadowMap& map, const xsimd::batch<float>& px,
+                                                     const xsimd::batch<float>& py, const xsimd::batch<float>& pz) {
+  using B = xsimd::batch<float>;
+  if (!map.filter_surfaces) return shadow_visibility(map, px, py, pz);
+  if (map.faces.size() == 1) return shadow_detail::filtered_face_visibility(map, 0, px, py, pz, false);
+  const int face = shadow_detail::common_cube_face(map, px, py, pz);
+  if (face >= 0) return shadow_detail::filtered_face_visibility(map, face, px, py, pz, true);
+  alignas(32) float x[B::size], y[B::size], z[B::size], out[B::size];
+  px.store_aligned(x);
+  py.store_aligned(y);
+  pz.store_aligned(z);
+  for (size_t i = 0; i < B::size; ++i) out[i] = map.surface_visibility({x[i], y[i], z[i]});
   return B::load_aligned(out);
 }
 

@@ -10,6 +10,7 @@
 #include "realtime/shadow_map.h"
 #include "realtime/shadow_map_simd.h"
 #include "realtime/test_scenes.h"
+#include "scene/scene.h"
 
 namespace caligo {
 namespace {
@@ -37,7 +38,7 @@ std::optional<Vec3> light_point(const Light& light, Vec3 p) {
 }
 
 struct Counts {
-  int points = 0, agree = 0, simd_mismatch = 0;
+  int points = 0, agree = 0, simd_mismatch = 0, filtered_mismatch = 0;
 };
 
 // Uniform points in the scene's box above the floor (some inside the box and sphere).
@@ -67,20 +68,26 @@ Counts compare_with_embree(const Fixture& f, const Light& light, int size) {
       x[k] = points[i + k].x, y[k] = points[i + k].y, z[k] = points[i + k].z;
     shadow_visibility(*map, B::load_aligned(x), B::load_aligned(y), B::load_aligned(z)).store_aligned(v);
     for (size_t k = 0; k < B::size; ++k) c.simd_mismatch += v[k] != map->visibility(points[i + k]);
+    surface_shadow_visibility(*map, B::load_aligned(x), B::load_aligned(y), B::load_aligned(z)).store_aligned(v);
+    for (size_t k = 0; k < B::size; ++k)
+      c.filtered_mismatch += std::abs(v[k] - map->surface_visibility(points[i + k])) > 1e-3f;
   }
   return c;
 }
 
 // Disagreement comes from points within the depth slack (1.5 texels) behind a lit surface
 // and from shadow edges quantised to texels; >= 98 % agreement is required, and the SIMD
-// lookup may differ from the scalar one at <= 0.1 % of points (texel-boundary rounding).
+// lookup may differ from the scalar one at <= 0.1 % of points (texel-boundary rounding); so may
+// the filtered one by more than 1e-3 (measured: at none; smaller differences are the bilinear
+// weights' rounding).
 void expect_agreement(const Light& light, const char* name) {
   const Fixture f;
   const Counts c = compare_with_embree(f, light, 512);
-  std::printf("%s: shadow map agrees with Embree at %d of %d points; SIMD lookup differs at %d\n", name,
-              c.agree, c.points, c.simd_mismatch);
+  std::printf("%s: shadow map agrees with Embree at %d of %d points; SIMD lookup differs at %d, filtered at %d\n",
+              name, c.agree, c.points, c.simd_mismatch, c.filtered_mismatch);
   EXPECT_GE(double(c.agree) / c.points, 0.98) << name << ": " << c.agree << " / " << c.points;
   EXPECT_LE(c.simd_mismatch, c.points / 1000) << name;
+  EXPECT_LE(c.filtered_mismatch, c.points / 1000) << name;
 }
 
 TEST(ShadowMap, SpotAgreesWithEmbree) {
@@ -115,6 +122,49 @@ TEST(ShadowMap, DirectionalAgreesWithEmbree) {
   l.direction = normalize(Vec3{0.5f, -1.0f, 0.3f});
   l.irradiance = RGB(1.0f);
   expect_agreement(l, "directional");
+}
+
+// The surfaces' bilinear PCF ramps across a diagonal shadow edge over about a texel, without
+// steps: along a line crossing it in twentieths of a texel, visibility changes by at most
+// sqrt(2) / 20 per step (the bilinear weights' slope), where the single tap jumps 0 -> 1; it
+// is 0 and 1 more than 1.5 texels from the edge, and crosses 1/2 within a texel of it.
+TEST(ShadowMap, SurfaceFilterRampsAcrossAnEdge) {
+  SceneDesc desc;
+  const int m = test_scenes::add_diffuse(desc, 0.5f);
+  desc.shapes.push_back({RectangleShape{{-4, 0, 4}, {8, 0, 0}, {0, 0, -8}}, {}, m});
+  const Transform turn = Transform::rotate(0.52f, {0, 1, 0});
+  desc.shapes.push_back({RectangleShape{{-2, 1, -2}, {4, 0, 0}, {0, 0, 2}}, turn, m});  // local z in [-2, 0]
+  const auto scene = Scene::build(desc);
+  const RasterScene raster = RasterScene::build(*scene);
+  DirectionalLight sun;
+  sun.direction = {0, -1, 0};
+  sun.irradiance = RGB(1.0f);
+  const auto map = render_shadow_map(raster, sun, 64, scene->surfaces().bounds());
+  ASSERT_TRUE(map);
+  const Vec3 along = turn.vector({0, 0, 1});  // across the edge, towards the lit side
+  Vec3 on_edge = turn.point({0.3f, 0, 0});
+  on_edge.y = 0.0f;  // on the floor
+  const float texel = map->texel_size(on_edge);
+  float prev_filtered = -1.0f, prev_tap = -1.0f, max_step = 0.0f, max_jump = 0.0f, half_at = kInfinity;
+  for (int k = -60; k <= 60; ++k) {
+    const float s = float(k) * texel / 20.0f;
+    const Vec3 p = on_edge + along * s;
+    const float v = map->surface_visibility(p), tap = map->visibility(p);
+    if (k > -60) {
+      max_step = std::max(max_step, std::abs(v - prev_filtered));
+      max_jump = std::max(max_jump, std::abs(tap - prev_tap));
+      if (prev_filtered < 0.5f && v >= 0.5f) half_at = s;
+    }
+    if (s < -1.5f * texel) EXPECT_EQ(v, 0.0f) << s / texel;
+    if (s > 1.5f * texel) EXPECT_EQ(v, 1.0f) << s / texel;
+    prev_filtered = v;
+    prev_tap = tap;
+  }
+  std::printf("edge: filtered step %.4f per texel/20, single tap %.1f, half at %.2f texels\n", max_step, max_jump,
+              half_at / texel);
+  EXPECT_LE(max_step, std::sqrt(2.0f) / 20.0f + 1e-4f);
+  EXPECT_EQ(max_jump, 1.0f);
+  EXPECT_LT(std::abs(half_at), texel);
 }
 
 // A wide spot (outer angle > 75 degrees) gets a cube and still agrees.

@@ -104,8 +104,9 @@ RGB light_term(const ShadeContext& c, const FrameLight& fl, Vec3 p, Vec3 n, RGB 
   const float cos_theta = dot(n, in->wi);
   if (!(cos_theta > 0.0f)) return RGB(0.0f);
   // Normal offset: one texel towards the lit side keeps self-shadowing acne away.
-  if (fl.shadow && fl.shadow->visibility(p + n * fl.shadow->texel_size(p)) == 0.0f) return RGB(0.0f);
-  return f * in->radiance * cos_theta * transmittance(c.scene.volumes(), p, in->light_point);
+  const float visible = fl.shadow ? fl.shadow->surface_visibility(p + n * fl.shadow->texel_size(p)) : 1.0f;
+  if (visible == 0.0f) return RGB(0.0f);
+  return f * in->radiance * (cos_theta * visible) * transmittance(c.scene.volumes(), p, in->light_point);
 }
 
 std::optional<RGB> diffuse_f(const Bsdf& bsdf) {

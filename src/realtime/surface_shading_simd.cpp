@@ -65,7 +65,7 @@ B shadowed_visibility(const ShadowMap& map, const V3& p, const V3& n) {
     texel = B::load_aligned(t);
   }
   const V3 q = madd(p, n, texel);
-  return shadow_visibility(map, q.x, q.y, q.z);
+  return surface_shadow_visibility(map, q.x, q.y, q.z);
 }
 
 struct Group {

@@ -224,7 +224,7 @@ TEST_F(LightFiles, CameraPathRealtimeBlockAndNoise) {
       {"time": 4, "position": [4, 1, 5], "look_at": [0, 1, 0]}]}},
     "realtime": {"scale": "half", "tile_size": 4, "samples": 32, "gather_radius": 3,
                  "gather_depth_falloff": 50, "temporal": false, "temporal_blend": 0.2,
-                 "multiple_scattering_floor": 0.1, "fps": 24, "frames": 96, "gather_follow_slope": false,
+                 "multiple_scattering_floor": 0.1, "fps": 24, "frames": 96, "gather_follow_slope": false, "environment_lights": 4, "shadow_filter": "none",
                  "froxels": {"width": 80, "height": 45, "slices": 128, "near_ratio": 64}},
     "media": {"haze": {"sigma_s": 0.1, "noise": {"scale": 0.5, "amplitude": 0.8, "wind": [1, 0, 0.5]}}},
     "volumes": [{"type": "box", "min": [-5, 0, -5], "max": [5, 5, 5], "medium": "haze"}]})"));
@@ -246,6 +246,8 @@ TEST_F(LightFiles, CameraPathRealtimeBlockAndNoise) {
   EXPECT_FLOAT_EQ(rt.fps, 24.0f);
   EXPECT_EQ(rt.frames, 96);
   EXPECT_FALSE(rt.gather_follow_slope);
+  EXPECT_EQ(rt.environment_lights, 4);
+  EXPECT_FALSE(rt.filter_surface_shadows);
   EXPECT_EQ(rt.froxels.width, 80);
   EXPECT_EQ(rt.froxels.height, 45);
   EXPECT_EQ(rt.froxels.slices, 128);

@@ -67,6 +67,9 @@ struct RealtimeSettings {
   // The suns an environment light is shaded by (median cut: realtime/light_stand_ins.h); each
   // costs what a directional light costs, shadow map included.
   int environment_lights = 16;
+  // Surface shadows through the 2 x 2 bilinear PCF (ShadowMap::filter_surfaces); false: one
+  // tap, stair-stepped (the former behaviour, kept for comparison).
+  bool filter_surface_shadows = true;
   bool simd = true;
   SceneBufferMethod scene_buffers = SceneBufferMethod::raster;
   // The animation `caligo realtime` renders: frame i is at time i / fps.
