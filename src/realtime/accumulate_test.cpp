@@ -463,3 +463,53 @@ TEST(Accumulate, AThinFogSheetNeitherFlickersNorIsMissed) {
 
 }  // namespace
 }  // namespace caligo
+
+namespace caligo {
+namespace {
+
+// The artefact "flicker of high-attenuation lights": a bright lamp of range 0.3 m in dense fog
+// (sigma_t = 1 / m), the camera ray passing 5 cm from it 3 m away. Its light lives in 0.6 m of a
+// 10 m ray; the march clips its 16 steps to the lamp's volume, so every step offset (the
+// interleaving's per pixel, changed each frame by the seed) lands them all there. Measured
+// (2026-12) over the 16 pixels of a tile and 8 seeds: uniform steps spread 0.11 % (max - min
+// over the mean), mean +0.00 % against the dense integral; equiangular 2.7 % and +0.00 %
+// (its steps crowd the lamp, so one offset moves more). Held to 4 % spread and 1 % in the mean.
+TEST(Accumulate, AHighAttenuationLightIsStableFromFrameToFrame) {
+  const float sa = 0.2f, ss = 0.8f, st = sa + ss;
+  VolumeScene volumes({fog_box({-5, -5, -12}, {5, 5, 1}, RGB(sa), RGB(ss), IsotropicPhase{})});
+  const Vec3 lamp{0.05f, 0.0f, -3.0f};
+  const FrameLight light = frame_light(PointLight{lamp, RGB(50.0f), 0.3f});
+  // 4 x 4 nearly parallel rays: one interleaving tile, every pixel its own step offset.
+  const View view = View::perspective_view({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, radians(1e-4f), {4, 4});
+  const Plane depth(4, 4, 10.0f);
+  const Ray r = view.ray({2.0f, 2.0f});
+  double want = 0.0;
+  const int n = 2'000'000;
+  for (int i = 0; i < n; ++i) {
+    const double t = 2.6 + (i + 0.5) * 0.8 / n;
+    const auto arrival = delta_arrival(std::get<PointLight>(light.light), r.at(float(t)));
+    if (!arrival) continue;
+    want += ss * arrival->radiance.r * kInv4Pi * std::exp(-st * (t + arrival->distance)) * (0.8 / n);
+  }
+  ASSERT_GT(want, 0.0);
+  for (bool equiangular : {false, true}) {
+    double lo = kInfinity, hi = 0.0, sum = 0.0;
+    for (uint32_t seed = 0; seed < 8; ++seed) {
+      AccumulationSettings s;
+      s.samples = 16;
+      s.tile_size = 4;
+      s.equiangular = equiangular;
+      s.frame_seed = seed;
+      const ColorPlanes out = run(light, volumes, view, depth, s);
+      for (float v : out.r.data) lo = std::min(lo, double(v)), hi = std::max(hi, double(v)), sum += v;
+    }
+    const double mean = sum / (8.0 * 16.0), spread = (hi - lo) / mean, error = mean / want - 1.0;
+    std::printf("high-attenuation lamp, %s steps: spread %.2f %%, mean %+.2f %%\n",
+                equiangular ? "equiangular" : "uniform", 100.0 * spread, 100.0 * error);
+    EXPECT_LT(spread, 0.04);
+    EXPECT_LT(std::abs(error), 0.01);
+  }
+}
+
+}  // namespace
+}  // namespace caligo
