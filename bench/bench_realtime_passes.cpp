@@ -137,6 +137,15 @@ void BM_Gather(benchmark::State& state) {
 }
 BENCHMARK(BM_Gather)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
 
+// The low-resolution depth at quarter resolution: point-sampled centres (0) or min/max (1).
+void BM_DownsampleDepth(benchmark::State& state) {
+  const Plane full = scene_depth(camera_view(kFull));
+  const auto mode = state.range(0) != 0 ? LowResolutionDepth::min_max : LowResolutionDepth::centre;
+  for (auto _ : state) benchmark::DoNotOptimize(downsample_depth(full, 4, mode).data.data());
+  state.SetLabel(state.range(0) != 0 ? "min_max" : "centre");
+}
+BENCHMARK(BM_DownsampleDepth)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
+
 void BM_Upsample(benchmark::State& state) {
   const Plane full = scene_depth(camera_view(kFull));
   const Plane low_depth = downsample_depth(full, 4);

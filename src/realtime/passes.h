@@ -16,9 +16,13 @@ namespace caligo {
 
 class VolumeScene;
 
-// Low-resolution depth for accumulation: the full-resolution depth at each low-resolution
-// pixel's centre (so each low-resolution ray ends exactly where that full-resolution ray does).
-Plane downsample_depth(const Plane& full_depth, int scale);
+// Low-resolution depth for accumulation, gather, temporal and upsample (low_depth.cpp): each
+// pixel the full-resolution depth under its centre (its ray ends exactly where that
+// full-resolution ray does), or with `min_max` the nearest or farthest depth of its block
+// where the neighbouring centres leave that surface out (a thin cable, a slit), so every
+// surface of a block reaches the upsample's taps. Depths agree within `relative_threshold`.
+Plane downsample_depth(const Plane& full_depth, int scale, LowResolutionDepth mode = LowResolutionDepth::min_max,
+                       float relative_threshold = 0.05f);
 
 // Adds one light's single-scattered radiance along each pixel ray of `view` (the camera at
 // accumulation resolution) to `accum`, marching only inside the light's volume, clamped to
@@ -32,9 +36,9 @@ void accumulate_light(const FrameLight& light, const VolumeScene& volumes, const
 ColorPlanes bilateral_gather(const ColorPlanes& in, const Plane& depth, int radius, float depth_falloff,
                              bool simd = true, bool follow_slope = false);
 
-// Full-resolution result from the low-resolution one: bilinear where the four
-// low-resolution depths around a pixel agree with its depth, the tap of nearest depth where
-// they do not (an edge).
+// Full-resolution result from the low-resolution one: the bilinear blend of those of the four
+// low-resolution taps around a pixel whose depth agrees with its own (all four away from
+// edges), the tap of nearest depth where none does.
 ColorPlanes upsample_nearest_depth(const ColorPlanes& low, const Plane& low_depth, const Plane& full_depth,
                                    float relative_threshold = 0.05f, bool simd = true);
 // The same into a caller-owned buffer (resized if needed): a frame loop reuses it and

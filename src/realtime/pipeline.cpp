@@ -108,7 +108,7 @@ void RealtimePipeline::accumulate_lights(const std::vector<FrameLight>& lights, 
                                          Vec2i low_res, uint32_t frame_index, RealtimeFrame& next,
                                          ColorPlanes& accum, bool* marched, bool* scattered) {
   PassTimes& times = next.times;
-  next.low_depth = downsample_depth(gbuffer_->depth, settings_.scale);
+  next.low_depth = downsample_depth(gbuffer_->depth, settings_.scale, settings_.low_depth);
   accum = ColorPlanes(low_res.x, low_res.y);
   AccumulationSettings acc = settings_.accumulation;
   acc.frame_seed = frame_index;

@@ -1,9 +1,11 @@
-// Depth of the low-resolution passes and the way back to full resolution (Glatzel 2014,
-// "Upscale pass"): nearest-depth upsampling. Each full-resolution pixel looks at the four
-// low-resolution taps of its bilinear footprint; where all their depths agree with its own
-// (relative difference below the threshold) it takes the bilinear blend, which hides the
-// low-resolution blocks; where they do not, it sits on a depth edge and takes the tap of
-// nearest depth, so light from behind an edge never leaks onto the surface in front.
+// The way back to full resolution (Glatzel 2014, "Upscale pass"): depth-aware upsampling.
+// Each full-resolution pixel looks at the four low-resolution taps of its bilinear footprint
+// and blends, with their bilinear weights, those whose depth agrees with its own (relative
+// difference below the threshold): where all four agree this is the bilinear blend, which
+// hides the low-resolution blocks; along a depth edge it interpolates along the edge between
+// the taps of the pixel's own surface, so the edge has no stair-steps of a block's size. Where
+// no tap agrees it takes the tap of nearest depth (the seed's rule), so light from behind an
+// edge never leaks onto the surface in front.
 #include <immintrin.h>
 #include <xsimd/xsimd.hpp>
 
@@ -55,26 +57,25 @@ void upsample_pixel(const Rows& rows, int x0, int x1, float fx, float fy, float 
                     float* o_r, float* o_g, float* o_b) {
   const int xs[4] = {x0, x1, x0, x1}, ys[4] = {0, 0, 1, 1};
   const float w[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
-  float max_diff = 0.0f, best_diff = kInfinity;
+  float best_diff = kInfinity, weight = 0.0f, r = 0.0f, g = 0.0f, b = 0.0f;
   int best = 0;
   for (int i = 0; i < 4; ++i) {
     const float diff = std::abs(rows.d[ys[i]][xs[i]] - d);
-    max_diff = std::max(max_diff, diff);
     if (diff < best_diff) {
       best_diff = diff;
       best = i;
     }
-  }
-  if (max_diff < threshold * d) {
-    float r = 0.0f, g = 0.0f, b = 0.0f;
-    for (int i = 0; i < 4; ++i) {
+    if (diff < threshold * d) {
+      weight += w[i];
       r += w[i] * rows.r[ys[i]][xs[i]];
       g += w[i] * rows.g[ys[i]][xs[i]];
       b += w[i] * rows.b[ys[i]][xs[i]];
     }
-    *o_r = r;
-    *o_g = g;
-    *o_b = b;
+  }
+  if (weight > 0.0f) {
+    *o_r = r / weight;
+    *o_g = g / weight;
+    *o_b = b / weight;
     return;
   }
   *o_r = rows.r[ys[best]][xs[best]];
@@ -100,7 +101,7 @@ struct TapFetch {
   }
 };
 
-// 8 consecutive full-resolution pixels; the same decisions as upsample_pixel, lane-wise.
+// 8 consecutive full-resolution pixels; the same blend as upsample_pixel, lane-wise.
 void upsample_lanes(const Rows& rows, int low_width, const int32_t* x0, const int32_t* x1, const float* fx_p,
                     float fy, const float* depth, float threshold, float* o_r, float* o_g, float* o_b) {
   const IBatch i0 = IBatch::load_unaligned(x0), i1 = IBatch::load_unaligned(x1);
@@ -110,50 +111,33 @@ void upsample_lanes(const Rows& rows, int low_width, const int32_t* x0, const in
   const Batch d = Batch::load_unaligned(depth);
   const Batch w[4] = {(1.0f - fx) * (1.0f - fy), fx * (1.0f - fy), (1.0f - fx) * fy, fx * fy};
   const int ys[4] = {0, 0, 1, 1}, xs[4] = {0, 1, 0, 1};
-  Batch max_diff(0.0f), best_diff(kInfinity);
+  Batch weight(0.0f), best_diff(kInfinity);
   Batch best_r(0.0f), best_g(0.0f), best_b(0.0f), r(0.0f), g(0.0f), b(0.0f);
+  const Batch agree = threshold * d;
   for (int i = 0; i < 4; ++i) {
     const Batch diff = xsimd::abs(fetch(rows.d[ys[i]], xs[i]) - d);
     const Batch tr = fetch(rows.r[ys[i]], xs[i]);
     const Batch tg = fetch(rows.g[ys[i]], xs[i]);
     const Batch tb = fetch(rows.b[ys[i]], xs[i]);
-    max_diff = xsimd::max(max_diff, diff);
     const auto closer = diff < best_diff;  // strict: ties keep the earlier tap, as in the scalar loop
     best_diff = xsimd::select(closer, diff, best_diff);
     best_r = xsimd::select(closer, tr, best_r);
     best_g = xsimd::select(closer, tg, best_g);
     best_b = xsimd::select(closer, tb, best_b);
-    r += w[i] * tr;
-    g += w[i] * tg;
-    b += w[i] * tb;
+    const Batch wi = xsimd::select(diff < agree, w[i], Batch(0.0f));
+    weight += wi;
+    r += wi * tr;
+    g += wi * tg;
+    b += wi * tb;
   }
-  const auto smooth = max_diff < threshold * d;
-  xsimd::select(smooth, r, best_r).store_unaligned(o_r);
-  xsimd::select(smooth, g, best_g).store_unaligned(o_g);
-  xsimd::select(smooth, b, best_b).store_unaligned(o_b);
+  const auto some = weight > 0.0f;
+  const Batch safe = xsimd::select(some, weight, Batch(1.0f));
+  xsimd::select(some, r / safe, best_r).store_unaligned(o_r);
+  xsimd::select(some, g / safe, best_g).store_unaligned(o_g);
+  xsimd::select(some, b / safe, best_b).store_unaligned(o_b);
 }
 
 }  // namespace
-
-Plane downsample_depth(const Plane& full_depth, int scale) {
-  // ceil, as the pipeline sizes its low-resolution view: no full-resolution pixel is left
-  // without low-resolution pixels over it.
-  const int w = std::max(1, (full_depth.width + scale - 1) / scale);
-  const int h = std::max(1, (full_depth.height + scale - 1) / scale);
-  Plane low(w, h);
-  // The full-resolution pixel under the low-resolution pixel's centre. Both views cover the
-  // same film, so that centre is at (x + 0.5) * full / low (= (x + 0.5) scale when the size
-  // divides): exact for odd scales, half a full-resolution pixel off for even ones.
-  const float rx = float(full_depth.width) / float(w), ry = float(full_depth.height) / float(h);
-  for (int y = 0; y < h; ++y) {
-    const int fy = std::min(full_depth.height - 1, int((float(y) + 0.5f) * ry));
-    for (int x = 0; x < w; ++x) {
-      const int fx = std::min(full_depth.width - 1, int((float(x) + 0.5f) * rx));
-      low.at(x, y) = full_depth.at(fx, fy);
-    }
-  }
-  return low;
-}
 
 ColorPlanes upsample_nearest_depth(const ColorPlanes& low, const Plane& low_depth, const Plane& full_depth,
                                    float relative_threshold, bool simd) {

@@ -231,7 +231,7 @@ RealtimeSettings parse_realtime(const JsonCursor& c) {
   ObjectReader r(c, "the realtime settings");
   r.allow({"scale", "tile_size", "samples", "gather_radius", "gather_depth_falloff", "gather_follow_slope",
            "temporal", "temporal_blend", "multiple_scattering_floor", "steps", "froxels", "fps", "frames",
-           "environment_lights", "shadow_filter"});
+           "environment_lights", "shadow_filter", "low_depth"});
   RealtimeSettings d;
   if (r.has("scale")) {
     const std::string scale = r.choice("scale", {"full", "half", "quarter"});
@@ -255,6 +255,9 @@ RealtimeSettings parse_realtime(const JsonCursor& c) {
     fr.finish();
   }
   d.temporal_blend = r.number_or("temporal_blend", d.temporal_blend, Range::above_up_to(0, 1));
+  if (r.has("low_depth"))
+    d.low_depth = r.choice("low_depth", {"min_max", "centre"}) == "min_max" ? LowResolutionDepth::min_max
+                                                                            : LowResolutionDepth::centre;
   if (r.has("shadow_filter")) d.filter_surface_shadows = r.choice("shadow_filter", {"bilinear", "none"}) == "bilinear";
   d.environment_lights =
       int(r.integer_or("environment_lights", d.environment_lights, Range::closed(1, 256)));

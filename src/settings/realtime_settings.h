@@ -39,10 +39,18 @@ struct FroxelSettings {
   int column_pixels = 12;
 };
 
+// The depth of each low-resolution pixel, where its accumulation ray ends (passes.h):
+// `centre`, the full-resolution pixel under its centre (point-sampled: a feature thinner than
+// the block, a 4 cm cable or a slit in a fence, falls between centres and is lost or broken);
+// `min_max`, the centre where it agrees with the neighbourhood, else the block's nearest or
+// farthest depth, whichever the neighbouring centres do not already represent.
+enum class LowResolutionDepth { centre, min_max };
+
 struct RealtimeSettings {
   Vec2i resolution{640, 480};
   int scale = 4;  // accumulation at resolution / scale: 1, 2 (half) or 4 (quarter)
   AccumulationSettings accumulation;
+  LowResolutionDepth low_depth = LowResolutionDepth::min_max;
   int gather_radius = 7;  // bilateral gather taps each side (2r + 1 per pass)
   // The gather of the lights a LightScatterer takes: their analytic result has no sampling
   // noise to blur, only low-resolution edges, so Wyman & Ramsey's 3x3 bilateral filter.
