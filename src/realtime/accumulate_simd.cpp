@@ -194,7 +194,7 @@ void SimdMarcher::prefetch(const PixelMarch& m) const {
     Batch unused_weight;
     const Batch t = sample_t(m, lane + float(k0), unused_weight);
     const Batch px = m.origin.x + m.dir.x * t, py = m.origin.y + m.dir.y * t, pz = m.origin.z + m.dir.z * t;
-    const int face = map->faces.size() == 1 ? 0 : shadow_detail::common_cube_face(*map, px, py, pz);
+    const int face = shadow_detail::common_face(*map, px, py, pz);
     if (face < 0) continue;
     // The texel face_visibility will read (clamped into the face; only a hint).
     const View& v = map->faces[size_t(face)];

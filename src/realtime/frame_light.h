@@ -47,6 +47,10 @@ struct FrameLight {
   size_t index = 0;
   size_t scene_light = 0;  // the scene light it shades (per-light timings and reports)
   int skip_emitter = -1;   // the scene light whose geometry its shadow map leaves out (a stand-in's own)
+  // What surfaces look up when it differs from `shadow`: a sun's cascades (the march keeps the
+  // one face over the scene: realtime/directional_faces.h).
+  const ShadowMap* surface_shadow = nullptr;
+  const ShadowMap* surface_map() const { return surface_shadow ? surface_shadow : shadow; }
 };
 
 // Every light of the scene the passes shade, posed (`posed`, as desc.lights_at gives them),

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "core/parallel.h"
+#include "realtime/directional_faces.h"
 #include "realtime/froxel_fog.h"
 #include "realtime/light_cores.h"
 #include "realtime/scene_buffers.h"
@@ -27,6 +28,7 @@ struct RealtimePipeline::CachedShadow {
   std::vector<float> key;
   int size = 0;
   std::optional<ShadowMap> map;
+  std::optional<ShadowMap> cascades;  // a sun's, for surfaces
 };
 
 RealtimeSettings realtime_settings(const SceneDesc& desc) {
@@ -60,23 +62,64 @@ RealtimePipeline::RealtimePipeline(std::shared_ptr<const Scene> scene, const Rea
 
 RealtimePipeline::~RealtimePipeline() = default;
 
-void RealtimePipeline::update_shadow_maps(const std::vector<FrameLight>& lights, RealtimeFrame& frame) {
+namespace {
+
+// The camera depths a frame's cascades cover: to the farthest corner of the surfaces and media
+// (or the farthest surface where no sky shows), from 1/500 of that.
+Vec2 cascade_depths(const View& view, const Bounds3& surfaces, const VolumeScene& volumes, const Plane& depth) {
+  Bounds3 b = surfaces;
+  for (const VolumePrimitive& p : volumes.primitives()) b.extend(volume_bounds(p.shape));
+  float far = 1e-3f;
+  for (int c = 0; c < 8 && !b.empty(); ++c) {
+    const Vec3 corner((c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y, (c & 4) ? b.hi.z : b.lo.z);
+    far = std::max(far, dot(corner - view.eye, view.forward));
+  }
+  float deepest = 0.0f;
+  for (float d : depth.data) deepest = std::max(deepest, d);
+  if (deepest < kSkyDepth) far = std::min(far, std::max(deepest, 1e-3f));
+  return {far / 500.0f, far};
+}
+
+}  // namespace
+
+// Maps are kept while their key holds: a still light keeps its map. A sun's cascades (for
+// surfaces) keep each face until its snapped window moves (directional_faces.h).
+void RealtimePipeline::update_shadow_maps(const std::vector<FrameLight>& lights, const VolumeScene& volumes,
+                                          RealtimeFrame& frame) {
   const Bounds3 bounds = scene_->surfaces().bounds();
   frame.shadow_maps_rendered = 0;
+  std::optional<Vec2> depths;
   for (const FrameLight& light : lights) {
     if (light.index >= shadows_.size()) shadows_.resize(light.index + 1);
     CachedShadow& cache = shadows_[light.index];
     if (!light.options.shadow) {
       cache.map.reset();
+      cache.cascades.reset();
       continue;
     }
+    const int size = light.options.shadow_map_size;
     std::vector<float> key = placement_key(light.light);
-    if (cache.size == light.options.shadow_map_size && cache.key == key && !cache.key.empty()) continue;
-    cache.map = render_shadow_map(*raster_, light.light, light.options.shadow_map_size, bounds, light.skip_emitter);
-    if (cache.map) cache.map->filter_surfaces = settings_.filter_surface_shadows;
-    cache.key = std::move(key);
-    cache.size = light.options.shadow_map_size;
-    ++frame.shadow_maps_rendered;
+    const bool moved = cache.size != size || cache.key != key || cache.key.empty();
+    if (moved) {
+      cache.map = render_shadow_map(*raster_, light.light, size, bounds, light.skip_emitter);
+      if (cache.map) cache.map->filter_surfaces = settings_.filter_surface_shadows;
+      cache.key = std::move(key);
+      cache.size = size;
+      ++frame.shadow_maps_rendered;
+    }
+    const auto* sun = std::get_if<DirectionalLight>(&light.light);
+    if (!sun || settings_.sun_cascades < 2 || !cache.map) {
+      cache.cascades.reset();
+      continue;
+    }
+    if (!depths) depths = cascade_depths(frame.view, bounds, volumes, gbuffer_->depth);
+    // Each cascade at half the light's size: four of them cost two of the whole-scene map.
+    const CascadeFaces fit = fit_cascades(frame.view, depths->x, depths->y, sun->direction, bounds,
+                                          settings_.sun_cascades, std::max(256, size / 2));
+    if (moved || !cache.cascades) cache.cascades.emplace();
+    frame.shadow_maps_rendered +=
+        update_cascaded_shadow_map(*raster_, fit, frame.view, light.skip_emitter, *cache.cascades);
+    cache.cascades->filter_surfaces = settings_.filter_surface_shadows;
   }
 }
 
@@ -228,12 +271,16 @@ const RealtimeFrame& RealtimePipeline::render(float time, uint32_t frame_index) 
   timed(times.depth, [&] { draw_scene_buffers(next); });
   // The lights the passes shade, posed at `time`; their shadow maps follow.
   std::vector<FrameLight> lights = frame_lights(desc, desc.lights_at(time), settings_.environment_lights);
-  timed(times.shadows, [&] { update_shadow_maps(lights, next); });
-  for (FrameLight& l : lights) l.shadow = shadows_[l.index].map ? &*shadows_[l.index].map : nullptr;
   // Media in the wind are rebuilt at the frame's time; still ones are the scene's own.
   std::optional<VolumeScene> moved;
   if (desc.media_move()) moved.emplace(desc.volumes_at(time));
   const VolumeScene& volumes = moved ? *moved : scene_->volumes();
+  timed(times.shadows, [&] { update_shadow_maps(lights, volumes, next); });
+  for (FrameLight& l : lights) {
+    const CachedShadow& cache = shadows_[l.index];
+    l.shadow = cache.map ? &*cache.map : nullptr;
+    l.surface_shadow = cache.cascades ? &*cache.cascades : nullptr;
+  }
   if (settings_.froxel) {
     render_froxels(lights, volumes, frame_index, next);
   } else {

@@ -91,7 +91,7 @@ class RealtimePipeline {
  private:
   struct CachedShadow;
 
-  void update_shadow_maps(const std::vector<FrameLight>& lights, RealtimeFrame& frame);
+  void update_shadow_maps(const std::vector<FrameLight>& lights, const VolumeScene& volumes, RealtimeFrame& frame);
   // The frame's stages, in order (render() times each).
   void draw_scene_buffers(RealtimeFrame& next);
   // Accumulation per light: the marched lights into `accum`, the scatterer's into

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "realtime/directional_faces.h"
 #include "realtime/scene_buffers.h"
 
 namespace caligo {
@@ -27,31 +28,6 @@ ShadowMap single_face(const RasterScene& scene, const View& face, int32_t skip) 
   map.faces.push_back(face);
   map.depth.push_back(rasterize_depth(scene, face, true, skip));
   return map;
-}
-
-Vec3 any_perpendicular(Vec3 d) {
-  const Vec3 a = std::abs(d.x) < 0.9f ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-  return normalize(cross(d, a));
-}
-
-// An orthographic face looking along `direction` whose window covers the bounds' corners,
-// with its eye plane just in front of all of them.
-View fit_directional_face(const Bounds3& b, Vec3 direction, int size) {
-  const View basis = View::orthographic_view({}, direction, any_perpendicular(direction), 1, 1, {size, size});
-  const Vec3 centre = b.center();
-  float lo[3] = {kInfinity, kInfinity, kInfinity}, hi[3] = {-kInfinity, -kInfinity, -kInfinity};
-  for (int i = 0; i < 8; ++i) {
-    const Vec3 c{(i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, (i & 4) ? b.hi.z : b.lo.z};
-    const float v[3] = {dot(c - centre, basis.right), dot(c - centre, basis.up),
-                        dot(c - centre, basis.forward)};
-    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], v[k]), hi[k] = std::max(hi[k], v[k]);
-  }
-  const float extent = std::max(1e-3f, length(b.diagonal()));
-  const float margin = 1e-3f * extent;
-  const Vec3 eye = centre + basis.right * (0.5f * (lo[0] + hi[0])) + basis.up * (0.5f * (lo[1] + hi[1])) +
-                   basis.forward * (lo[2] - margin);
-  return View::orthographic_view(eye, direction, basis.up, 0.5f * (hi[0] - lo[0]) + margin,
-                                 0.5f * (hi[1] - lo[1]) + margin, {size, size});
 }
 
 struct Render {
@@ -104,6 +80,7 @@ FaceLookup project_face(const View& v, Vec3 p) {
 }  // namespace
 
 int ShadowMap::face_index(Vec3 p) const {
+  if (cascades) return cascades->face(dot(p - cascades->eye, cascades->forward));
   if (!is_cube()) return 0;
   const Vec3 d = p - faces[0].eye;
   const float ax = std::abs(d.x), ay = std::abs(d.y), az = std::abs(d.z);
@@ -161,6 +138,37 @@ float ShadowMap::surface_visibility(Vec3 p) const {
   const float top = tap(ix, iy) + tx * (tap(ix + 1, iy) - tap(ix, iy));
   const float bottom = tap(ix, iy + 1) + tx * (tap(ix + 1, iy + 1) - tap(ix, iy + 1));
   return top + ty * (bottom - top);
+}
+
+namespace {
+
+bool same_face(const View& a, const View& b) {
+  return a.eye == b.eye && a.forward == b.forward && a.up == b.up && a.half_width == b.half_width &&
+         a.half_height == b.half_height && a.resolution.x == b.resolution.x && a.resolution.y == b.resolution.y;
+}
+
+}  // namespace
+
+int update_cascaded_shadow_map(const RasterScene& scene, const CascadeFaces& fit, const View& camera,
+                               int32_t skip_emitter, ShadowMap& map) {
+  int rendered = 0;
+  bool deferred_one = false;  // at most one face that still covers its slice is redrawn a frame
+  const bool fresh = map.faces.size() != fit.faces.size();
+  map.faces.resize(fit.faces.size());
+  map.depth.resize(fit.faces.size());
+  for (size_t i = 0; i < fit.faces.size(); ++i) {
+    const bool drawn = !fresh && map.depth[i].width > 0;
+    if (drawn && same_face(map.faces[i], fit.faces[i])) continue;
+    if (drawn && covers(map.faces[i], fit.needed[i])) {
+      if (deferred_one) continue;
+      deferred_one = true;
+    }
+    map.faces[i] = fit.faces[i];
+    map.depth[i] = rasterize_depth(scene, fit.faces[i], true, skip_emitter);
+    ++rendered;
+  }
+  map.cascades = ShadowMap::Cascades{camera.eye, camera.forward, fit.far};
+  return rendered;
 }
 
 std::optional<ShadowMap> render_shadow_map(const RasterScene& scene, const ShadedLight& light, int size,

@@ -7,7 +7,9 @@
 // angle exceeds 75 degrees); point lights six 90-degree faces (+x, -x, +y, -y, +z, -z),
 // looked up by the dominant axis of p - light position; box lights an orthographic face over
 // the emitting rectangle with depth measured from it; directional lights an orthographic
-// face fitted to the scene bounds and placed just outside them, against the light.
+// face fitted to the scene bounds and placed just outside them, against the light, or
+// cascades: several such faces, each over one range of the camera's depth and looked up by
+// the depth of p from the camera (realtime/directional_faces.h).
 //
 // Bias (why): a lookup returns the depth at the texel centre, while p may lie anywhere in the
 // texel, so a surface tilted by theta from the light differs by up to ~0.7 texel * tan(theta).
@@ -28,9 +30,23 @@ namespace caligo {
 
 class RasterScene;
 
+struct CascadeFaces;
+
 struct ShadowMap {
   std::vector<View> faces;
   std::vector<Plane> depth;  // one per face
+  // A directional light's cascades: face i holds the points whose depth along the camera's
+  // forward axis from its eye is at most far[i] (the last also those beyond).
+  struct Cascades {
+    Vec3 eye, forward;
+    std::vector<float> far;
+    int face(float depth) const {
+      int i = 0;
+      while (i + 1 < int(far.size()) && depth > far[size_t(i)]) ++i;
+      return i;
+    }
+  };
+  std::optional<Cascades> cascades;
   float bias = 1.0e-4f;      // metres of slack in the depth comparison
   float texel_bias = 1.5f;   // extra slack in texel footprints at the lookup depth
 
@@ -46,11 +62,13 @@ struct ShadowMap {
   // (in [0, 1]), or visibility(p) when !filter_surfaces. Taps outside a single face are lit;
   // a cube face clamps them to its rim.
   float surface_visibility(Vec3 p) const;
-  // The face p is looked up in: 0, or the cube face of p's dominant axis from the light.
+  // The face p is looked up in: 0, the cube face of p's dominant axis from the light, or the
+  // cascade of p's camera depth.
   int face_index(Vec3 p) const;
   // World size of one texel at p (for normal offsets).
   float texel_size(Vec3 p) const;
-  bool is_cube() const { return faces.size() == 6; }
+  bool is_cube() const { return !cascades && faces.size() == 6; }
+  bool single_face() const { return faces.size() == 1; }
 };
 
 // std::nullopt when there is nothing to shadow (a directional light over an empty scene).
@@ -58,5 +76,11 @@ struct ShadowMap {
 // emitter: FrameLight::skip_emitter).
 std::optional<ShadowMap> render_shadow_map(const RasterScene& scene, const ShadedLight& light, int size,
                                            const Bounds3& scene_bounds, int32_t skip_emitter = -1);
+// A directional light's cascades for the frame's `camera` (faces from fit_cascades) into `map`:
+// faces `map` already holds unchanged are kept, and of those whose window moved but still
+// covers what the frame needs only the nearest is redrawn (the others next frame: a camera
+// moving steadily redraws one face a frame, a cut all). Returns the number of faces rendered.
+int update_cascaded_shadow_map(const RasterScene& scene, const CascadeFaces& fit, const View& camera,
+                               int32_t skip_emitter, ShadowMap& map);
 
 }  // namespace caligo

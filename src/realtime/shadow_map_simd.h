@@ -7,6 +7,8 @@
 #include <immintrin.h>
 #include <xsimd/xsimd.hpp>
 
+#include <algorithm>
+
 #include "realtime/shadow_map.h"
 
 namespace caligo {
@@ -134,6 +136,29 @@ inline int common_cube_face(const ShadowMap& map, const xsimd::batch<float>& px,
   return -1;
 }
 
+// The cascade every lane would pick (ShadowMap::Cascades::face), or -1 when they differ.
+inline int common_cascade(const ShadowMap& map, const xsimd::batch<float>& px, const xsimd::batch<float>& py,
+                          const xsimd::batch<float>& pz) {
+  using B = xsimd::batch<float>;
+  const ShadowMap::Cascades& c = *map.cascades;
+  const B depth = (px - B(c.eye.x)) * B(c.forward.x) + (py - B(c.eye.y)) * B(c.forward.y) +
+                  (pz - B(c.eye.z)) * B(c.forward.z);
+  alignas(32) float d[B::size];
+  depth.store_aligned(d);
+  float lo = d[0], hi = d[0];
+  for (size_t i = 1; i < B::size; ++i) lo = std::min(lo, d[i]), hi = std::max(hi, d[i]);
+  const int face = c.face(lo);
+  return c.face(hi) == face ? face : -1;
+}
+
+// The face every lane would pick (ShadowMap::face_index), or -1 when they differ.
+inline int common_face(const ShadowMap& map, const xsimd::batch<float>& px, const xsimd::batch<float>& py,
+                       const xsimd::batch<float>& pz) {
+  if (map.single_face()) return 0;
+  if (map.cascades) return common_cascade(map, px, py, pz);
+  return common_cube_face(map, px, py, pz);
+}
+
 }  // namespace shadow_detail
 
 // The lookups of one ray o + t d in a single-face map, prepared once per ray: the face's
@@ -146,8 +171,9 @@ class ShadowRaySimd {
  public:
   using B = xsimd::batch<float>;
   using I = xsimd::batch<int32_t>;
-  // False for cube maps (their face changes along the ray): use shadow_visibility then.
-  static bool applies(const ShadowMap& map) { return map.faces.size() == 1; }
+  // False for cube maps and cascades (their face changes along the ray): use
+  // shadow_visibility then.
+  static bool applies(const ShadowMap& map) { return map.single_face(); }
 
   ShadowRaySimd(const ShadowMap& map, Vec3 origin, Vec3 dir) : map_(&map) {
     const View& v = map.faces[0];
@@ -235,15 +261,14 @@ class ShadowRaySimd {
   float texel_ = 0.0f, slack_ = 0.0f;
 };
 
-// 1 where lit, 0 in shadow, per lane. Single-face maps, and cube maps where all 8 points
-// fall in one face (the usual case for neighbouring pixels), are projected and gathered in
-// SIMD; other cube lookups fall back to the scalar one lane by lane.
+// 1 where lit, 0 in shadow, per lane. Single-face maps, and cube maps and cascades where all
+// 8 points fall in one face (the usual case for neighbouring pixels), are projected and
+// gathered in SIMD; other lookups fall back to the scalar one lane by lane.
 inline xsimd::batch<float> shadow_visibility(const ShadowMap& map, const xsimd::batch<float>& px,
                                              const xsimd::batch<float>& py, const xsimd::batch<float>& pz) {
   using B = xsimd::batch<float>;
-  if (map.faces.size() == 1) return shadow_detail::face_visibility(map, 0, px, py, pz, false);
-  const int face = shadow_detail::common_cube_face(map, px, py, pz);
-  if (face >= 0) return shadow_detail::face_visibility(map, face, px, py, pz, true);
+  const int face = shadow_detail::common_face(map, px, py, pz);
+  if (face >= 0) return shadow_detail::face_visibility(map, face, px, py, pz, map.is_cube());
   alignas(32) float x[B::size], y[B::size], z[B::size], out[B::size];
   px.store_aligned(x);
   py.store_aligned(y);
@@ -257,9 +282,8 @@ inline xsimd::batch<float> surface_shadow_visibility(const ShadowMap& map, const
                                                      const xsimd::batch<float>& py, const xsimd::batch<float>& pz) {
   using B = xsimd::batch<float>;
   if (!map.filter_surfaces) return shadow_visibility(map, px, py, pz);
-  if (map.faces.size() == 1) return shadow_detail::filtered_face_visibility(map, 0, px, py, pz, false);
-  const int face = shadow_detail::common_cube_face(map, px, py, pz);
-  if (face >= 0) return shadow_detail::filtered_face_visibility(map, face, px, py, pz, true);
+  const int face = shadow_detail::common_face(map, px, py, pz);
+  if (face >= 0) return shadow_detail::filtered_face_visibility(map, face, px, py, pz, map.is_cube());
   alignas(32) float x[B::size], y[B::size], z[B::size], out[B::size];
   px.store_aligned(x);
   py.store_aligned(y);

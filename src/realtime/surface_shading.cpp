@@ -104,7 +104,8 @@ RGB light_term(const ShadeContext& c, const FrameLight& fl, Vec3 p, Vec3 n, RGB 
   const float cos_theta = dot(n, in->wi);
   if (!(cos_theta > 0.0f)) return RGB(0.0f);
   // Normal offset: one texel towards the lit side keeps self-shadowing acne away.
-  const float visible = fl.shadow ? fl.shadow->surface_visibility(p + n * fl.shadow->texel_size(p)) : 1.0f;
+  const ShadowMap* map = fl.surface_map();
+  const float visible = map ? map->surface_visibility(p + n * map->texel_size(p)) : 1.0f;
   if (visible == 0.0f) return RGB(0.0f);
   return f * in->radiance * (cos_theta * visible) * transmittance(c.scene.volumes(), p, in->light_point);
 }

@@ -51,7 +51,7 @@ Arrival arrival_at(const LightLanes& light, const V3& p, float far) {
 
 // Shadow visibility at p offset by one texel along n (the scalar path's normal offset).
 B shadowed_visibility(const ShadowMap& map, const V3& p, const V3& n) {
-  const int face = map.faces.size() == 1 ? 0 : shadow_detail::common_cube_face(map, p.x, p.y, p.z);
+  const int face = shadow_detail::common_face(map, p.x, p.y, p.z);
   B texel;
   if (face >= 0) {
     const View& v = map.faces[size_t(face)];
@@ -241,8 +241,8 @@ void add_light(const ShadeContext& c, const SimdFrame& f, const FrameLight& fl, 
   Mask m = q.diffuse & a.mask & (cos_theta > B(0.0f));
   if (!xsimd::any(m)) return;
   B weight = xsimd::select(m, cos_theta, B(0.0f));
-  if (fl.shadow) {
-    weight *= shadowed_visibility(*fl.shadow, q.p, q.n);
+  if (const ShadowMap* map = fl.surface_map()) {
+    weight *= shadowed_visibility(*map, q.p, q.n);
     m = m & (weight > B(0.0f));
     if (!xsimd::any(m)) return;
   }

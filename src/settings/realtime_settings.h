@@ -75,6 +75,10 @@ struct RealtimeSettings {
   // The suns an environment light is shaded by (median cut: realtime/light_stand_ins.h); each
   // costs what a directional light costs, shadow map included.
   int environment_lights = 16;
+  // Cascaded shadow maps for directional lights on surfaces (realtime/directional_faces.h):
+  // this many faces at half the light's shadow_map_size, each over one range of the camera's
+  // depth; 1: the one face over the whole scene the march always uses (the former behaviour).
+  int sun_cascades = 4;
   // Surface shadows through the 2 x 2 bilinear PCF (ShadowMap::filter_surfaces); false: one
   // tap, stair-stepped (the former behaviour, kept for comparison).
   bool filter_surface_shadows = true;
