@@ -277,6 +277,9 @@ void compare_with_reference(const RealtimeOptions& o, const SceneDesc& desc, con
               "in them: mean error %+.2f %%\n",
               err.core_fraction * 100.0, kLightCoreRadius * float(s.scale), err.outside_rmse_over_mean * 100.0,
               err.core_mean_error * 100.0);
+  std::printf("  where the reference is dark (below 1 %% of its mean: %.2f %% of the pixels): %.3f %% of the "
+              "real-time frame's light\n",
+              err.dark_fraction * 100.0, err.dark_share * 100.0);
   const Rgb8Image strip = comparison_strip(realtime, reference, o.exposure, 0.5f);
   outputs.comparison(strip.width, strip.height, strip.rgb);
   std::printf("comparison (real-time | reference | |error| / mean, 0..50 %%) -> %s\n", outputs.comparison_path().c_str());

@@ -159,3 +159,28 @@ TEST(Cascades, FacesAreReusedUntilTheCameraMovesAMargin) {
 
 }  // namespace
 }  // namespace caligo
+
+namespace caligo {
+namespace {
+
+// In a small scene the far cascades, clipped to it at half the map's size, would be coarser
+// than the one face over the scene: they give way to that face, and the nearest are kept.
+TEST(Cascades, NeverCoarserThanTheWholeSceneFace) {
+  const PoleField f;
+  const View whole = fit_directional_face(f.bounds, f.sun, 4096);  // 200 m at 4096: 5 cm texels
+  CascadeFaces fit = fit_cascades(f.camera, 0.4f, 200.0f, f.sun, f.bounds, 4, 512);
+  const float last_far = fit.far.back();
+  end_with_whole_face(fit, whole);
+  ASSERT_GE(fit.faces.size(), 2u);
+  ASSERT_LT(fit.faces.size(), 4u);
+  EXPECT_EQ(fit.faces.back().half_width, whole.half_width);
+  EXPECT_EQ(fit.far.back(), last_far);
+  for (size_t i = 0; i + 1 < fit.faces.size(); ++i)
+    EXPECT_LT(2.0f * std::max(fit.faces[i].half_width, fit.faces[i].half_height) / 512.0f,
+              2.0f * std::max(whole.half_width, whole.half_height) / 4096.0f);
+  EXPECT_EQ(fit.needed.size(), fit.faces.size());
+  EXPECT_TRUE(covers(fit.faces.back(), fit.needed.back()));
+}
+
+}  // namespace
+}  // namespace caligo

@@ -61,6 +61,21 @@ View fit_directional_face(const Bounds3& b, Vec3 direction, int size) {
                    size);
 }
 
+void end_with_whole_face(CascadeFaces& fit, const View& whole) {
+  const auto texel = [](const View& v) { return 2.0f * std::max(v.half_width, v.half_height) / float(v.resolution.x); };
+  size_t keep = 0;
+  while (keep < fit.faces.size() && texel(fit.faces[keep]) < texel(whole)) ++keep;
+  if (keep == fit.faces.size()) return;
+  const float far = fit.far.back();
+  const float cx = dot(whole.eye, whole.right), cy = dot(whole.eye, whole.up);
+  fit.faces.resize(keep);
+  fit.far.resize(keep);
+  fit.needed.resize(keep);
+  fit.faces.push_back(whole);
+  fit.far.push_back(far);
+  fit.needed.push_back({cx - whole.half_width, cx + whole.half_width, cy - whole.half_height, cy + whole.half_height});
+}
+
 bool covers(const View& face, const CascadeFaces::Window& w) {
   if (!(w.x1 > w.x0 && w.y1 > w.y0)) return true;  // nothing of the scene to cover
   const float cx = dot(face.eye, face.right), cy = dot(face.eye, face.up);

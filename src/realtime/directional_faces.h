@@ -40,6 +40,11 @@ struct CascadeFaces {
   std::vector<Window> needed;
 };
 
+// Faces whose texels are not smaller than those of `whole` (the light's one face over the
+// scene) are replaced, with every farther face, by `whole` itself: a small scene's far
+// cascades, clipped to it at half the size, would be coarser than its one face.
+void end_with_whole_face(CascadeFaces& fit, const View& whole);
+
 // Does `face` (of the same light) cover the window?
 bool covers(const View& face, const CascadeFaces::Window& w);
 

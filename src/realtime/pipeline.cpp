@@ -114,11 +114,12 @@ void RealtimePipeline::update_shadow_maps(const std::vector<FrameLight>& lights,
     }
     if (!depths) depths = cascade_depths(frame.view, bounds, volumes, gbuffer_->depth);
     // Each cascade at half the light's size: four of them cost two of the whole-scene map.
-    const CascadeFaces fit = fit_cascades(frame.view, depths->x, depths->y, sun->direction, bounds,
-                                          settings_.sun_cascades, std::max(256, size / 2));
+    CascadeFaces fit = fit_cascades(frame.view, depths->x, depths->y, sun->direction, bounds,
+                                    settings_.sun_cascades, std::max(256, size / 2));
+    end_with_whole_face(fit, cache.map->faces[0]);
     if (moved || !cache.cascades) cache.cascades.emplace();
     frame.shadow_maps_rendered +=
-        update_cascaded_shadow_map(*raster_, fit, frame.view, light.skip_emitter, *cache.cascades);
+        update_cascaded_shadow_map(*raster_, fit, frame.view, light.skip_emitter, *cache.cascades, &*cache.map);
     cache.cascades->filter_surfaces = settings_.filter_surface_shadows;
   }
 }

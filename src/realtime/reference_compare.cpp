@@ -77,6 +77,16 @@ ReferenceError reference_error(const Image& a, const Image& ref, const std::vect
   const ImageMetrics m = compare_images(a, ref);
   ReferenceError e{(mean_rgb(a, ca) - mean_ref) / mean_ref, std::sqrt(m.relative_mse), m.rmse / mean_ref};
   e.outside_rmse_over_mean = e.rmse_over_mean;
+  double a_dark = 0, a_all = 0;
+  size_t dark = 0;
+  for (int y = 0; y < ref.height(); ++y)
+    for (int x = 0; x < ref.width(); ++x) {
+      const double va = a.rgb(x, y, ca).average();
+      a_all += va;
+      if (ref.rgb(x, y, cr).average() < 0.01 * mean_ref) a_dark += va, ++dark;
+    }
+  e.dark_fraction = double(dark) / double(ref.pixel_count());
+  if (a_all > 0) e.dark_share = a_dark / a_all;
   if (!cores) return e;
   // Sums in double over each side of the mask: squared error and reference outside, both images inside.
   double sq = 0, ref_out = 0, a_in = 0, ref_in = 0;

@@ -29,6 +29,10 @@ Image to_image(const ColorPlanes& planes);
 //   core_mean_error        = (sum(a) - sum(ref)) / sum(ref) over the core pixels: how much of the
 //                            cores' light the frame keeps (a blurred core loses its peak, a
 //                            noisy one gains or loses it)
+// And where light leaks (through a wall, across an edge): over the pixels the reference leaves
+// dark (below 1 % of its mean; a room's unlit fog and walls are exactly 0 there),
+//   dark_fraction = their share of the pixels, dark_share = their share of the real-time
+//                   frame's light (sum over them / sum over the frame)
 struct ReferenceError {
   double mean_error = 0;
   double relative_rmse = 0;
@@ -36,6 +40,7 @@ struct ReferenceError {
   double outside_rmse_over_mean = 0;  // = rmse_over_mean without a mask
   double core_mean_error = 0;         // 0 without a mask or without core pixels
   double core_fraction = 0;           // of the pixels
+  double dark_fraction = 0, dark_share = 0;
 };
 ReferenceError reference_error(const Image& realtime, const Image& reference,
                                const std::vector<uint8_t>* cores = nullptr);

@@ -150,7 +150,7 @@ bool same_face(const View& a, const View& b) {
 }  // namespace
 
 int update_cascaded_shadow_map(const RasterScene& scene, const CascadeFaces& fit, const View& camera,
-                               int32_t skip_emitter, ShadowMap& map) {
+                               int32_t skip_emitter, ShadowMap& map, const ShadowMap* whole) {
   int rendered = 0;
   bool deferred_one = false;  // at most one face that still covers its slice is redrawn a frame
   const bool fresh = map.faces.size() != fit.faces.size();
@@ -164,6 +164,10 @@ int update_cascaded_shadow_map(const RasterScene& scene, const CascadeFaces& fit
       deferred_one = true;
     }
     map.faces[i] = fit.faces[i];
+    if (whole && whole->single_face() && same_face(whole->faces[0], fit.faces[i])) {
+      map.depth[i] = whole->depth[0];
+      continue;
+    }
     map.depth[i] = rasterize_depth(scene, fit.faces[i], true, skip_emitter);
     ++rendered;
   }

@@ -79,8 +79,9 @@ std::optional<ShadowMap> render_shadow_map(const RasterScene& scene, const Shade
 // A directional light's cascades for the frame's `camera` (faces from fit_cascades) into `map`:
 // faces `map` already holds unchanged are kept, and of those whose window moved but still
 // covers what the frame needs only the nearest is redrawn (the others next frame: a camera
-// moving steadily redraws one face a frame, a cut all). Returns the number of faces rendered.
+// moving steadily redraws one face a frame, a cut all); a face that is `whole`'s one face
+// (end_with_whole_face) is copied from it. Returns the number of faces rendered.
 int update_cascaded_shadow_map(const RasterScene& scene, const CascadeFaces& fit, const View& camera,
-                               int32_t skip_emitter, ShadowMap& map);
+                               int32_t skip_emitter, ShadowMap& map, const ShadowMap* whole = nullptr);
 
 }  // namespace caligo
