@@ -123,6 +123,10 @@ float primitive_step_size(const VolumePrimitive& primitive, const MarchSettings&
       std::isfinite(voxel) ? voxel : settings.auto_step_fraction * length(volume_bounds(primitive.shape).diagonal());
   // Noise varies over one lattice cell (1 / scale metres) whatever the primitive's size.
   if (s.noise) automatic = std::min(automatic, 0.25f / s.noise->scale);
+  // Height fog varies over its scale height, whatever the volume's size (a 40 m fog box's
+  // 1/64 of a diagonal, 0.9 m, would step over a 0.8 m scale height).
+  if (const auto* h = std::get_if<HeightFalloffDensity>(&s.field))
+    automatic = std::min(automatic, 0.25f * h->scale_height);
   return automatic * s.step_scale;
 }
 

@@ -180,6 +180,41 @@ TEST(Accumulate, DirectionalLightInASlabMatchesTheAnalyticIntegral) {
   }
 }
 
+// The slab as height fog (density 1 below 0.5 m, e^(-(y - 0.5)/0.4) above): a level ray at
+// height y sees density f(y) all along, and the light from above comes through
+// tau(y) = sigma_t (the integral of f from y to the top at 2 m), so
+// L = sigma_s f E p e^(-tau(y)) (1 - e^(-sigma_t f D)) / (sigma_t f). The passes take the
+// optical depths in closed form (media.h): the same to float rounding.
+TEST(Accumulate, DirectionalLightInHeightFogMatchesTheAnalyticIntegral) {
+  const float sa = 0.1f, ss = 0.3f, st = sa + ss, base = 0.5f, H = 0.4f;
+  VolumePrimitive fog = fog_box({0, 0, -5}, {10, 2, 5}, RGB(sa), RGB(ss));
+  fog.shader.field = HeightFalloffDensity{base, H};
+  VolumeScene volumes({fog});
+  const View view = View::orthographic_view({-1.0f, 1.0f, 0.0f}, {1, 0, 0}, {0, 1, 0}, 0.5f, 0.5f, {4, 8});
+  Plane depth(4, 8, 7.0f);  // 1 m of clear air, then 6 m of fog
+  const FrameLight sun = frame_light(DirectionalLight{{0, -1, 0}, RGB(2.0f)});
+  const auto f = [&](double y) { return y <= base ? 1.0 : std::exp(-(y - base) / H); };
+  const auto above = [&](double y) {  // the integral of f over [y, 2]
+    const double from = std::max(y, double(base));
+    return std::max(0.0, base - y) + H * (f(from) - f(2.0));
+  };
+  for (bool simd : {false, true}) {
+    AccumulationSettings s;
+    s.samples = 256;
+    s.tile_size = 1;
+    s.simd = simd;
+    const ColorPlanes out = run(sun, volumes, view, depth, s);
+    for (int y = 0; y < 8; ++y) {
+      const double height = 1.0 + 0.5 - (double(y) + 0.5) / 8.0;
+      const double k = st * f(height);
+      const double expected = ss * f(height) * 2.0 * kInv4Pi * std::exp(-st * above(height)) *
+                              -std::expm1(-k * 6.0) / k;
+      for (int x = 0; x < 4; ++x)
+        EXPECT_NEAR(out.r.at(x, y), expected, 2e-4 * expected) << simd << " y " << y;
+    }
+  }
+}
+
 // The slab again with an occluder above x < 5 (a one-face orthographic shadow map): only
 // x in [5, 6] is lit, and the faked multiple scattering floor f lets f of the light through
 // in the shadow: L = sigma_s E p e^(-sigma_t h) [I(5, 6) + f I(0, 5)], I(a, b) = the
@@ -343,6 +378,27 @@ TEST(Media, SegmentOpticalDepthOfBoxAndRadialSphere) {
   EXPECT_NEAR(tau.r, 8.0f / 3.0f + 0.5f * 1.0f, 1e-5f);
   EXPECT_NEAR(segment_optical_depth(volumes, {6, 0, 0}, {6.5f, 0, 0}).g, 0.25f, 1e-6f);
   EXPECT_EQ(segment_optical_depth(volumes, {0, 5, 0}, {0, 6, 0}).b, 0.0f);
+}
+
+// Height fog's closed form (volume.h height_fog_depth) against a fine midpoint sum, on segments
+// wholly below the base, wholly above, crossing it up and down, level, and steep.
+TEST(Media, HeightFogDepthMatchesAFineSum) {
+  const HeightFalloffDensity f{1.0f, 0.7f};
+  struct Segment {
+    Vec3 a, b;
+  };
+  const Segment segments[] = {{{0, 0.2f, 0}, {3, 0.5f, 1}},  {{0, 1.5f, 0}, {4, 2.5f, -1}}, {{0, 0, 0}, {2, 3, 0}},
+                              {{1, 4, 1}, {-1, 0.3f, 2}},     {{0, 2, 0}, {5, 2, 0}},          {{0, 1.2f, 0}, {0.01f, 6, 0}},
+                              {{0, 1.0001f, 0}, {8, 1.0002f, 3}}};
+  for (const Segment& sg : segments) {
+    const float len = distance(sg.a, sg.b);
+    const Vec3 d = (sg.b - sg.a) / len;
+    double sum = 0.0;
+    constexpr int kSteps = 200000;
+    for (int i = 0; i < kSteps; ++i) sum += f.at(sg.a.y + d.y * len * (float(i) + 0.5f) / kSteps);
+    sum *= len / kSteps;
+    EXPECT_NEAR(height_fog_depth(f, sg.a.y, d.y, 0.0f, len), sum, 2e-5 * sum + 1e-6) << sg.a.y << " -> " << sg.b.y;
+  }
 }
 
 }  // namespace

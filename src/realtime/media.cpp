@@ -35,6 +35,9 @@ RGB primitive_optical_depth(const VolumePrimitive& primitive, const Ray& ray, fl
   const float len = t1 - t0;
   if (!(len > 0.0f)) return RGB(0.0f);
   if (std::holds_alternative<ConstantDensity>(primitive.shader.field)) return sigma_t * (primitive.shader.density * len);
+  // Height fog in closed form (the noise on it, if any, at its mean factor 1).
+  if (const auto* h = std::get_if<HeightFalloffDensity>(&primitive.shader.field))
+    return sigma_t * (primitive.shader.density * height_fog_depth(*h, ray.origin.y, ray.direction.y, t0, t1));
   // 4-point Gauss-Legendre panels on [t0, t1]: one for an analytic field, one per few
   // voxels for a grid (a trilinear field is piecewise cubic along a ray, between voxel faces).
   constexpr float kX[4] = {-0.8611363116f, -0.3399810436f, 0.3399810436f, 0.8611363116f};

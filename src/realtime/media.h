@@ -11,6 +11,7 @@
 // primitives integrate their density with 4-point Gauss-Legendre over each overlap (exact
 // for sphere shapes with integer exponents <= 3: (1 - r^2)^e is then a polynomial of
 // degree 2e <= 7 in t; otherwise an approximation, good to a few 1e-3 for smooth puffs).
+// Height fog (HeightFalloffDensity) is integrated in closed form.
 #pragma once
 
 #include "core/ray.h"

@@ -704,18 +704,23 @@ TEST(SceneParser, MediaAndVolumes) {
               "phase": {"type": "hg", "g": 0.3}},
       "puff": {"sigma_s": 1, "falloff": {"exponent": 2}, "step_size": 0.05,
                "phase": {"type": "double_hg", "g1": 0.6, "g2": -0.2, "w": 0.8}},
-      "rt": {"sigma_s": 1, "phase": {"type": "schlick", "g": 0.5}}
+      "rt": {"sigma_s": 1, "phase": {"type": "schlick", "g": 0.5}},
+      "ground": {"sigma_s": 0.2, "height_falloff": {"base": 0.5, "scale_height": 3}}
     },
     "volumes": [
       {"type": "sphere", "center": [0, 1, 0], "radius": 2, "medium": "fog"},
       {"type": "box", "min": [-1, -1, -1], "max": [1, 1, 1], "medium": "puff",
        "transform": [{"translate": [0, 0, 4]}]},
-      {"type": "sphere", "center": [0, 0, 0], "radius": 1, "medium": "rt"}
+      {"type": "sphere", "center": [0, 0, 0], "radius": 1, "medium": "rt"},
+      {"type": "box", "min": [-9, 0, -9], "max": [9, 8, 9], "medium": "ground"}
     ]
   })json",
                                            "vol.json", "");
   EXPECT_EQ(scene.render.path.limits.max_volume_bounces, 1024);
-  ASSERT_EQ(scene.volumes.size(), 3u);
+  ASSERT_EQ(scene.volumes.size(), 4u);
+  const auto& ground = std::get<HeightFalloffDensity>(scene.volumes[3].shader.field);
+  EXPECT_FLOAT_EQ(ground.base, 0.5f);
+  EXPECT_FLOAT_EQ(ground.scale_height, 3.0f);
   const VolumeShader& fog = scene.volumes[0].shader;
   EXPECT_EQ(fog.sigma_s, RGB(0.5f, 0.4f, 0.3f));
   EXPECT_EQ(fog.sigma_a, RGB(0.1f));
@@ -762,6 +767,16 @@ TEST(SceneParser, BadMediaAreLocated) {
   EXPECT_NE(error_of(R"({"m": {"holdout": 1e39}})", sphere).find("/media/m/holdout: expected a finite number"),
             std::string::npos);
   EXPECT_NE(error_of(R"({"m": {"holdout": [1, 1, 1]}})", sphere).find("/media/m/holdout: expected a number"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"m": {"height_falloff": {"base": 1}}})", sphere)
+                .find("/media/m/height_falloff: missing required key \"scale_height\""),
+            std::string::npos)
+      << error_of(R"({"m": {"height_falloff": {"base": 1}}})", sphere);
+  EXPECT_NE(error_of(R"({"m": {"height_falloff": {"scale_height": 0}}})", sphere)
+                .find("/media/m/height_falloff/scale_height"),
+            std::string::npos);
+  EXPECT_NE(error_of(R"({"m": {"falloff": {}, "height_falloff": {"scale_height": 1}}})", sphere)
+                .find("not both"),
             std::string::npos);
   EXPECT_NE(error_of(R"({"m": {"colour": 1}})", sphere).find("/media/m/colour: unknown key"),
             std::string::npos);

@@ -81,7 +81,7 @@ FlameEmission parse_flame(const JsonCursor& c) {
 
 VolumeShader parse_medium(const JsonCursor& c) {
   ObjectReader r(c, "a medium");
-  r.allow({"sigma_a", "sigma_s", "albedo", "extinction", "emission", "density", "phase", "falloff", "noise",
+  r.allow({"sigma_a", "sigma_s", "albedo", "extinction", "emission", "density", "phase", "falloff", "height_falloff", "noise",
            "step_size", "step_scale", "blackbody", "flame", "color_tint", "holdout"});
   VolumeShader s;
   if (r.has("albedo") || r.has("extinction")) {
@@ -107,6 +107,13 @@ VolumeShader parse_medium(const JsonCursor& c) {
     fr.allow({"exponent"});
     s.field = RadialFalloffDensity{fr.number_or("exponent", 1.0f, Range::positive())};
     fr.finish();
+  }
+  if (auto h = r.optional("height_falloff")) {
+    if (r.has("falloff")) r.fail("give either falloff or height_falloff, not both");
+    ObjectReader hr(*h, "a height falloff");
+    hr.allow({"base", "scale_height"});
+    s.field = HeightFalloffDensity{hr.number_or("base", 0.0f), hr.number("scale_height", Range::positive())};
+    hr.finish();
   }
   if (auto n = r.optional("noise")) s.noise = parse_noise(*n);
   s.step_size = r.number_or("step_size", 0.0f, Range::positive());

@@ -72,6 +72,29 @@ TEST(Tracking, RatioTrackingMatchesAFineMarchThroughAHeterogeneousSphere) {
   for (int c = 0; c < 3; ++c) EXPECT_WITHIN_4SE(s[c], marched[c]);
 }
 
+// Height fog (world-space exponential falloff above a base) tracked along a rising ray: its
+// majorant is the density at the stretch's lowest end, and ratio tracking's mean is
+// exp(-sigma_t x the closed-form integral of the density).
+TEST(Tracking, RatioTrackingMatchesTheClosedFormThroughHeightFog) {
+  VolumePrimitive fog = box({-3, 0, 1}, {3, 4, 6}, RGB(0.2f), RGB(0.6f, 0.9f, 0.3f));
+  fog.shader.field = HeightFalloffDensity{0.8f, 0.5f};
+  const VolumeScene scene({fog});
+  MarchScratch scratch;
+  const Ray ray{{0.3f, 0.1f, 0}, normalize(Vec3(0.1f, 0.5f, 1.0f))};
+  const float t0 = 1.0f / ray.direction.z;  // enters at z = 1
+  const float t1 = std::min(6.0f / ray.direction.z, (4.0f - 0.1f) / ray.direction.y);
+  const float depth = height_fog_depth(std::get<HeightFalloffDensity>(fog.shader.field), ray.origin.y,
+                                       ray.direction.y, t0, t1);
+  Pcg32 rng(5, 9);
+  Stat s[3];
+  for (int i = 0; i < 20000; ++i) {
+    const RGB t = track_transmittance(scene, ray, {}, scratch, rng);
+    for (int c = 0; c < 3; ++c) s[c].add(t[c]);
+  }
+  const RGB sigma_t = RGB(0.2f) + RGB(0.6f, 0.9f, 0.3f);
+  for (int c = 0; c < 3; ++c) EXPECT_WITHIN_4SE(s[c], std::exp(-sigma_t[c] * depth));
+}
+
 // In a homogeneous slab of length L: E[weight_c; scattered] = sigma_s,c (1 - exp(-sigma_t,c L)) /
 // sigma_t,c and E[weight_c; passed] = exp(-sigma_t,c L), for any history the probabilities follow.
 void check_free_flight(RGB sa, RGB ss, RGB history) {

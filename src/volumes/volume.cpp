@@ -84,6 +84,7 @@ struct FieldDensity {
     const float r2 = length_squared(std::visit(UnitCoordinates{p}, shape));
     return r2 >= 1.0f ? 0.0f : std::pow(1.0f - r2, falloff.exponent);
   }
+  float operator()(const HeightFalloffDensity& h) const { return h.at(p.y); }
   float operator()(const GridDensity& g) const {
     return g.grid->density(g.grid_to_world.inverse_point(p), g.filter, *context.grids);
   }
@@ -101,6 +102,7 @@ struct ShapeBounds {
 struct FieldIsConstant {
   bool operator()(const ConstantDensity&) const { return true; }
   bool operator()(const RadialFalloffDensity&) const { return false; }
+  bool operator()(const HeightFalloffDensity&) const { return false; }
   bool operator()(const GridDensity&) const { return false; }
 };
 
@@ -130,6 +132,11 @@ struct FieldIntervals {
   }
   void operator()(const RadialFalloffDensity&) const {
     context.intervals.push_back({stretch.t0, stretch.t1, id, sigma_unit, false});
+  }
+  // The density is largest at the stretch's lowest point, one of its ends.
+  void operator()(const HeightFalloffDensity& h) const {
+    const float y0 = ray.at(stretch.t0).y, y1 = ray.at(stretch.t1).y;
+    context.intervals.push_back({stretch.t0, stretch.t1, id, sigma_unit * h.at(std::min(y0, y1)), false});
   }
   void operator()(const GridDensity& g) const {
     if (!context.skip_empty_blocks) {
@@ -176,6 +183,9 @@ struct Shade {
   MediumSample operator()(const RadialFalloffDensity& f) const {
     return with_density(primitive.shader.density * FieldDensity{primitive.shape, p, context}(f));
   }
+  MediumSample operator()(const HeightFalloffDensity& h) const {
+    return with_density(primitive.shader.density * h.at(p.y));
+  }
   MediumSample operator()(const GridDensity& g) const {
     const VolumeShader& s = primitive.shader;
     const GridValues v = g.grid->values(g.grid_to_world.inverse_point(p), g.filter, *context.grids);
@@ -190,6 +200,7 @@ struct Shade {
 struct FieldVoxelSize {
   float operator()(const ConstantDensity&) const { return kInfinity; }
   float operator()(const RadialFalloffDensity&) const { return kInfinity; }
+  float operator()(const HeightFalloffDensity&) const { return kInfinity; }
   float operator()(const GridDensity& g) const {
     // The placement may scale: a voxel's world length is the grid's times the smallest axis scale.
     float scale = kInfinity;
@@ -202,6 +213,25 @@ struct FieldVoxelSize {
 float noise_peak(const VolumeShader& s) { return s.noise ? noise_density_max(*s.noise) : 1.0f; }
 
 }  // namespace
+
+float height_fog_depth(const HeightFalloffDensity& f, float oy, float dy, float t0, float t1) {
+  if (!(t1 > t0)) return 0.0f;
+  // The level of `base` along the ray splits [t0, t1] into a part below (density 1) and above.
+  float below = 0.0f, a = t0, b = t1;
+  const float ya = oy + dy * t0, yb = oy + dy * t1;
+  if (ya <= f.base && yb <= f.base) return t1 - t0;
+  if (ya < f.base || yb < f.base) {
+    const float tc = t0 + (f.base - ya) / (yb - ya) * (t1 - t0);  // where y = base
+    below = ya < f.base ? tc - t0 : t1 - tc;
+    (ya < f.base ? a : b) = tc;
+  }
+  // Above: from the lower end, e^(-(y_low - base)/H) len (1 - e^(-g)) / g with g = |dy| len / H.
+  const float len = b - a;
+  const float y_low = std::max(f.base, std::min(oy + dy * a, oy + dy * b));
+  const float g = std::abs(dy) * len / f.scale_height;
+  const float shape = g > 1e-4f ? -std::expm1(-g) / g : 1.0f - 0.5f * g;
+  return below + f.at(y_low) * len * shape;
+}
 
 std::optional<RayRange> volume_hull_interval(const VolumeShape& shape, const Ray& ray) {
   return std::visit(HullInterval{ray}, shape);

@@ -6,6 +6,7 @@
 // shape or field does not compile until every visitor handles it.
 #pragma once
 
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <variant>
@@ -48,6 +49,20 @@ struct ConstantDensity {};
 struct RadialFalloffDensity {
   float exponent = 1.0f;
 };
+// Exponential height fog (the ground fog of Unreal's and Frostbite's height fog): 1 at and below
+// the world height `base`, e^(-(y - base) / scale_height) above it. World space, unlike the
+// radial falloff: a tilted box of it still thins upwards. Its optical depth along a straight
+// segment has a closed form (height_fog_depth), which the real-time passes use.
+struct HeightFalloffDensity {
+  float base = 0.0f;
+  float scale_height = 1.0f;  // > 0, metres
+  float at(float y) const { return y <= base ? 1.0f : std::exp(-(y - base) / scale_height); }
+};
+// The integral of HeightFalloffDensity::at along o + t d (d unit) over [t0, t1]: the part
+// below `base` counts its length, the part above (H / d_y)(f(y_a) - f(y_b)), written with expm1
+// so a nearly level segment keeps its accuracy.
+float height_fog_depth(const HeightFalloffDensity& f, float oy, float dy, float t0, float t1);
+
 // A sparse grid (VDB, NanoVDB or dense) placed by `grid_to_world`; its other channels
 // (temperature, flame, Cd) feed the shader's emission and tint.
 struct GridDensity {
@@ -55,7 +70,7 @@ struct GridDensity {
   Transform grid_to_world;
   GridFilter filter = GridFilter::kTrilinear;
 };
-using DensityField = std::variant<ConstantDensity, RadialFalloffDensity, GridDensity>;
+using DensityField = std::variant<ConstantDensity, RadialFalloffDensity, HeightFalloffDensity, GridDensity>;
 
 // Emission from a grid's temperature channel: T = raw * scale + offset (Kelvin) emits
 // intensity * blackbody_color(T) * sigma_SB T^4 / pi (the colour normalised to luminance 1,

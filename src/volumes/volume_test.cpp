@@ -76,6 +76,31 @@ TEST(VolumeShader, DensityScalesCoefficientsAndFalloffPeaksAtTheCentre) {
   EXPECT_FLOAT_EQ(ctx.intervals[0].sigma_maj.r, 1.8f);
 }
 
+// Height fog: 1 up to the base, e^(-(y - base)/H) above, in world space; each interval's
+// majorant bounds the density everywhere on it (the lowest end's), however the ray runs.
+TEST(VolumeShader, HeightFogThinsUpwardsAndItsMajorantBoundsIt) {
+  VolumePrimitive p;
+  p.shape = BoxVolumeShape{Transform(), {-5, 0, -5}, {5, 6, 5}};
+  p.shader.sigma_s = RGB(0.5f);
+  p.shader.field = HeightFalloffDensity{1.0f, 2.0f};
+  VolumeContext ctx;
+  EXPECT_FALSE(is_homogeneous(p.shader));
+  EXPECT_FLOAT_EQ(shade_volume(p, {0, 0.5f, 0}, ctx).sigma_s.g, 0.5f);
+  EXPECT_NEAR(shade_volume(p, {2, 3.0f, 1}, ctx).sigma_s.g, 0.5f * std::exp(-1.0f), 1e-6f);
+  const Ray rays[] = {{{-6, 5, 0}, normalize(Vec3(1, -0.7f, 0.1f))}, {{-6, 2, 0}, normalize(Vec3(1, 0.3f, 0))},
+                      {{0, 3, -6}, {0, 0, 1}}};
+  for (const Ray& ray : rays) {
+    ctx.intervals.clear();
+    append_intervals(p, 0, ray, ctx);
+    ASSERT_EQ(ctx.intervals.size(), 1u);
+    const VolumeInterval& iv = ctx.intervals[0];
+    for (int i = 0; i <= 100; ++i) {
+      const float t = iv.t0 + (iv.t1 - iv.t0) * float(i) / 100.0f;
+      EXPECT_LE(shade_volume(p, ray.at(t), ctx).sigma_s.g, iv.sigma_maj.g * (1.0f + 1e-5f));
+    }
+  }
+}
+
 }  // namespace
 }  // namespace caligo
 
