@@ -120,8 +120,11 @@ void integrate_froxels(const FroxelGrid& grid, const FroxelColumns& columns, con
                        std::vector<RGB>& out);
 
 // The integrated grid read at each pixel of `depth` (linear, kSkyDepth for none; the view's
-// resolution): bilinear across columns, linear between slice edges.
-void lookup_froxels(const FroxelGrid& grid, std::span<const RGB> integrated, const Plane& depth, ColorPlanes& out);
+// resolution): bilinear across columns, linear between slice edges. `loads`: four 8-float
+// loads a pixel; `gathers`: 24 AVX2 gathers per 8 pixels (the former lookup, for benchmarks).
+enum class FroxelLookup { loads, gathers };
+void lookup_froxels(const FroxelGrid& grid, std::span<const RGB> integrated, const Plane& depth, ColorPlanes& out,
+                    FroxelLookup method = FroxelLookup::loads);
 
 // The pass across frames: buffers and history.
 class FroxelFog {

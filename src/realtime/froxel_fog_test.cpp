@@ -43,7 +43,8 @@ TEST(FroxelFog, SliceEdgesAreExponentialAndEdgeCoordinateIsTheirInverse) {
   // Equal depth ratios from edge 1 on.
   const float ratio = std::pow(40.0f / 0.05f, 1.0f / 31.0f);
   for (int i = 1; i < 32; ++i) EXPECT_NEAR(g.edge(float(i + 1)) / g.edge(float(i)), ratio, 1e-4f) << i;
-  for (float e = 0.0f; e <= 32.0f; e += 0.37f) EXPECT_NEAR(g.edge_coordinate(g.edge(e)), e, 2e-4f * (1.0f + e)) << e;
+  for (float e = 0.0f; e <= 32.0f; e += 0.37f)
+    EXPECT_NEAR(g.edge_coordinate(g.edge(e)), e, 2e-4f * (1.0f + e)) << e;
   EXPECT_EQ(g.edge_coordinate(1e9f), 32.0f);  // beyond far: clamped
 }
 
@@ -106,7 +107,8 @@ TEST(FroxelFog, DirectionalLightInASlabMatchesTheAnalyticIntegral) {
 }
 
 // The lookup against the trilinear read written out: bilinear across the four columns around
-// the pixel, linear between the slice edges around its depth (8-lane rows and their tails).
+// the pixel, linear between the slice edges around its depth, by loads (the last pixels by the
+// scalar read, as their loads would run past the grid) and by gathers (8-lane rows and tails).
 TEST(FroxelFog, LookupIsBilinearAcrossColumnsAndLinearInSlices) {
   const FroxelGrid g = grid_of(7, 5, 12, 0.1f, 20.0f);
   std::vector<RGB> integrated(g.columns() * 13);
@@ -119,24 +121,28 @@ TEST(FroxelFog, LookupIsBilinearAcrossColumnsAndLinearInSlices) {
   Plane depth(37, 23);
   for (float& d : depth.data) d = 25.0f * rnd();
   depth.at(3, 4) = kSkyDepth;
-  ColorPlanes out;
-  lookup_froxels(g, integrated, depth, out);
-  for (int y = 0; y < 23; ++y) {
-    for (int x = 0; x < 37; ++x) {
-      const float gx = std::clamp((x + 0.5f) * 7 / 37.0f - 0.5f, 0.0f, 6.0f);
-      const float gy = std::clamp((y + 0.5f) * 5 / 23.0f - 0.5f, 0.0f, 4.0f);
-      const float d = depth.at(x, y) >= kSkyDepth ? g.far : depth.at(x, y);
-      const float e = g.edge_coordinate(d);
-      const int e0 = std::min(int(e), 11);
-      RGB want;
-      for (int cy = 0; cy < 5; ++cy) {
-        for (int cx = 0; cx < 7; ++cx) {
-          const float w = std::max(0.0f, 1 - std::abs(gx - cx)) * std::max(0.0f, 1 - std::abs(gy - cy));
-          const RGB* o = &integrated[(size_t(cy) * 7 + size_t(cx)) * 13];
-          want += (o[e0] + (o[e0 + 1] - o[e0]) * (e - float(e0))) * w;
+  for (FroxelLookup method : {FroxelLookup::loads, FroxelLookup::gathers}) {
+    ColorPlanes out;
+    lookup_froxels(g, integrated, depth, out, method);
+    for (int y = 0; y < 23; ++y) {
+      for (int x = 0; x < 37; ++x) {
+        const float gx = std::clamp((x + 0.5f) * 7 / 37.0f - 0.5f, 0.0f, 6.0f);
+        const float gy = std::clamp((y + 0.5f) * 5 / 23.0f - 0.5f, 0.0f, 4.0f);
+        const float d = depth.at(x, y) >= kSkyDepth ? g.far : depth.at(x, y);
+        const float e = g.edge_coordinate(d);
+        const int e0 = std::min(int(e), 11);
+        RGB want;
+        for (int cy = 0; cy < 5; ++cy) {
+          for (int cx = 0; cx < 7; ++cx) {
+            const float w = std::max(0.0f, 1 - std::abs(gx - cx)) * std::max(0.0f, 1 - std::abs(gy - cy));
+            const RGB* o = &integrated[(size_t(cy) * 7 + size_t(cx)) * 13];
+            want += (o[e0] + (o[e0 + 1] - o[e0]) * (e - float(e0))) * w;
+          }
         }
+        for (int c = 0; c < 3; ++c)
+          EXPECT_NEAR(out.at(x, y)[c], want[c], 1e-4f)
+              << x << "," << y << " " << c << " method " << int(method);
       }
-      for (int c = 0; c < 3; ++c) EXPECT_NEAR(out.at(x, y)[c], want[c], 1e-4f) << x << "," << y << " " << c;
     }
   }
 }
@@ -173,8 +179,8 @@ TEST(FroxelFog, SimdInjectionMatchesScalar) {
   noisy.shader.noise = NoiseModulation{2.0f, 0.6f, {}, {0.1f, 0.2f, 0.3f}};
   prims.push_back(noisy);
   const VolumeScene volumes(std::move(prims));
-  const View view = View::perspective_view({0.0f, 1.2f, 0.5f}, {0.0f, -0.05f, -1.0f}, {0, 1, 0}, radians(60.0f),
-                                           {64, 36});
+  const View view =
+      View::perspective_view({0.0f, 1.2f, 0.5f}, {0.0f, -0.05f, -1.0f}, {0, 1, 0}, radians(60.0f), {64, 36});
   const FroxelGrid g = fit_froxel_grid(view, volumes, Plane(64, 36, kSkyDepth), {20, 12, 37, 128.0f});
   FroxelColumns columns;
   froxel_columns(g, view, volumes, 0.3f, columns);
@@ -229,16 +235,19 @@ TEST(FroxelFog, ReprojectionBlendsWhereTheHistoryReaches) {
   // Backwards by 20 cm and turned a little, so the general path runs: the new grid's nearest
   // slices (exponential: a quarter of them) were behind the old camera, its edges outside the
   // old frustum.
-  const View after =
-      View::perspective_view({0, 1, 0.2f}, normalize(Vec3(0.05f, 0, -1)), {0, 1, 0}, radians(60.0f), {32, 18});
+  const View after = View::perspective_view({0, 1, 0.2f}, normalize(Vec3(0.05f, 0, -1)), {0, 1, 0},
+                                            radians(60.0f), {32, 18});
   current = fresh();
   reproject_froxels(g, after, history, g, before, blend, {}, current);
   int blended = 0, kept = 0;
   for (size_t i = 0; i < g.cells(); ++i) {
     const Froxel& f = current.cells[i];
-    if (std::abs(f.scatter.g - scatter) < 1e-5f && std::abs(f.sigma_t.g - sigma) < 1e-6f) ++blended;
-    else if (f.scatter.g == 3.0f && f.sigma_t.g == 0.6f) ++kept;
-    else ADD_FAILURE() << "froxel " << i << " = " << f.scatter.g;
+    if (std::abs(f.scatter.g - scatter) < 1e-5f && std::abs(f.sigma_t.g - sigma) < 1e-6f)
+      ++blended;
+    else if (f.scatter.g == 3.0f && f.sigma_t.g == 0.6f)
+      ++kept;
+    else
+      ADD_FAILURE() << "froxel " << i << " = " << f.scatter.g;
   }
   EXPECT_GT(blended, int(g.cells()) / 3);
   EXPECT_GT(kept, int(g.cells()) / 10);
@@ -248,8 +257,8 @@ TEST(FroxelFog, ReprojectionBlendsWhereTheHistoryReaches) {
 // camera that moved and turned (slices 37: lanes and a tail).
 TEST(FroxelFog, SimdReprojectionMatchesScalar) {
   const View before = View::perspective_view({0, 1, 0}, {0, 0, -1}, {0, 1, 0}, radians(60.0f), {40, 24});
-  const View after =
-      View::perspective_view({0.3f, 1.1f, 0.4f}, normalize(Vec3(0.1f, -0.05f, -1)), {0, 1, 0}, radians(55.0f), {40, 24});
+  const View after = View::perspective_view({0.3f, 1.1f, 0.4f}, normalize(Vec3(0.1f, -0.05f, -1)), {0, 1, 0},
+                                            radians(55.0f), {40, 24});
   const FroxelGrid g = grid_of(20, 12, 37, 0.05f, 15.0f);
   uint32_t state = 3u;
   auto rnd = [&] {
@@ -306,8 +315,8 @@ TEST(FroxelFog, AMovedLightInvalidatesItsHistory) {
 TEST(FroxelFog, ACameraCutNeitherFlashesNorLags) {
   VolumeScene volumes({fog_box({-10, -10, -10}, {10, 10, 10}, RGB(0.05f), RGB(0.25f))});
   const View a = View::perspective_view({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, radians(60.0f), {48, 27});
-  const View b = View::perspective_view({3, 1, -2}, normalize(Vec3(-1, -0.2f, -0.6f)), {0, 1, 0}, radians(50.0f),
-                                        {48, 27});
+  const View b = View::perspective_view({3, 1, -2}, normalize(Vec3(-1, -0.2f, -0.6f)), {0, 1, 0},
+                                        radians(50.0f), {48, 27});
   const Plane depth(48, 27, 9.0f);
   const std::vector<FrameLight> lights{frame_light(PointLight{{-0.5f, 0.3f, -4.0f}, RGB(3.0f), 5.0f})};
   RealtimeSettings s;
@@ -336,7 +345,8 @@ TEST(FroxelFog, ACameraCutNeitherFlashesNorLags) {
 // per-light march (400 midpoints a pixel) as the slices get finer. Measured (2026-12) mean
 // relative differences: 32 slices 0.77 %, 256 slices 0.003 %; held within 1.5 % and 0.05 %.
 TEST(FroxelFog, PointLightConvergesToTheMarchAsSlicesRefine) {
-  VolumeScene volumes({fog_box({-10, -10, -10}, {10, 10, 10}, RGB(0.05f), RGB(0.25f), HenyeyGreensteinPhase{0.5f})});
+  VolumeScene volumes(
+      {fog_box({-10, -10, -10}, {10, 10, 10}, RGB(0.05f), RGB(0.25f), HenyeyGreensteinPhase{0.5f})});
   const FrameLight light = frame_light(PointLight{{0.4f, 0.3f, -3.0f}, RGB(3.0f), kInfinity});
   const View view = View::perspective_view({0, 0, 0}, {0, 0, -1}, {0, 1, 0}, radians(40.0f), {18, 14});
   const Plane depth(18, 14, 6.0f);
@@ -358,7 +368,8 @@ TEST(FroxelFog, PointLightConvergesToTheMarchAsSlicesRefine) {
     return sum / double(out.r.data.size());
   };
   const double coarse = error(32), fine = error(256);
-  std::printf("mean relative difference to the march: 32 slices %.3f %%, 256 slices %.3f %%\n", 100 * coarse, 100 * fine);
+  std::printf("mean relative difference to the march: 32 slices %.3f %%, 256 slices %.3f %%\n", 100 * coarse,
+              100 * fine);
   EXPECT_LT(fine, 0.1 * coarse);
   EXPECT_LT(fine, 5e-4);
   EXPECT_LT(coarse, 0.015);
