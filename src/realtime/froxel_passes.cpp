@@ -93,6 +93,28 @@ void blend_column(Froxel* cells, const Froxel* old, const uint8_t* use, int n, f
   }
 }
 
+// A column's points p = eye_h + a + b z seen from the history view: its depth z0 + z1 z and
+// its right and up coordinates, and the factors that take them to history grid coordinates
+// (View::project's arithmetic, regrouped).
+struct HistoryAxes {
+  bool perspective;
+  float z0, z1, x0, x1, y0, y1;
+  float kx, cx, ky, cy;
+};
+HistoryAxes history_axes(const View& v, Vec3 a, Vec3 b, float to_x, float to_y) {
+  HistoryAxes h;
+  h.perspective = v.projection == Projection::perspective;
+  h.z0 = dot(a, v.forward), h.z1 = dot(b, v.forward);
+  h.x0 = dot(a, v.right), h.x1 = dot(b, v.right);
+  h.y0 = dot(a, v.up), h.y1 = dot(b, v.up);
+  const float w = 0.5f * float(v.resolution.x) * to_x, hh = 0.5f * float(v.resolution.y) * to_y;
+  h.kx = h.perspective ? w / (v.tan_half_fov_y * v.aspect) : w / v.half_width;
+  h.ky = -(h.perspective ? hh / v.tan_half_fov_y : hh / v.half_height);
+  h.cx = w - 0.5f;
+  h.cy = hh - 0.5f;
+  return h;
+}
+
 bool same_view(const View& a, const View& b) {
   return a.projection == b.projection && a.eye == b.eye && a.forward == b.forward && a.up == b.up &&
          a.resolution == b.resolution &&
@@ -133,14 +155,20 @@ void reproject_froxels(const FroxelGrid& grid, const View& view, const FroxelMed
     std::vector<Froxel> old(n);
     std::vector<uint8_t> use(n);
     for (int x = 0; x < grid.width; ++x) {
-      // The column's points are affine in depth: a + b z.
+      // The column's points are affine in depth, a + b z, and so are their coordinates along
+      // the history view's axes: the history grid coordinates are ratios of affine functions
+      // of z, a loop the compiler vectorises (View::project per point cost a call each).
       const Vec2 film = grid.film(view, float(x), float(y));
-      const Vec3 a = view.unproject(film, 0.0f), b = view.unproject(film, 1.0f) - a;
+      const Vec3 a = view.unproject(film, 0.0f) - history_view.eye, b = view.unproject(film, 1.0f) - a -
+                                                                        history_view.eye;
+      const HistoryAxes h = history_axes(history_view, a, b, to_x, to_y);
       for (size_t s = 0; s < n; ++s) {
-        const Vec3 q = history_view.project(a + b * centre[s]);
-        hx[s] = q.x * to_x - 0.5f;
-        hy[s] = q.y * to_y - 0.5f;
-        hz[s] = q.z;
+        const float c = centre[s];
+        const float z = h.z0 + h.z1 * c;
+        const float inv = h.perspective ? 1.0f / z : 1.0f;
+        hx[s] = (h.x0 + h.x1 * c) * inv * h.kx + h.cx;
+        hy[s] = (h.y0 + h.y1 * c) * inv * h.ky + h.cy;
+        hz[s] = z;
       }
       edge_coordinates(history_grid, hz.data(), grid.slices, hs.data());
       const size_t first = (size_t(y) * size_t(grid.width) + size_t(x)) * n;
