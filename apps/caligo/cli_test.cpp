@@ -434,6 +434,12 @@ TEST_F(Cli, RealtimeRejectsBadOptionsBeforeRendering) {
   const RunResult missing = run("realtime " + scene.string() + " -o " + (dir_ / "no" / "such" / "x.gif").string());
   EXPECT_EQ(missing.exit_code, 2);
   EXPECT_NE(missing.err.find("does not exist"), std::string::npos);
+  // A grid without the method that uses it: said, not silently ignored.
+  const RunResult unused = run("realtime " + scene.string() + " --froxels 80x45x32 --frames 1 -q");
+  EXPECT_EQ(unused.exit_code, 0) << unused.err;
+  EXPECT_NE(unused.err.find("warning: --froxels sets the grid of --method froxel; with --method march it is not used"),
+            std::string::npos)
+      << unused.err;
 }
 
 // --method froxel: every light in the grid, named in the table, and the last frame against the

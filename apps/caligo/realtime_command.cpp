@@ -125,7 +125,13 @@ RealtimeSettings settings_from(const RealtimeOptions& o, const SceneDesc& desc) 
   if (!s.froxel && !parse_volumetric_method(o.method))
     throw InputError(kCommandLine,
                      "--method: expected march, froxel, none, brute, hybrid or textured, got \"" + o.method + "\"");
-  if (o.froxels) s.froxels = parse_froxels(*o.froxels, s.froxels);
+  if (o.froxels) {
+    s.froxels = parse_froxels(*o.froxels, s.froxels);
+    if (!s.froxel)
+      std::fprintf(stderr, "caligo: warning: --froxels sets the grid of --method froxel; with --method %s it is "
+                           "not used\n",
+                   o.method.c_str());
+  }
   if (!spot_model_of(o.spot_model))
     throw InputError(kCommandLine,
                      "--spot-model: expected auto, airlight or hoffman-preetham, got \"" + o.spot_model + "\"");
