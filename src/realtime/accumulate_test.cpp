@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
 
 #include "lights/gobo.h"
 #include "lights/ies.h"
@@ -155,14 +156,11 @@ TEST(Accumulate, SharedRaysMatchPerLightSetup) {
   }
 }
 
-// Orthographic rays along +x through a slab of fog, lit by a directional light from above:
-// every sample sees the light through the same height h of fog, so
-// L = sigma_s E p e^(-sigma_t h) (1 - e^(-sigma_t D)) / sigma_t  (D = depth inside the fog).
-TEST(Accumulate, DirectionalLightInASlabMatchesTheAnalyticIntegral) {
-  const float sa = 0.1f, ss = 0.3f, st = sa + ss;
-  VolumeScene volumes({fog_box({0, 0, -5}, {10, 2, 5}, RGB(sa), RGB(ss))});
+// Orthographic rays along +x at heights 0.56 to 1.44 m (8 rows of 4), 1 m of clear air and then
+// 6 m of `volumes`, lit by a sun of 2 W/m^2 straight down, against expected(height), scalar and SIMD.
+void expect_sun_over_level_rays(const VolumeScene& volumes, const std::function<double(double)>& expected) {
   const View view = View::orthographic_view({-1.0f, 1.0f, 0.0f}, {1, 0, 0}, {0, 1, 0}, 0.5f, 0.5f, {4, 8});
-  Plane depth(4, 8, 7.0f);  // 1 m of clear air, then 6 m of fog
+  Plane depth(4, 8, 7.0f);
   const FrameLight sun = frame_light(DirectionalLight{{0, -1, 0}, RGB(2.0f)});
   for (bool simd : {false, true}) {
     AccumulationSettings s;
@@ -171,13 +169,20 @@ TEST(Accumulate, DirectionalLightInASlabMatchesTheAnalyticIntegral) {
     s.simd = simd;
     const ColorPlanes out = run(sun, volumes, view, depth, s);
     for (int y = 0; y < 8; ++y) {
-      const float height = 1.0f + 0.5f - (float(y) + 0.5f) / 8.0f;  // film y grows downwards
-      const float h = 2.0f - height;
-      const float expected = ss * 2.0f * kInv4Pi * std::exp(-st * h) * (1.0f - std::exp(-st * 6.0f)) / st;
-      for (int x = 0; x < 4; ++x)
-        EXPECT_NEAR(out.r.at(x, y), expected, 2e-4f * expected) << simd << " y " << y;
+      const double want = expected(1.0 + 0.5 - (double(y) + 0.5) / 8.0);  // film y grows downwards
+      for (int x = 0; x < 4; ++x) EXPECT_NEAR(out.r.at(x, y), want, 2e-4 * want) << simd << " y " << y;
     }
   }
+}
+
+// A slab of fog 2 m deep: every sample sees the light through the same height h of fog, so
+// L = sigma_s E p e^(-sigma_t h) (1 - e^(-sigma_t D)) / sigma_t  (D = depth inside the fog).
+TEST(Accumulate, DirectionalLightInASlabMatchesTheAnalyticIntegral) {
+  const double sa = 0.1, ss = 0.3, st = sa + ss;
+  const VolumeScene volumes({fog_box({0, 0, -5}, {10, 2, 5}, RGB(float(sa)), RGB(float(ss)))});
+  expect_sun_over_level_rays(volumes, [&](double height) {
+    return ss * 2.0 * kInv4Pi * std::exp(-st * (2.0 - height)) * -std::expm1(-st * 6.0) / st;
+  });
 }
 
 // The slab as height fog (density 1 below 0.5 m, e^(-(y - 0.5)/0.4) above): a level ray at
@@ -186,33 +191,17 @@ TEST(Accumulate, DirectionalLightInASlabMatchesTheAnalyticIntegral) {
 // L = sigma_s f E p e^(-tau(y)) (1 - e^(-sigma_t f D)) / (sigma_t f). The passes take the
 // optical depths in closed form (media.h): the same to float rounding.
 TEST(Accumulate, DirectionalLightInHeightFogMatchesTheAnalyticIntegral) {
-  const float sa = 0.1f, ss = 0.3f, st = sa + ss, base = 0.5f, H = 0.4f;
-  VolumePrimitive fog = fog_box({0, 0, -5}, {10, 2, 5}, RGB(sa), RGB(ss));
-  fog.shader.field = HeightFalloffDensity{base, H};
-  VolumeScene volumes({fog});
-  const View view = View::orthographic_view({-1.0f, 1.0f, 0.0f}, {1, 0, 0}, {0, 1, 0}, 0.5f, 0.5f, {4, 8});
-  Plane depth(4, 8, 7.0f);  // 1 m of clear air, then 6 m of fog
-  const FrameLight sun = frame_light(DirectionalLight{{0, -1, 0}, RGB(2.0f)});
+  const double sa = 0.1, ss = 0.3, st = sa + ss, base = 0.5, H = 0.4;
+  VolumePrimitive fog = fog_box({0, 0, -5}, {10, 2, 5}, RGB(float(sa)), RGB(float(ss)));
+  fog.shader.field = HeightFalloffDensity{float(base), float(H)};
   const auto f = [&](double y) { return y <= base ? 1.0 : std::exp(-(y - base) / H); };
   const auto above = [&](double y) {  // the integral of f over [y, 2]
-    const double from = std::max(y, double(base));
-    return std::max(0.0, base - y) + H * (f(from) - f(2.0));
+    return std::max(0.0, base - y) + H * (f(std::max(y, base)) - f(2.0));
   };
-  for (bool simd : {false, true}) {
-    AccumulationSettings s;
-    s.samples = 256;
-    s.tile_size = 1;
-    s.simd = simd;
-    const ColorPlanes out = run(sun, volumes, view, depth, s);
-    for (int y = 0; y < 8; ++y) {
-      const double height = 1.0 + 0.5 - (double(y) + 0.5) / 8.0;
-      const double k = st * f(height);
-      const double expected = ss * f(height) * 2.0 * kInv4Pi * std::exp(-st * above(height)) *
-                              -std::expm1(-k * 6.0) / k;
-      for (int x = 0; x < 4; ++x)
-        EXPECT_NEAR(out.r.at(x, y), expected, 2e-4 * expected) << simd << " y " << y;
-    }
-  }
+  expect_sun_over_level_rays(VolumeScene({fog}), [&](double height) {
+    const double k = st * f(height);
+    return ss * f(height) * 2.0 * kInv4Pi * std::exp(-st * above(height)) * -std::expm1(-k * 6.0) / k;
+  });
 }
 
 // The slab again with an occluder above x < 5 (a one-face orthographic shadow map): only
