@@ -19,13 +19,16 @@
 namespace caligo {
 namespace {
 
-// Camera optical depth from the start of the ray to t: every primitive's overlap with [0, t].
-RGB camera_optical_depth(const VolumeScene& volumes, const PixelMarch& march, float t) {
+// Camera optical depth over [from, to] of the ray: every primitive's overlap with it. The march
+// adds it step by step (steps go forwards), so a grid's quadrature covers the ray once, not
+// once per step from the start.
+RGB camera_optical_depth(const VolumeScene& volumes, const PixelMarch& march, float from, float to) {
   const Ray ray{march.origin, march.dir, 0.0f, kInfinity};
   RGB tau;
-  for (const VolumeInterval& iv : march.intervals)
-    if (t > iv.t0)
-      tau += primitive_optical_depth(volumes.primitive(iv.primitive), ray, iv.t0, std::min(t, iv.t1));
+  for (const VolumeInterval& iv : march.intervals) {
+    const float a = std::max(from, iv.t0), b = std::min(to, iv.t1);
+    if (b > a) tau += primitive_optical_depth(volumes.primitive(iv.primitive), ray, a, b);
+  }
   return tau;
 }
 
@@ -151,12 +154,16 @@ RGB inscatter_scalar(const FrameLight& light, const VolumeScene& volumes, const 
 
 RGB march_scalar(const FrameLight& light, const VolumeScene& volumes, const PixelMarch& march,
                  float multiple_scattering_floor, float far) {
-  RGB sum;
+  RGB sum, tau;
+  float reached = 0.0f;  // tau is the camera optical depth to here
   for (int k = 0; k < march.samples; ++k) {
     float weight;
     const float t = march_sample(march, float(k), weight);
     const RGB in = inscatter_scalar(light, volumes, march, t, multiple_scattering_floor, far);
-    if (!in.is_black()) sum += in * exp_neg(camera_optical_depth(volumes, march, t)) * weight;
+    if (in.is_black()) continue;
+    tau += camera_optical_depth(volumes, march, reached, t);
+    reached = std::max(reached, t);
+    sum += in * exp_neg(tau) * weight;
   }
   return sum;
 }
