@@ -13,6 +13,7 @@
 #include "realtime/accumulate_internal.h"
 #include "realtime/light_volume.h"
 #include "realtime/light_volume_simd.h"
+#include "realtime/light_depth_volume.h"
 #include "realtime/media.h"
 #include "realtime/shadow_map.h"
 
@@ -132,6 +133,24 @@ bool setup_pixel_march(RayRange span, const AccumulationRays::PixelRay& ray,
   return true;
 }
 
+namespace {
+
+// The transmittance from p to the light: the grids' from the light's table where it has one,
+// the other primitives' integrated.
+RGB light_transmittance(const FrameLight& light, const VolumeScene& volumes, Vec3 p, Vec3 light_point) {
+  const LightDepthVolume* table = light.media_depth;
+  if (!table) return exp_neg(segment_optical_depth(volumes, p, light_point));
+  const float len = distance(p, light_point);
+  if (!(len > 0.0f)) return RGB(1.0f);
+  const Ray ray{p, (light_point - p) / len, 0.0f, len};
+  RGB tau;
+  for (size_t i = 0; i < volumes.primitives().size(); ++i)
+    if (!table->holds(i)) tau += primitive_segment_optical_depth(volumes.primitives()[i], ray);
+  return table->transmittance(p) * exp_neg(tau);
+}
+
+}  // namespace
+
 RGB inscatter_scalar(const FrameLight& light, const VolumeScene& volumes, const PixelMarch& march, float t,
                      float multiple_scattering_floor, float far) {
   const Vec3 p = march.origin + march.dir * t;
@@ -149,7 +168,7 @@ RGB inscatter_scalar(const FrameLight& light, const VolumeScene& volumes, const 
   const float v = light.shadow ? std::max(multiple_scattering_floor, light.shadow->visibility(p)) : 1.0f;
   if (!(v > 0.0f)) return {};
   const Vec3 light_point = p + arrival->wi * std::min(arrival->distance, far);
-  return scatter * arrival->radiance * exp_neg(segment_optical_depth(volumes, p, light_point)) * v;
+  return scatter * arrival->radiance * light_transmittance(light, volumes, p, light_point) * v;
 }
 
 RGB march_scalar(const FrameLight& light, const VolumeScene& volumes, const PixelMarch& march,

@@ -17,6 +17,7 @@
 namespace caligo {
 
 struct ShadowMap;
+class LightDepthVolume;
 
 using ShadedLight = std::variant<PointLight, SpotLight, BoxLight, DirectionalLight>;
 
@@ -51,6 +52,9 @@ struct FrameLight {
   // one face over the scene: realtime/directional_faces.h).
   const ShadowMap* surface_shadow = nullptr;
   const ShadowMap* surface_map() const { return surface_shadow ? surface_shadow : shadow; }
+  // A directional light's optical depth through the grid volumes, tabulated (null: integrated
+  // at every step; realtime/light_depth_volume.h).
+  const LightDepthVolume* media_depth = nullptr;
 };
 
 // Every light of the scene the passes shade, posed (`posed`, as desc.lights_at gives them),

@@ -64,6 +64,24 @@ RGB primitive_segment_optical_depth(const VolumePrimitive& primitive, const Ray&
   return tau;
 }
 
+void add_depth_profile(const VolumePrimitive& primitive, const Ray& ray, std::span<const float> nodes, RGB* out) {
+  VolumeContext& ctx = context();
+  ctx.intervals.clear();
+  append_intervals(primitive, 0, ray, ctx);
+  const std::vector<VolumeInterval> intervals = ctx.intervals;  // primitive_optical_depth reuses ctx
+  RGB sum;
+  float from = 0.0f;
+  for (size_t k = 0; k < nodes.size(); ++k) {
+    const float to = nodes[k];
+    for (const VolumeInterval& iv : intervals) {
+      const float a = std::max(from, iv.t0), b = std::min(to, iv.t1);
+      if (b > a) sum += primitive_optical_depth(primitive, ray, a, b);
+    }
+    out[k] += sum;
+    from = to;
+  }
+}
+
 RGB segment_optical_depth(const VolumeScene& volumes, Vec3 a, Vec3 b) {
   const float len = distance(a, b);
   if (!(len > 0.0f)) return RGB(0.0f);

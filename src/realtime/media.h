@@ -14,6 +14,8 @@
 // Height fog (HeightFalloffDensity) is integrated in closed form.
 #pragma once
 
+#include <span>
+
 #include "core/ray.h"
 #include "core/rgb.h"
 #include "core/vec.h"
@@ -46,6 +48,10 @@ ObjectSpaceShape object_space_shape(const VolumeShape& shape);
 // Optical depth (per channel, mean density) of one primitive along all of `ray`'s
 // [tmin, tmax] (unit direction), over its majorant intervals.
 RGB primitive_segment_optical_depth(const VolumePrimitive& primitive, const Ray& ray);
+
+// The optical depth of one primitive from `ray`'s origin to each of `nodes` t values (increasing,
+// from 0), added to `out` (nodes.size() entries): its majorant intervals found once.
+void add_depth_profile(const VolumePrimitive& primitive, const Ray& ray, std::span<const float> nodes, RGB* out);
 
 // Optical depth (per channel) of the straight segment from a to b.
 RGB segment_optical_depth(const VolumeScene& volumes, Vec3 a, Vec3 b);

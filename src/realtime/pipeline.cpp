@@ -5,6 +5,7 @@
 #include "core/parallel.h"
 #include "realtime/directional_faces.h"
 #include "realtime/froxel_fog.h"
+#include "realtime/light_depth_volume.h"
 #include "realtime/light_cores.h"
 #include "realtime/scene_buffers.h"
 #include "realtime/shadow_map.h"
@@ -29,6 +30,9 @@ struct RealtimePipeline::CachedShadow {
   int size = 0;
   std::optional<ShadowMap> map;
   std::optional<ShadowMap> cascades;  // a sun's, for surfaces
+  // A sun's optical depth through the grid volumes, for the placement `media_key` of still media.
+  std::optional<LightDepthVolume> media_depth;
+  std::vector<float> media_key;
 };
 
 RealtimeSettings realtime_settings(const SceneDesc& desc) {
@@ -121,6 +125,29 @@ void RealtimePipeline::update_shadow_maps(const std::vector<FrameLight>& lights,
     frame.shadow_maps_rendered +=
         update_cascaded_shadow_map(*raster_, fit, frame.view, light.skip_emitter, *cache.cascades, &*cache.map);
     cache.cascades->filter_surfaces = settings_.filter_surface_shadows;
+  }
+}
+
+// Suns over grid volumes get their optical-depth table (light_depth_volume.h), rebuilt when the
+// light turns or the media move (then every frame: the media are the frame's own).
+void RealtimePipeline::update_media_depths(const std::vector<FrameLight>& lights, const VolumeScene& volumes,
+                                           bool media_move) {
+  for (const FrameLight& light : lights) {
+    if (light.index >= shadows_.size()) shadows_.resize(light.index + 1);
+    CachedShadow& cache = shadows_[light.index];
+    const auto* sun = std::get_if<DirectionalLight>(&light.light);
+    if (!sun || settings_.light_depth_cells <= 0 || !light.options.volumetric) {
+      cache.media_depth.reset();
+      continue;
+    }
+    std::vector<float> key = placement_key(light.light);
+    key.push_back(float(settings_.light_depth_cells));
+    if (!media_move && cache.media_key == key) continue;
+    // Across the light the cloud's self-shadow edges need the cells; along it a third will do
+    // (measured on `cloud`: 192 x 64 within 1.2 % of the exact mean, 64 x 256 8 %).
+    const int columns = settings_.light_depth_cells;
+    cache.media_depth = LightDepthVolume::build(*sun, volumes, columns, std::max(16, columns / 3));
+    cache.media_key = std::move(key);
   }
 }
 
@@ -276,11 +303,15 @@ const RealtimeFrame& RealtimePipeline::render(float time, uint32_t frame_index) 
   std::optional<VolumeScene> moved;
   if (desc.media_move()) moved.emplace(desc.volumes_at(time));
   const VolumeScene& volumes = moved ? *moved : scene_->volumes();
-  timed(times.shadows, [&] { update_shadow_maps(lights, volumes, next); });
+  timed(times.shadows, [&] {
+    update_shadow_maps(lights, volumes, next);
+    update_media_depths(lights, volumes, desc.media_move());
+  });
   for (FrameLight& l : lights) {
     const CachedShadow& cache = shadows_[l.index];
     l.shadow = cache.map ? &*cache.map : nullptr;
     l.surface_shadow = cache.cascades ? &*cache.cascades : nullptr;
+    l.media_depth = cache.media_depth ? &*cache.media_depth : nullptr;
   }
   if (settings_.froxel) {
     render_froxels(lights, volumes, frame_index, next);

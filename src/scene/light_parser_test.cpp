@@ -225,7 +225,7 @@ TEST_F(LightFiles, CameraPathRealtimeBlockAndNoise) {
     "realtime": {"scale": "half", "tile_size": 4, "samples": 32, "gather_radius": 3,
                  "gather_depth_falloff": 50, "temporal": false, "temporal_blend": 0.2,
                  "multiple_scattering_floor": 0.1, "fps": 24, "frames": 96, "gather_follow_slope": false, "environment_lights": 4, "shadow_filter": "none",
-                 "low_depth": "centre", "sun_cascades": 2,
+                 "low_depth": "centre", "sun_cascades": 2, "light_depth_cells": 0,
                  "froxels": {"width": 80, "height": 45, "slices": 128, "near_ratio": 64}},
     "media": {"haze": {"sigma_s": 0.1, "noise": {"scale": 0.5, "amplitude": 0.8, "wind": [1, 0, 0.5]}}},
     "volumes": [{"type": "box", "min": [-5, 0, -5], "max": [5, 5, 5], "medium": "haze"}]})"));
@@ -251,6 +251,7 @@ TEST_F(LightFiles, CameraPathRealtimeBlockAndNoise) {
   EXPECT_FALSE(rt.filter_surface_shadows);
   EXPECT_EQ(rt.low_depth, LowResolutionDepth::centre);
   EXPECT_EQ(rt.sun_cascades, 2);
+  EXPECT_EQ(rt.light_depth_cells, 0);
   EXPECT_EQ(RealtimeSettings{}.low_depth, LowResolutionDepth::min_max);
   EXPECT_EQ(rt.froxels.width, 80);
   EXPECT_EQ(rt.froxels.height, 45);

@@ -231,7 +231,7 @@ RealtimeSettings parse_realtime(const JsonCursor& c) {
   ObjectReader r(c, "the realtime settings");
   r.allow({"scale", "tile_size", "samples", "gather_radius", "gather_depth_falloff", "gather_follow_slope",
            "temporal", "temporal_blend", "multiple_scattering_floor", "steps", "froxels", "fps", "frames",
-           "environment_lights", "shadow_filter", "low_depth", "sun_cascades"});
+           "environment_lights", "shadow_filter", "low_depth", "sun_cascades", "light_depth_cells"});
   RealtimeSettings d;
   if (r.has("scale")) {
     const std::string scale = r.choice("scale", {"full", "half", "quarter"});
@@ -262,6 +262,7 @@ RealtimeSettings parse_realtime(const JsonCursor& c) {
   d.environment_lights =
       int(r.integer_or("environment_lights", d.environment_lights, Range::closed(1, 256)));
   d.sun_cascades = int(r.integer_or("sun_cascades", d.sun_cascades, Range::closed(1, 8)));
+  d.light_depth_cells = int(r.integer_or("light_depth_cells", d.light_depth_cells, Range::closed(0, 512)));
   d.accumulation.multiple_scattering_floor =
       r.number_or("multiple_scattering_floor", d.accumulation.multiple_scattering_floor, Range::closed(0, 1));
   if (r.has("steps")) d.accumulation.equiangular = r.choice("steps", {"uniform", "equiangular"}) == "equiangular";

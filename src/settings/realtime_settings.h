@@ -79,6 +79,11 @@ struct RealtimeSettings {
   // this many faces at half the light's shadow_map_size, each over one range of the camera's
   // depth; 1: the one face over the whole scene the march always uses (the former behaviour).
   int sun_cascades = 4;
+  // Directional lights' transmittance through grid volumes tabulated in this many columns each
+  // way across the light and a third as many cells along it (realtime/light_depth_volume.h),
+  // built once while the light and media hold still; 0: integrated through the grid at every
+  // march step (the former way).
+  int light_depth_cells = 192;
   // Surface shadows through the 2 x 2 bilinear PCF (ShadowMap::filter_surfaces); false: one
   // tap, stair-stepped (the former behaviour, kept for comparison).
   bool filter_surface_shadows = true;
