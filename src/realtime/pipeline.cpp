@@ -111,8 +111,11 @@ void RealtimePipeline::update_shadow_maps(const std::vector<FrameLight>& lights,
       cache.size = size;
       ++frame.shadow_maps_rendered;
     }
+    // An environment's suns keep their one face: each is a sixteenth of a soft sky, and with
+    // 16 of them a moving camera would redraw up to 16 cascades a frame.
     const auto* sun = std::get_if<DirectionalLight>(&light.light);
-    if (!sun || settings_.sun_cascades < 2 || !cache.map) {
+    const bool sky = std::holds_alternative<EnvironmentLight>(scene_->desc().lights[light.scene_light]);
+    if (!sun || sky || settings_.sun_cascades < 2 || !cache.map) {
       cache.cascades.reset();
       continue;
     }
