@@ -4,14 +4,12 @@
 #include <cmath>
 
 namespace caligo {
-namespace {
-
-// Light space of a direction: the same axes for the same direction, frame after frame (the
-// snapped cascade windows depend on it).
 View light_basis(Vec3 direction, int size) {
   const Vec3 a = std::abs(direction.x) < 0.9f ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
   return View::orthographic_view({}, direction, normalize(cross(direction, a)), 1, 1, {size, size});
 }
+
+namespace {
 
 // The bounds' extent along the basis' right, up and forward axes.
 struct Extent {
@@ -21,7 +19,7 @@ struct Extent {
 Extent extent(const Bounds3& b, const View& basis) {
   Extent e;
   for (int i = 0; i < 8; ++i) {
-    const Vec3 c{(i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, (i & 4) ? b.hi.z : b.lo.z};
+    const Vec3 c = b.corner(i);
     const float v[3] = {dot(c, basis.right), dot(c, basis.up), dot(c, basis.forward)};
     for (int k = 0; k < 3; ++k) e.lo[k] = std::min(e.lo[k], v[k]), e.hi[k] = std::max(e.hi[k], v[k]);
   }

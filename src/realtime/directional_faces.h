@@ -20,6 +20,11 @@
 
 namespace caligo {
 
+// Light space of a direction (`forward` along it, `right` and `up` across): the same axes for
+// the same direction, frame after frame, as the snapped cascade windows and the light's
+// tables (light_depth_volume.h) need. An orthographic view of a unit window at the origin.
+View light_basis(Vec3 direction, int size);
+
 // The orthographic face looking along `direction` whose window covers the bounds' corners,
 // with its eye plane just in front of all of them.
 View fit_directional_face(const Bounds3& bounds, Vec3 direction, int size);

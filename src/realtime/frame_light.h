@@ -52,7 +52,7 @@ struct FrameLight {
   // one face over the scene: realtime/directional_faces.h).
   const ShadowMap* surface_shadow = nullptr;
   const ShadowMap* surface_map() const { return surface_shadow ? surface_shadow : shadow; }
-  // A directional light's optical depth through the grid volumes, tabulated (null: integrated
+  // A directional light's transmittance through the grid volumes, tabulated (null: integrated
   // at every step; realtime/light_depth_volume.h).
   const LightDepthVolume* media_depth = nullptr;
 };

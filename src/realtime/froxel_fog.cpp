@@ -46,7 +46,7 @@ FroxelGrid fit_froxel_grid(const View& view, const VolumeScene& volumes, const P
   for (const VolumePrimitive& p : volumes.primitives()) {
     const Bounds3 b = volume_bounds(p.shape);
     for (int c = 0; c < 8; ++c) {
-      const Vec3 corner((c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y, (c & 4) ? b.hi.z : b.lo.z);
+      const Vec3 corner = b.corner(c);
       far = std::max(far, dot(corner - view.eye, view.forward));
     }
   }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/parallel.h"
+#include "realtime/directional_faces.h"
 #include "realtime/media.h"
 
 namespace caligo {
@@ -12,11 +13,10 @@ std::optional<LightDepthVolume> LightDepthVolume::build(const DirectionalLight& 
                                                         int columns, int nodes) {
   LightDepthVolume v;
   v.held_.assign(volumes.primitives().size(), false);
-  const Vec3 d = normalize(light.direction);
-  const Vec3 a = std::abs(d.x) < 0.9f ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-  v.along_ = d;
-  v.right_ = normalize(cross(d, a));
-  v.up_ = cross(v.right_, d);
+  const View basis = light_basis(normalize(light.direction), 1);
+  v.along_ = basis.forward;
+  v.right_ = basis.right;
+  v.up_ = basis.up;
   float lo[3] = {kInfinity, kInfinity, kInfinity}, hi[3] = {-kInfinity, -kInfinity, -kInfinity};
   std::vector<const VolumePrimitive*> grids;
   for (size_t i = 0; i < volumes.primitives().size(); ++i) {
@@ -26,7 +26,7 @@ std::optional<LightDepthVolume> LightDepthVolume::build(const DirectionalLight& 
     grids.push_back(&p);
     const Bounds3 b = volume_bounds(p.shape);
     for (int c = 0; c < 8; ++c) {
-      const Vec3 q{(c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y, (c & 4) ? b.hi.z : b.lo.z};
+      const Vec3 q = b.corner(c);
       const float x[3] = {dot(q, v.right_), dot(q, v.up_), dot(q, v.along_)};
       for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], x[k]), hi[k] = std::max(hi[k], x[k]);
     }

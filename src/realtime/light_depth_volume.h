@@ -1,8 +1,9 @@
-// A directional light's optical depth through the scene's grid volumes, tabulated once in the
+// A directional light's transmittance through the scene's grid volumes, tabulated once in the
 // light's space (a deep shadow map: Lokovic & Veach 2000; the transmittance volumes of
 // Frostbite's and Unreal's volumetric clouds): columns along the light over the grids' bounds,
-// each holding the optical depth from where the light enters the bounds to each of its nodes.
-// A march step then reads the optical depth towards the light by one trilinear lookup instead
+// each holding the transmittance from where the light enters the bounds to each of its nodes
+// (transmittance, not optical depth, is interpolated: docs/techniques.md gives both errors).
+// A march step then reads the transmittance towards the light by one trilinear lookup instead
 // of integrating through the cloud towards the sun (4-point Gauss-Legendre panels of two
 // voxels at every step). Built when the light or the media change; its resolution blurs the
 // cloud's self-shadowing by up to a cell (docs/techniques.md gives the error).

@@ -104,7 +104,9 @@ TEST(Gather, FollowsTheSlopeOfAWallSeenEdgeOn) {
     for (int y = 8; y < 16; ++y) {
       for (int x = 8; x < 56; ++x) {
         EXPECT_NEAR(along.r.at(x, y), 1.0f, 0.02f) << x << "," << y << " simd " << simd;
-        if (x % 2) EXPECT_GT(seed.r.at(x, y), 1.6f) << x << "," << y;
+        if (x % 2) {
+          EXPECT_GT(seed.r.at(x, y), 1.6f) << x << "," << y;
+        }
       }
     }
   }

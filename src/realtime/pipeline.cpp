@@ -30,7 +30,7 @@ struct RealtimePipeline::CachedShadow {
   int size = 0;
   std::optional<ShadowMap> map;
   std::optional<ShadowMap> cascades;  // a sun's, for surfaces
-  // A sun's optical depth through the grid volumes, for the placement `media_key` of still media.
+  // A sun's transmittance through the grid volumes, for the placement `media_key` of still media.
   std::optional<LightDepthVolume> media_depth;
   std::vector<float> media_key;
 };
@@ -75,8 +75,7 @@ Vec2 cascade_depths(const View& view, const Bounds3& surfaces, const VolumeScene
   for (const VolumePrimitive& p : volumes.primitives()) b.extend(volume_bounds(p.shape));
   float far = 1e-3f;
   for (int c = 0; c < 8 && !b.empty(); ++c) {
-    const Vec3 corner((c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y, (c & 4) ? b.hi.z : b.lo.z);
-    far = std::max(far, dot(corner - view.eye, view.forward));
+    far = std::max(far, dot(b.corner(c) - view.eye, view.forward));
   }
   float deepest = 0.0f;
   for (float d : depth.data) deepest = std::max(deepest, d);
@@ -85,6 +84,11 @@ Vec2 cascade_depths(const View& view, const Bounds3& surfaces, const VolumeScene
 }
 
 }  // namespace
+
+// One of the suns an environment light is shaded by (light_stand_ins.h).
+bool RealtimePipeline::is_sky_sun(const FrameLight& light) const {
+  return std::holds_alternative<EnvironmentLight>(scene_->desc().lights[light.scene_light]);
+}
 
 // Maps are kept while their key holds: a still light keeps its map. A sun's cascades (for
 // surfaces) keep each face until its snapped window moves (directional_faces.h).
@@ -114,8 +118,7 @@ void RealtimePipeline::update_shadow_maps(const std::vector<FrameLight>& lights,
     // An environment's suns keep their one face: each is a sixteenth of a soft sky, and with
     // 16 of them a moving camera would redraw up to 16 cascades a frame.
     const auto* sun = std::get_if<DirectionalLight>(&light.light);
-    const bool sky = std::holds_alternative<EnvironmentLight>(scene_->desc().lights[light.scene_light]);
-    if (!sun || sky || settings_.sun_cascades < 2 || !cache.map) {
+    if (!sun || is_sky_sun(light) || settings_.sun_cascades < 2 || !cache.map) {
       cache.cascades.reset();
       continue;
     }
@@ -131,7 +134,7 @@ void RealtimePipeline::update_shadow_maps(const std::vector<FrameLight>& lights,
   }
 }
 
-// Suns over grid volumes get their optical-depth table (light_depth_volume.h), rebuilt when the
+// Suns over grid volumes get their transmittance table (light_depth_volume.h), rebuilt when the
 // light turns or the media move (then every frame: the media are the frame's own).
 void RealtimePipeline::update_media_depths(const std::vector<FrameLight>& lights, const VolumeScene& volumes,
                                            bool media_move) {
@@ -150,8 +153,7 @@ void RealtimePipeline::update_media_depths(const std::vector<FrameLight>& lights
     // (measured on `cloud`: 192 x 64 within 1.2 % of the exact mean, 64 x 256 8 %). An
     // environment's suns, each a sixteenth of a soft sky, take half the columns (a quarter of
     // the build and the memory).
-    const bool sky = std::holds_alternative<EnvironmentLight>(scene_->desc().lights[light.scene_light]);
-    const int columns = sky ? std::max(2, settings_.light_depth_cells / 2) : settings_.light_depth_cells;
+    const int columns = is_sky_sun(light) ? std::max(2, settings_.light_depth_cells / 2) : settings_.light_depth_cells;
     cache.media_depth = LightDepthVolume::build(*sun, volumes, columns, std::max(16, columns / 3));
     cache.media_key = std::move(key);
   }

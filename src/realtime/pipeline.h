@@ -92,6 +92,7 @@ class RealtimePipeline {
   struct CachedShadow;
 
   void update_shadow_maps(const std::vector<FrameLight>& lights, const VolumeScene& volumes, RealtimeFrame& frame);
+  bool is_sky_sun(const FrameLight& light) const;
   void update_media_depths(const std::vector<FrameLight>& lights, const VolumeScene& volumes, bool media_move);
   // The frame's stages, in order (render() times each).
   void draw_scene_buffers(RealtimeFrame& next);

@@ -155,8 +155,12 @@ TEST(ShadowMap, SurfaceFilterRampsAcrossAnEdge) {
       max_jump = std::max(max_jump, std::abs(tap - prev_tap));
       if (prev_filtered < 0.5f && v >= 0.5f) half_at = s;
     }
-    if (s < -1.5f * texel) EXPECT_EQ(v, 0.0f) << s / texel;
-    if (s > 1.5f * texel) EXPECT_EQ(v, 1.0f) << s / texel;
+    if (s < -1.5f * texel) {
+      EXPECT_EQ(v, 0.0f) << s / texel;
+    }
+    if (s > 1.5f * texel) {
+      EXPECT_EQ(v, 1.0f) << s / texel;
+    }
     prev_filtered = v;
     prev_tap = tap;
   }
