@@ -3,9 +3,11 @@ PRESET ?= release
 BUILD  := build/$(PRESET)
 JOBS   ?= $(shell nproc)
 
-.PHONY: demo test deps configure build bench clean
+.PHONY: demo test deps configure build build-caligo bench clean
 
-demo: build
+# The demo builds only what it runs: the caligo executable and the libraries it links (no tests,
+# no benchmarks). `make test` builds everything.
+demo: build-caligo
 	mkdir -p out
 	$(BUILD)/apps/caligo/caligo render default -o out/default.exr
 
@@ -21,7 +23,11 @@ configure: deps
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
-bench: build
+build-caligo: configure
+	cmake --build $(BUILD) -j $(JOBS) --target caligo
+
+bench: configure
+	cmake --build $(BUILD) -j $(JOBS) --target caligo_bench
 	$(BUILD)/bench/caligo_bench
 
 clean:

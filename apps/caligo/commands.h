@@ -110,6 +110,8 @@ inline const SourceLocation kCommandLine{"command line", ""};
 
 // A scene file or a built-in's name; InputError when it is neither.
 SceneDesc load_scene(const std::string& name);
+// The scene's reading warnings (SceneDesc::warnings) on stderr, one "caligo: warning:" line each.
+void print_scene_warnings(const SceneDesc& desc);
 // "WxH" of --res; InputError otherwise.
 Vec2i parse_resolution(const std::string& text);
 // A --seed: a decimal integer in [0, 2^63); a located InputError naming the option otherwise.

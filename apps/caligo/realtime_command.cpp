@@ -367,6 +367,7 @@ int run_realtime(const RealtimeOptions& o) {
   check_realtime_options(o, desc);
   RealtimeOutputs outputs(o, desc, frames);  // every output is checked before any work
 
+  print_scene_warnings(desc);
   warn_about_what_is_not_drawn(desc, settings);
   RealtimePipeline pipeline(Scene::build(desc), settings);
   const VolumetricMethod method = settings.froxel ? VolumetricMethod::kMarch : *parse_volumetric_method(o.method);

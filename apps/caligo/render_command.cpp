@@ -438,6 +438,7 @@ int run_render(const RenderOptions& o) {
   const RenderOutputs outputs(o, desc);  // every output is checked before any work
   check_memory(settings);
   const auto scene = Scene::build(desc);  // meshes load here: their errors come first, located
+  print_scene_warnings(desc);
   for (const std::string& w : priority_shadow_warnings(desc)) std::fprintf(stderr, "caligo: warning: %s\n", w.c_str());
   // The key re-reads every file the scene names (for their CRC-32s): only when a checkpoint is
   // read, saved or shared between ranks; an interrupt's own checkpoint takes it then.

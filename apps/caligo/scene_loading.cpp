@@ -51,4 +51,8 @@ SceneDesc load_scene(const std::string& name) {
   return parse_scene_file(name);
 }
 
+void print_scene_warnings(const SceneDesc& desc) {
+  for (const std::string& w : desc.warnings) std::fprintf(stderr, "caligo: warning: %s\n", w.c_str());
+}
+
 }  // namespace caligo

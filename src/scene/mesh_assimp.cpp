@@ -332,7 +332,7 @@ TriangleMesh assimp_scene_mesh(const AssimpSceneCopy& scene) {
 
 const AssimpPluginApi& assimp_plugin() {
   static const AssimpPluginApi& api = load_plugin<AssimpPluginApi>(kAssimpPluginName, kAssimpPluginSymbol,
-                                                                   kAssimpPluginAbi, "needed to read PLY and COLLADA meshes");
+                                                                   kAssimpPluginAbi, "needed to read PLY, COLLADA, STL and OFF meshes");
   return api;
 }
 

@@ -55,13 +55,25 @@ void check_mesh_limits(const TriangleMesh& mesh) {
 TriangleMesh read_mesh(const std::string& path, const SourceLocation& where, DegenerateTriangles degenerate) {
   const std::string extension = lowercase_extension(path);
   if (extension != ".obj" && extension != ".gltf" && extension != ".glb" && extension != ".ply" &&
-      extension != ".dae")
-    fail("unsupported mesh format " + in_quotes(extension) + " (expected .obj, .gltf, .glb, .ply or .dae)");
+      extension != ".dae" && extension != ".stl" && extension != ".off")
+    fail("unsupported mesh format " + in_quotes(extension) + " (expected .obj, .gltf, .glb, .ply, .dae, .stl or .off)");
   const std::string data = read_whole_file(path, where);
   if (extension == ".obj") return read_obj(data, degenerate);
   if (extension == ".ply") {
     check_ply_header(data);
     return read_with_assimp(data, "ply", "PLY");
+  }
+  if (extension == ".stl") {
+    check_stl(data);
+    // STL's normals are per facet (flat, as the geometric normal is) and often zero or stale
+    // in exported files: the geometry alone decides.
+    TriangleMesh mesh = read_with_assimp(data, "stl", "STL");
+    mesh.normals.clear();
+    return mesh;
+  }
+  if (extension == ".off") {
+    check_off(data);
+    return read_with_assimp(data, "off", "OFF");
   }
   if (extension == ".dae") {
     for (const std::string& problem : {collada_nesting_problem(data), collada_accessor_problem(data)})

@@ -1,4 +1,4 @@
-// Mesh files (Wavefront OBJ, glTF 2.0 .gltf/.glb, Stanford PLY, COLLADA .dae) -> one validated
+// Mesh files (Wavefront OBJ, glTF 2.0 .gltf/.glb, Stanford PLY, COLLADA .dae, STL, OFF) -> one validated
 // TriangleMesh. The parsing libraries (tinyobjloader, tinygltf, assimp for PLY and COLLADA)
 // stay behind this header: only the readers (mesh_obj.cpp, mesh_gltf.cpp, mesh_assimp.cpp)
 // compile against them.

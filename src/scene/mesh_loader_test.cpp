@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -397,8 +398,8 @@ TEST_F(MeshLoaderTest, DirectoryIsNotAMeshFile) {
 }
 
 TEST_F(MeshLoaderTest, UnsupportedExtensionIsRejected) {
-  EXPECT_TRUE(contains(load_error(write("mesh.stl", "solid x\nendsolid x\n")),
-                       "unsupported mesh format \".stl\" (expected .obj, .gltf, .glb, .ply or .dae)"));
+  EXPECT_TRUE(contains(load_error(write("mesh.3ds", "solid x\nendsolid x\n")),
+                       "unsupported mesh format \".3ds\" (expected .obj, .gltf, .glb, .ply, .dae, .stl or .off)"));
   EXPECT_TRUE(contains(load_error(write("mesh", kObjQuad)), "unsupported mesh format"));
 }
 
@@ -1082,6 +1083,79 @@ TEST(PlyBinaryLists, AListLongerThanTheFileIsRefusedBeforeAssimpAllocates) {
     EXPECT_NE(std::string(e.what()).find("a list says it holds 50331648 values"), std::string::npos) << e.what();
   }
   std::filesystem::remove(path);
+}
+
+// ---- STL and OFF ---------------------------------------------------------------------------
+
+// A binary STL of the given triangles (normal left zero, as many exporters write it), with a
+// header that starts with "solid" to show that the size decides, not the first word.
+std::string binary_stl(const std::vector<std::array<Vec3, 3>>& triangles) {
+  std::string stl = "solid binary header";
+  stl.resize(80, ' ');
+  append_bytes(stl, uint32_t(triangles.size()));
+  for (const auto& t : triangles) {
+    for (int i = 0; i < 3; ++i) append_bytes(stl, 0.0f);
+    for (Vec3 p : t) {
+      append_bytes(stl, p.x);
+      append_bytes(stl, p.y);
+      append_bytes(stl, p.z);
+    }
+    append_bytes(stl, uint16_t(0));
+  }
+  return stl;
+}
+
+TEST_F(MeshLoaderTest, BinaryStlKeepsItsTrianglesEvenWithASolidHeader) {
+  const TriangleMesh mesh =
+      load_mesh(write("two.stl", binary_stl({{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}}, {{{1, 0, 0}, {1, 1, 0}, {0, 1, 0}}}})),
+                kWhere);
+  ASSERT_EQ(mesh.triangle_count(), 2u);
+  EXPECT_TRUE(mesh.normals.empty());  // facet normals (here zero) are not shading normals
+  expect_near(geometric_normal(mesh, 0), {0, 0, 1});
+  expect_near(geometric_normal(mesh, 1), {0, 0, 1});
+}
+
+TEST_F(MeshLoaderTest, AsciiStlTriangle) {
+  const TriangleMesh mesh = load_mesh(write("tri.STL",
+                                            "solid t\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 2\n"
+                                            "   vertex 3 0 2\n   vertex 0 4 2\n  endloop\n endfacet\nendsolid t\n"),
+                                      kWhere);
+  ASSERT_EQ(mesh.triangle_count(), 1u);
+  expect_near(mesh.positions[mesh.indices[1]], {3, 0, 2});
+  expect_near(geometric_normal(mesh, 0), {0, 0, 1});
+}
+
+TEST_F(MeshLoaderTest, TruncatedOrForeignStlIsALocatedError) {
+  std::string cut = binary_stl({{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}}});
+  cut[0] = 'X';  // not "solid": it can only be binary
+  cut.resize(cut.size() - 7);
+  EXPECT_TRUE(contains(load_error(write("cut.stl", cut)), "a binary STL of 1 triangles has 134 bytes, this file 127"));
+  EXPECT_TRUE(contains(load_error(write("short.stl", "PK\x03\x04")), "cannot parse STL: neither binary"));
+  EXPECT_TRUE(contains(load_error(write("nul.stl", std::string("solid a\0 b\n", 11))),
+                       "cannot parse STL: a byte that is not text (0x00) at offset 7"));
+}
+
+constexpr const char* kOffCube =
+    "OFF\n# a unit cube\n8 6 12\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
+    "4 0 3 2 1\n4 4 5 6 7\n4 0 1 5 4\n4 2 3 7 6\n4 0 4 7 3\n4 1 2 6 5\n";
+
+TEST_F(MeshLoaderTest, OffQuadsAreTriangulated) {
+  const TriangleMesh mesh = load_mesh(write("cube.off", kOffCube), kWhere);
+  EXPECT_EQ(mesh.triangle_count(), 12u);
+  EXPECT_EQ(mesh.positions.size(), 8u);
+  Bounds3 bounds;
+  for (Vec3 p : mesh.positions) bounds.extend(p);
+  expect_near(bounds.lo, {0, 0, 0});
+  expect_near(bounds.hi, {1, 1, 1});
+  expect_near(geometric_normal(mesh, 0), {0, 0, -1});  // 0 3 2 1 faces down
+}
+
+TEST_F(MeshLoaderTest, OffHeaderCannotPromiseMoreThanTheFileHolds) {
+  EXPECT_TRUE(contains(load_error(write("big.off", "OFF\n90000000 1 0\n0 0 0\n")), "the OFF header declares 90000000 vertex"));
+  EXPECT_TRUE(contains(load_error(write("many.off", "OFF 4000 4000 0\n0 0 0\n")),
+                       "more than the file's 22 bytes can hold"));
+  EXPECT_TRUE(contains(load_error(write("word.off", "OFF\neight 6 12\n")), "the header's vertex count is \"eight\""));
+  EXPECT_TRUE(contains(load_error(write("none.off", "PLY\n")), "expected \"OFF\" first"));
 }
 
 }  // namespace

@@ -91,6 +91,9 @@ TriangleMesh read_obj(const std::string& text, DegenerateTriangles degenerate); 
 TriangleMesh read_gltf(const std::string& data, const std::string& path);       // mesh_gltf.cpp
 // PLY's header and body checks before assimp reads it, and assimp's read (mesh_assimp.cpp).
 void check_ply_header(const std::string& data);
+// STL's and OFF's checks before assimp reads them (mesh_stl_off.cpp).
+void check_stl(const std::string& data);
+void check_off(const std::string& data);
 TriangleMesh read_with_assimp(const std::string& data, const char* format, const char* name);
 
 }  // namespace caligo::mesh_detail

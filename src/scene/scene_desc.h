@@ -120,6 +120,9 @@ struct SceneDesc {
   // Every file the scene names (meshes, grids, images, IES profiles), resolved against the
   // scene file's folder, each once: what no output may replace, and what checkpoints key on.
   std::vector<std::string> files;
+  // Located warnings from reading the scene (an open mesh read by parity, a pbrt-v4 directive
+  // approximated): the commands print them; the render still runs.
+  std::vector<std::string> warnings;
   CameraDesc camera;
   // The file's "render" object; resolution is the camera's (render_settings(SceneDesc)).
   RenderSettings render;

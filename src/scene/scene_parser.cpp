@@ -153,8 +153,9 @@ MeshFileShape read_mesh(ObjectReader& r, SceneFiles& files) {
   std::string ext = fs::path(file).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char ch) { return char(std::tolower(ch)); });
-  if (ext != ".obj" && ext != ".gltf" && ext != ".glb" && ext != ".ply" && ext != ".dae")
-    c.fail("expected a mesh file ending in .obj, .gltf, .glb, .ply or .dae, got " + c.describe());
+  if (ext != ".obj" && ext != ".gltf" && ext != ".glb" && ext != ".ply" && ext != ".dae" &&
+      ext != ".stl" && ext != ".off")
+    c.fail("expected a mesh file ending in .obj, .gltf, .glb, .ply, .dae, .stl or .off, got " + c.describe());
   return {files.resolve(file), r.boolean_or("skip_degenerate", false)};
 }
 
@@ -256,7 +257,7 @@ SceneDesc parse_scene_text(const std::string& json_text, const std::string& file
   r.allow({"camera", "render", "realtime", "materials", "shapes", "lights", "media", "volumes"});
   SceneDesc scene;
   scene.file = file_label;
-  SceneFiles files{base_dir, {}};
+  SceneFiles files{base_dir, {}, {}};
   scene.camera = parse_camera(r.required("camera"));
   if (auto c = r.optional("render")) scene.render = parse_render(*c);
   if (auto c = r.optional("realtime")) scene.realtime = parse_realtime(*c);
@@ -279,6 +280,7 @@ SceneDesc parse_scene_text(const std::string& json_text, const std::string& file
       scene.volumes.push_back(parse_volume(v, scene.media, files));
   r.finish();
   scene.files = std::move(files.named);
+  scene.warnings = std::move(files.warnings);
   return scene;
 }
 

@@ -532,9 +532,9 @@ const BadCase kBadCases[] = {
      "/shapes/0/transform/0/rotate", R"(missing required key "axis" in a rotation)"},
     {"MeshExtension",
      [](OJson& s) {
-       s["shapes"][0] = {{"type", "mesh"}, {"file", "bunny.stl"}, {"material", "white"}};
+       s["shapes"][0] = {{"type", "mesh"}, {"file", "bunny.3ds"}, {"material", "white"}};
      },
-     "/shapes/0/file", R"(expected a mesh file ending in .obj, .gltf, .glb, .ply or .dae, got "bunny.stl")"},
+     "/shapes/0/file", R"(expected a mesh file ending in .obj, .gltf, .glb, .ply, .dae, .stl or .off, got "bunny.3ds")"},
     {"SceneNotObject", [](OJson& s) { s = OJson::array(); }, "", "expected a scene (a JSON object), got []"},
     {"HoldoutNotBoolean", [](OJson& s) { s["shapes"][2]["holdout"] = 1; }, "/shapes/2/holdout",
      "expected true or false, got 1"},

@@ -30,6 +30,8 @@ std::string resolve_path(const std::string& file, const std::string& base_dir);
 struct SceneFiles {
   std::string base_dir;
   std::vector<std::string> named;  // resolved, each once, in the order first named
+  // What the files' reading found worth a warning (a located message each; SceneDesc::warnings).
+  std::vector<std::string> warnings;
   std::string resolve(const std::string& file);
 };
 

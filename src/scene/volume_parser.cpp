@@ -140,10 +140,17 @@ VolumeShape parse_mesh_volume(ObjectReader& r, const Transform& placement, Scene
   const JsonCursor file = r.required("file");
   const std::string path = files.resolve(file.string());
   const bool skip = r.boolean_or("skip_degenerate", false);
+  const bool parity = r.has("open_edges") && r.choice("open_edges", {"error", "parity"}) == "parity";
   TriangleMesh mesh =
       load_mesh(path, file.where(), skip ? DegenerateTriangles::kRemove : DegenerateTriangles::kReject);
   transform_mesh(mesh, placement);
-  return MeshVolumeShape{MeshVolume::build(std::move(mesh), r.cursor().where())};
+  if (parity) {
+    if (const std::string problem = MeshVolume::closure_problem(mesh); !problem.empty())
+      files.warnings.push_back(r.cursor().where().to_string() + ": the mesh is not closed (" + problem +
+                               "); read by parity (\"open_edges\": \"parity\"): a ray through a hole loses its "
+                               "last crossing, so the medium near the holes is approximate");
+  }
+  return MeshVolumeShape{MeshVolume::build(std::move(mesh), r.cursor().where(), !parity)};
 }
 
 GridFilter parse_filter(ObjectReader& r) {
@@ -245,7 +252,7 @@ VolumePrimitive parse_volume(const JsonCursor& c, const std::vector<NamedMedium>
   else if (type == "box")
     r.allow({"type", "min", "max", "medium", "transform"});
   else if (type == "mesh")
-    r.allow({"type", "file", "skip_degenerate", "medium", "transform"});
+    r.allow({"type", "file", "skip_degenerate", "open_edges", "medium", "transform"});
   else if (type == "vdb")
     r.allow({"type", "file", "generate", "grids", "filter", "medium", "transform"});
   else

@@ -173,5 +173,35 @@ TEST(VolumeParser, MeshVolumesMustBeClosed) {
   EXPECT_NE(e.find("cannot bound a volume"), std::string::npos) << e;
 }
 
+TEST(VolumeParser, AnOpenMeshIsReadByParityWhenAskedWithALocatedWarning) {
+  const std::string dir = temp_dir();
+  write_text(dir + "/open.obj", cube_obj(false));  // the x = 0 face is missing
+  const SceneDesc s = parse(R"({"c": {"sigma_s": 1}})",
+                            R"([{"type": "mesh", "file": "open.obj", "medium": "c", "open_edges": "parity"}])", dir);
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("vol.json: /volumes/0: the mesh is not closed"), std::string::npos) << s.warnings[0];
+  EXPECT_NE(s.warnings[0].find("4 edges"), std::string::npos) << s.warnings[0];
+  const MeshVolume& mesh = *std::get<MeshVolumeShape>(s.volumes[0].shape).mesh;
+  std::vector<SurfaceHit> hits;
+  std::vector<RayRange> inside;
+  // Through two faces that are there: the cube's whole depth.
+  mesh.intervals(Ray{{0.5f, 0.4f, -3}, {0, 0, 1}, 0, 10}, hits, inside);
+  ASSERT_EQ(inside.size(), 1u);
+  EXPECT_NEAR(inside[0].t1 - inside[0].t0, 1.0f, 1e-4f);
+  // Through the hole: one crossing, dropped, and no medium rather than a half-infinite one.
+  inside.clear();
+  mesh.intervals(Ray{{-3, 0.4f, 0.6f}, {1, 0, 0}, 0, 10}, hits, inside);
+  EXPECT_TRUE(inside.empty());
+  // A closed mesh with the option warns of nothing.
+  write_text(dir + "/cube.obj", cube_obj(true));
+  EXPECT_TRUE(parse(R"({"c": {"sigma_s": 1}})",
+                    R"([{"type": "mesh", "file": "cube.obj", "medium": "c", "open_edges": "parity"}])", dir)
+                  .warnings.empty());
+  EXPECT_NE(error_of(R"({"c": {"sigma_s": 1}})",
+                     R"([{"type": "mesh", "file": "cube.obj", "medium": "c", "open_edges": "fill"}])", dir)
+                .find("/volumes/0/open_edges"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace caligo

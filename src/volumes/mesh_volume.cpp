@@ -122,9 +122,12 @@ MeshVolume::MeshVolume(EmbreeScene scene, Bounds3 bounds) : scene_(std::move(sce
   padded_ = {bounds_.lo - pad, bounds_.hi + pad};
 }
 
-std::shared_ptr<const MeshVolume> MeshVolume::build(TriangleMesh mesh, const SourceLocation& where) {
+std::string MeshVolume::closure_problem(const TriangleMesh& mesh) { return open_or_non_manifold_edge(mesh); }
+
+std::shared_ptr<const MeshVolume> MeshVolume::build(TriangleMesh mesh, const SourceLocation& where,
+                                                    bool require_closed) {
   std::string problem = validate_mesh(mesh);
-  if (problem.empty()) problem = open_or_non_manifold_edge(mesh);
+  if (problem.empty() && require_closed) problem = open_or_non_manifold_edge(mesh);
   if (!problem.empty()) throw InputError(where, "the mesh cannot bound a volume: " + problem);
   Bounds3 bounds;
   for (Vec3 p : mesh.positions) bounds.extend(p);

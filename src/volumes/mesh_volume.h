@@ -34,7 +34,13 @@ class MeshVolume {
   // volume: validate_mesh() problems, or an edge (after welding vertices with equal positions)
   // not shared by exactly two triangles, naming its vertex indices and how many triangles use
   // it. Inconsistently oriented triangles are accepted: even/odd counting ignores orientation.
-  static std::shared_ptr<const MeshVolume> build(TriangleMesh mesh, const SourceLocation& where);
+  // With `require_closed` false the closure check is skipped (an open mesh read by parity, as
+  // Cycles reads one): a ray through a hole crosses the surface an odd number of times, and
+  // its unmatched last crossing is dropped.
+  static std::shared_ptr<const MeshVolume> build(TriangleMesh mesh, const SourceLocation& where,
+                                                 bool require_closed = true);
+  // Why `mesh` is not a closed surface (its first bad edge and how many there are), or empty.
+  static std::string closure_problem(const TriangleMesh& mesh);
 
   Bounds3 bounds() const { return bounds_; }
   const TriangleMesh& mesh() const { return scene_.mesh(0); }
