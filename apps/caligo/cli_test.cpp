@@ -36,6 +36,26 @@ TEST_F(Cli, ListsBuiltins) {
   EXPECT_NE(r.out.find("default"), std::string::npos);
 }
 
+// `scene show` prints a built-in's JSON: saved and rendered as a file, it gives the built-in's
+// own pixels, bit for bit; `scene list` names every built-in; an unknown name exits 2.
+TEST_F(Cli, SceneShowPrintsABuiltinThatRendersToTheSameBits) {
+  const RunResult list = run("scene list");
+  EXPECT_EQ(list.exit_code, 0);
+  EXPECT_NE(list.out.find("lamp-in-fog"), std::string::npos) << list.out;
+  const RunResult shown = run("scene show lamp-in-fog");
+  ASSERT_EQ(shown.exit_code, 0) << shown.err;
+  const fs::path scene = dir_ / "mine.json", a = dir_ / "builtin.exr", b = dir_ / "file.exr";
+  std::ofstream(scene) << shown.out;
+  ASSERT_EQ(run("render lamp-in-fog --res 16x12 --spp 4 -q -o " + a.string()).exit_code, 0);
+  const RunResult file = run("render " + scene.string() + " --res 16x12 --spp 4 -q -o " + b.string());
+  ASSERT_EQ(file.exit_code, 0) << file.err;
+  const RunResult same = run("compare " + a.string() + " " + b.string() + " --max-rmse 0");
+  EXPECT_EQ(same.exit_code, 0) << same.out;
+  const RunResult unknown = run("scene show lamp-in-smog");
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_NE(unknown.err.find("no built-in called \"lamp-in-smog\""), std::string::npos) << unknown.err;
+}
+
 // --secondary chooses the estimator of segments after the first bounce: march and the default
 // (auto) render a homogeneous scene to the same bits; an unknown value exits 2 before rendering,
 // naming the option, and writes nothing.

@@ -106,6 +106,11 @@ struct InfoOptions {
   std::string file;  // .vdb or .nvdb
 };
 
+struct SceneCommandOptions {
+  enum Action { kList, kShow } action = kList;
+  std::string name;  // show: a built-in's name
+};
+
 inline const SourceLocation kCommandLine{"command line", ""};
 
 // A scene file or a built-in's name; InputError when it is neither.
@@ -126,6 +131,8 @@ int run_compare(const CompareOptions& options);
 void add_generate_command(CLI::App& app, GenerateOptions& options);
 int run_generate(const GenerateOptions& options);
 void add_info_command(CLI::App& app, InfoOptions& options);
+void add_scene_command(CLI::App& app, SceneCommandOptions& options);
+int run_scene(const SceneCommandOptions& options);
 int run_info(const InfoOptions& options);
 void add_bench_table_command(CLI::App& app, BenchTableOptions& options);
 int run_bench_table(const BenchTableOptions& options);

@@ -26,7 +26,7 @@ bool report_unknown_command(const CLI::App& app, int argc, char** argv) {
     if (sub->check_name(argv[1])) return false;
   std::fprintf(stderr,
                "caligo: error: unknown command %s (commands: render, realtime, compare, generate, info, "
-               "bench-table)\n",
+               "scene, bench-table)\n",
                caligo::quote_for_message(argv[1]).c_str());
   return true;
 }
@@ -47,6 +47,8 @@ int main(int argc, char** argv) {
   caligo::InfoOptions info;
   caligo::add_generate_command(app, generate);
   caligo::add_info_command(app, info);
+  caligo::SceneCommandOptions scene;
+  caligo::add_scene_command(app, scene);
   caligo::BenchTableOptions bench_table;
   caligo::add_bench_table_command(app, bench_table);
   if (report_unknown_command(app, argc, argv)) return caligo::kExitInputError;
@@ -69,6 +71,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("realtime")) return caligo::run_realtime(realtime);
     if (app.got_subcommand("generate")) return caligo::run_generate(generate);
     if (app.got_subcommand("info")) return caligo::run_info(info);
+    if (app.got_subcommand("scene")) return caligo::run_scene(scene);
     if (app.got_subcommand("bench-table")) return caligo::run_bench_table(bench_table);
   } catch (const caligo::distributed::RankFailure& e) {
     return e.exit_code();  // an MPI job failed: rank 0 printed why

@@ -297,13 +297,7 @@ void apply_priority(const std::string& arg, SceneDesc& desc) {
   material->priority = *level;
 }
 
-int list_builtins() {
-  for (const BuiltinScene& b : builtin_scenes())
-    std::printf("%-18s %s\n", b.name.c_str(), b.description.c_str());
-  return 0;
-}
-
-
+int list_builtins() { return run_scene(SceneCommandOptions{}); }
 
 ProgressiveSchedule schedule_from(const RenderOptions& o) {
   ProgressiveSchedule p;
