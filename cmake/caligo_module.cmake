@@ -1,6 +1,9 @@
 # Warnings and code generation for Caligo's own targets (never applied to third-party code).
 function(caligo_target_options target)
-  target_compile_options(${target} PRIVATE -Wall -Wextra -Wno-missing-field-initializers -march=x86-64-v3)
+  # -fno-semantic-interposition: position-independent code (for the Python module) would
+  # otherwise let every global function be replaced at load time, and gcc would not inline them.
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wno-missing-field-initializers -march=x86-64-v3
+                                           -fno-semantic-interposition)
   target_compile_features(${target} PUBLIC cxx_std_20)
 endfunction()
 

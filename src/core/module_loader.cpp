@@ -16,6 +16,13 @@ std::vector<std::filesystem::path> module_dirs() {
   std::error_code ec;
   const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
   if (!ec) dirs.push_back(exe.parent_path());
+  // The shared object this code is linked into, when it is not the executable (the Python
+  // module, installed with the plugins beside it).
+  Dl_info self{};
+  if (dladdr(reinterpret_cast<void*>(&module_dirs), &self) != 0 && self.dli_fname != nullptr) {
+    const std::filesystem::path dir = std::filesystem::absolute(self.dli_fname, ec).parent_path();
+    if (!ec && (dirs.empty() || !std::filesystem::equivalent(dirs.front(), dir, ec))) dirs.push_back(dir);
+  }
 #ifdef CALIGO_MODULE_DIR
   const std::filesystem::path build_dir = CALIGO_MODULE_DIR;
   if (dirs.empty() || !std::filesystem::equivalent(dirs.front(), build_dir, ec)) dirs.push_back(build_dir);
