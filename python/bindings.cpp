@@ -30,6 +30,7 @@
 #include "render/progressive.h"
 #include "render/render.h"
 #include "scene/builtins.h"
+#include "scene/pbrt_import.h"
 #include "scene/scene.h"
 #include "scene/scene_parser.h"
 
@@ -52,6 +53,12 @@ ParsedScene parse_text(const std::string& text, const std::string& label, const 
 // A built-in's name or a scene file's path.
 ParsedScene parse_named(const std::string& name) {
   if (const BuiltinScene* builtin = find_builtin(name)) return parse_text(builtin->json, "builtin:" + name, ".");
+  if (is_pbrt_path(name) && std::filesystem::is_regular_file(name)) {
+    PbrtConversion converted = convert_pbrt_file(name);
+    const std::string dir = std::filesystem::path(name).parent_path().string();
+    SceneDesc desc = parse_pbrt(converted, name, dir);
+    return {std::move(desc), std::move(converted.json), name, dir};
+  }
   SceneDesc desc = parse_scene_file(name);  // every check of the command line's reading
   std::ifstream in(name, std::ios::binary);
   std::ostringstream text;

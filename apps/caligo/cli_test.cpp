@@ -56,6 +56,26 @@ TEST_F(Cli, SceneShowPrintsABuiltinThatRendersToTheSameBits) {
   EXPECT_NE(unknown.err.find("no built-in called \"lamp-in-smog\""), std::string::npos) << unknown.err;
 }
 
+// A pbrt-v4 scene and the same scene written in Caligo's JSON render to the same bits; a
+// pbrt directive Caligo cannot render exits 2 naming the file and line, and writes nothing.
+TEST_F(Cli, APbrtSceneRendersAsItsJsonTwinAndRefusesWhatItCannotRender) {
+  const std::string dir = std::string(CALIGO_SOURCE_DIR) + "/scenes/pbrt/";
+  const fs::path a = dir_ / "pbrt.exr", b = dir_ / "json.exr", bad = dir_ / "bad.exr";
+  const RunResult from_pbrt = run("render " + dir + "wuson-in-haze.pbrt --res 40x30 --spp 2 -q -o " + a.string());
+  ASSERT_EQ(from_pbrt.exit_code, 0) << from_pbrt.err;
+  EXPECT_NE(from_pbrt.err.find("wuson-in-haze.pbrt:20: Material \"coateddiffuse\": approximated"), std::string::npos)
+      << from_pbrt.err;
+  ASSERT_EQ(run("render " + dir + "wuson-in-haze.json --res 40x30 --spp 2 -q -o " + b.string()).exit_code, 0);
+  const RunResult same = run("compare " + a.string() + " " + b.string() + " --max-rmse 0");
+  EXPECT_EQ(same.exit_code, 0) << same.out;
+  const fs::path scene = dir_ / "cylinder.pbrt";
+  std::ofstream(scene) << "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\nWorldBegin\n\nShape \"cylinder\"\n";
+  const RunResult r = run("render " + scene.string() + " -q -o " + bad.string());
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("cylinder.pbrt:5: Shape \"cylinder\" cannot be rendered"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(bad));
+}
+
 // --secondary chooses the estimator of segments after the first bounce: march and the default
 // (auto) render a homogeneous scene to the same bits; an unknown value exits 2 before rendering,
 // naming the option, and writes nothing.

@@ -95,4 +95,10 @@ std::shared_ptr<const VolumeGrid> load_dense_grid(const std::string& path, const
   return make_volume_grid(std::move(grids), where);
 }
 
+std::shared_ptr<const VolumeGrid> dense_values_grid(const std::vector<float>& values, const DenseGridLayout& layout,
+                                                   const SourceLocation& where) {
+  NanoGrids grids{sparse_to_nanovdb(dense_to_sparse(values, layout)), std::nullopt, std::nullopt, std::nullopt};
+  return make_volume_grid(std::move(grids), where);
+}
+
 }  // namespace caligo

@@ -55,6 +55,10 @@ inline constexpr float kDenseZeroTolerance = 1e-6f;  // |value| at or below this
 // 8^3 blocks without an active voxel are not stored. The density grid is named "density".
 std::shared_ptr<const VolumeGrid> load_dense_grid(const std::string& path, const DenseGridLayout& layout,
                                                   const SourceLocation& where);
+// The same for values in memory (a scene's inline "values"; pbrt-v4's uniformgrid): finite, as
+// many as the layout's voxels, x fastest.
+std::shared_ptr<const VolumeGrid> dense_values_grid(const std::vector<float>& values, const DenseGridLayout& layout,
+                                                   const SourceLocation& where);
 // The sparse form of a dense file (validated as above; non-finite values are errors).
 SparseFloatGrid read_dense_file(const std::string& path, const DenseGridLayout& layout,
                                 const SourceLocation& where);

@@ -24,6 +24,7 @@ View View::from_camera(const Camera& camera, Vec2i resolution) {
   v.projection = Projection::perspective;
   v.eye = camera.position();
   orthonormal(v, camera.forward(), camera.up_hint());
+  if (camera.left_handed()) v.right = -v.right;  // the mirrored image of a left-handed camera
   v.resolution = resolution;
   v.tan_half_fov_y = camera.tan_half_fov();
   v.aspect = float(resolution.x) / float(resolution.y);

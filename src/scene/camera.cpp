@@ -28,6 +28,7 @@ Camera::Camera(const CameraDesc& desc, Vec2i resolution)
       forward_(normalize(desc.look_at - desc.position)),
       up_(desc.up),
       resolution_(resolution),
+      x_sign_(desc.left_handed ? 1.0f : -1.0f),
       tan_half_fov_(std::tan(0.5f * radians(desc.fov_degrees))),
       aspect_(float(resolution.x) / float(resolution.y)),
       projection_(desc.projection),
@@ -36,16 +37,17 @@ Camera::Camera(const CameraDesc& desc, Vec2i resolution)
       focus_distance_(desc.focus_distance > 0.0f ? desc.focus_distance : length(desc.look_at - desc.position)) {}
 
 // Transform::look_at maps local +X to cross(up, forward), which in a right-handed frame is
-// the viewer's left; image x grows to the viewer's right, hence the minus signs.
+// the viewer's left; image x grows to the viewer's right, hence x_sign_ = -1 (+1 for a
+// left-handed camera, whose image is mirrored).
 Ray Camera::generate_ray(Vec2 film, Vec2 lens_u) const {
   const float ndc_x = 2.0f * film.x / float(resolution_.x) - 1.0f;
   const float ndc_y = 1.0f - 2.0f * film.y / float(resolution_.y);
   if (projection_ == CameraProjection::orthographic) {
-    const Vec3 local(-ndc_x * 0.5f * ortho_width_, ndc_y * 0.5f * ortho_height(), 0.0f);
+    const Vec3 local(x_sign_ * ndc_x * 0.5f * ortho_width_, ndc_y * 0.5f * ortho_height(), 0.0f);
     return {camera_to_world_.point(local), forward_, 0.0f, kInfinity};
   }
   // Local pinhole direction with unit z: it meets the plane of focus at focus_distance * d.
-  const Vec3 d(-ndc_x * tan_half_fov_ * aspect_, ndc_y * tan_half_fov_, 1.0f);
+  const Vec3 d(x_sign_ * ndc_x * tan_half_fov_ * aspect_, ndc_y * tan_half_fov_, 1.0f);
   if (!has_aperture()) return {position(), normalize(camera_to_world_.vector(d)), 0.0f, kInfinity};
   const Vec2 disk = sample_uniform_disk_concentric(lens_u);
   const Vec3 lens(disk.x * aperture_radius_, disk.y * aperture_radius_, 0.0f);

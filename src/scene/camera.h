@@ -44,6 +44,8 @@ class Camera {
   Vec3 forward() const { return forward_; }
   Vec3 up_hint() const { return up_; }
   float tan_half_fov() const { return tan_half_fov_; }
+  // Image x grows along cross(up, forward) (CameraDesc::left_handed) rather than the other way.
+  bool left_handed() const { return x_sign_ > 0.0f; }
 
   CameraProjection projection() const { return projection_; }
   // Orthographic window in metres (zero for perspective cameras).
@@ -65,6 +67,7 @@ class Camera {
   Vec3 forward_;
   Vec3 up_;
   Vec2i resolution_;
+  float x_sign_;  // -1: image x along cross(forward, up); +1 left-handed
   float tan_half_fov_;
   float aspect_;
   CameraProjection projection_;

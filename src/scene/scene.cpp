@@ -49,6 +49,7 @@ struct ShapeMesh {
     return load_mesh(m.path, shape.where,
                      m.skip_degenerate ? DegenerateTriangles::kRemove : DegenerateTriangles::kReject);
   }
+  TriangleMesh operator()(const InlineMeshShape& m) const { return *m.mesh; }
   TriangleMesh operator()(const GeneratedMeshShape& g) const {
     switch (g.kind) {
       case GeneratedMeshShape::Kind::kSphere:

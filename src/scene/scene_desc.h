@@ -50,6 +50,9 @@ struct CameraDesc {
   float aperture_radius = 0.0f;  // metres; 0: pinhole
   float fstop = 0.0f;            // f-number N (aperture diameter = focal length / N); 0: not given
   float focus_distance = 0.0f;   // metres along the view axis; 0: |look_at - position|
+  // "handedness": "left": image x grows along cross(up, forward) instead of cross(forward, up),
+  // the image mirrored left to right: pbrt's cameras (a left-handed convention) seen as pbrt shows them.
+  bool left_handed = false;
 };
 
 // A light keyframe: position and/or direction (aim) of a point, spot, box or directional
@@ -99,7 +102,13 @@ struct GeneratedMeshShape {
   enum class Kind { kSphere, kTorusKnot } kind = Kind::kSphere;
   uint64_t triangles = 20;
 };
-using ShapeGeometry = std::variant<SphereShape, BoxShape, RectangleShape, MeshFileShape, GeneratedMeshShape>;
+// Triangles given in the scene itself ("positions", "indices", optional "normals"), as pbrt-v4's
+// trianglemesh is; validated like a file's mesh. Shared: scenes are copied per frame.
+struct InlineMeshShape {
+  std::shared_ptr<const TriangleMesh> mesh;
+};
+using ShapeGeometry =
+    std::variant<SphereShape, BoxShape, RectangleShape, MeshFileShape, GeneratedMeshShape, InlineMeshShape>;
 
 struct ShapeDesc {
   ShapeGeometry geometry;

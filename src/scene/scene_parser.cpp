@@ -19,6 +19,7 @@
 #include "scene/json_reader.h"
 #include "scene/light_parser.h"
 #include "scene/material_priority.h"
+#include "scene/pbrt_import.h"
 #include "scene/settings_parser.h"
 #include "scene/shared_readers.h"
 #include "scene/transform_parser.h"
@@ -159,6 +160,37 @@ MeshFileShape read_mesh(ObjectReader& r, SceneFiles& files) {
   return {files.resolve(file), r.boolean_or("skip_degenerate", false)};
 }
 
+// "positions": [x, y, z, ...], "indices": [a, b, c, ...], "normals": as positions (optional),
+// checked as a file's mesh is (mesh_loader.h's validation, at the shape's place).
+InlineMeshShape read_inline_mesh(ObjectReader& r) {
+  const auto floats = [](const JsonCursor& c, const char* what) {
+    std::vector<float> out;
+    for (const JsonCursor& e : c.elements(what)) out.push_back(e.number());
+    if (out.size() % 3 != 0) c.fail(std::string("expected ") + what + " (a multiple of 3 numbers), got " +
+                                    std::to_string(out.size()) + " numbers");
+    return out;
+  };
+  auto mesh = std::make_shared<TriangleMesh>();
+  const JsonCursor p = r.required("positions");
+  const std::vector<float> positions = floats(p, "an array of vertex coordinates");
+  if (positions.size() / 3 > kMaxMeshVertices) p.fail("more vertices than meshes may have");
+  for (size_t i = 0; i < positions.size(); i += 3) mesh->positions.push_back({positions[i], positions[i + 1], positions[i + 2]});
+  const JsonCursor ic = r.required("indices");
+  const std::vector<JsonCursor> indices = ic.elements("an array of vertex indices");
+  if (indices.size() % 3 != 0 || indices.empty())
+    ic.fail("expected a non-empty multiple of 3 vertex indices, got " + std::to_string(indices.size()));
+  for (const JsonCursor& e : indices)
+    mesh->indices.push_back(uint32_t(e.integer(Range::closed(0, double(mesh->positions.size()) - 1))));
+  if (const auto n = r.optional("normals")) {
+    const std::vector<float> normals = floats(*n, "an array of normal coordinates");
+    if (normals.size() != positions.size()) n->fail("expected one normal per vertex");
+    for (size_t i = 0; i < normals.size(); i += 3) mesh->normals.push_back({normals[i], normals[i + 1], normals[i + 2]});
+  }
+  if (r.boolean_or("skip_degenerate", false)) remove_degenerate_triangles(*mesh);
+  if (const std::string problem = validate_mesh(*mesh); !problem.empty()) r.fail("the mesh: " + problem);
+  return {std::move(mesh)};
+}
+
 ShapeGeometry read_geometry(ObjectReader& r, const std::string& type, SceneFiles& files) {
   if (type == "sphere") {
     r.allow({"type", "center", "radius", "material", "transform", "open", "holdout", "proxy"});
@@ -176,7 +208,12 @@ ShapeGeometry read_geometry(ObjectReader& r, const std::string& type, SceneFiles
     read_parallelogram(r, rect.corner, rect.edge1, rect.edge2);
     return rect;
   }
-  r.allow({"type", "file", "generate", "skip_degenerate", "material", "transform", "open", "holdout", "proxy"});
+  r.allow({"type", "file", "generate", "positions", "indices", "normals", "skip_degenerate", "material", "transform",
+           "open", "holdout", "proxy"});
+  if (r.has("positions")) {
+    if (r.has("file") || r.has("generate")) r.fail("a mesh takes one of \"file\", \"generate\" or \"positions\"");
+    return read_inline_mesh(r);
+  }
   if (const auto g = r.optional("generate")) {
     if (r.has("file")) r.fail("a mesh takes either \"file\" or \"generate\", not both");
     ObjectReader gr(*g, "a generated mesh");
@@ -202,9 +239,12 @@ void check_closed(const ObjectReader& r, const ShapeDesc& shape, const Material&
   const std::string fix = "; close it or mark the shape \"open\": true";
   if (std::holds_alternative<RectangleShape>(shape.geometry)) r.fail(bounds + "a rectangle is open" + fix);
   const auto* file = std::get_if<MeshFileShape>(&shape.geometry);
-  if (!file) return;
-  const TriangleMesh mesh = load_mesh(file->path, shape.where,
-                                      file->skip_degenerate ? DegenerateTriangles::kRemove : DegenerateTriangles::kReject);
+  const auto* inline_mesh = std::get_if<InlineMeshShape>(&shape.geometry);
+  if (!file && !inline_mesh) return;
+  const TriangleMesh mesh =
+      inline_mesh ? *inline_mesh->mesh
+                  : load_mesh(file->path, shape.where,
+                              file->skip_degenerate ? DegenerateTriangles::kRemove : DegenerateTriangles::kReject);
   const MeshClosure c = check_closure(mesh);
   if (c.boundary_edges > 0)
     r.fail(bounds + "this mesh is open (" + std::to_string(c.boundary_edges) + " boundary edges)" + fix);
@@ -289,6 +329,7 @@ SceneDesc parse_scene_file(const std::string& path) {
   if (!fs::exists(path, ec)) throw InputError({path, ""}, "cannot read the scene file: no such file");
   if (fs::is_directory(path, ec))
     throw InputError({path, ""}, "cannot read the scene file: it is a directory");
+  if (is_pbrt_path(path)) return parse_pbrt_file(path);
   // Refused before reading: a huge file would be read whole into memory first.
   if (const auto size = fs::file_size(path, ec); !ec && size > kMaxJsonBytes)
     throw InputError({path, ""}, "the scene file is " + std::to_string(size) +

@@ -104,7 +104,7 @@ void read_projection(ObjectReader& r, CameraDesc& camera) {
 CameraDesc parse_camera(const JsonCursor& c) {
   ObjectReader r(c, "the camera");
   r.allow({"position", "look_at", "up", "fov", "resolution", "path", "projection", "ortho_width",
-           "aperture_radius", "fstop", "focus_distance"});
+           "aperture_radius", "fstop", "focus_distance", "handedness"});
   CameraDesc camera;
   if (auto p = r.optional("path")) read_camera_path(*p, camera);
   const bool still = camera.path.empty();
@@ -126,6 +126,7 @@ CameraDesc parse_camera(const JsonCursor& c) {
   camera.fov_degrees = r.number_or("fov", camera.fov_degrees, Range::open(0, 180));
   if (auto res = r.optional("resolution")) camera.resolution = read_resolution(*res);
   read_projection(r, camera);
+  if (r.has("handedness")) camera.left_handed = r.choice("handedness", {"right", "left"}) == "left";
   r.finish();
   return camera;
 }

@@ -197,7 +197,7 @@ GridDensity parse_grid_field(ObjectReader& r, const std::string& type, const Tra
     }
     return field;
   }
-  const JsonCursor file = r.required("file");
+  const auto [from_values, source] = r.exactly_one("file", "values");
   const JsonCursor dims = r.required("dimensions");
   const auto elements = dims.elements("an array of three voxel counts");
   if (elements.size() != 3) dims.fail("expected an array of three voxel counts, got " + dims.describe());
@@ -210,7 +210,19 @@ GridDensity parse_grid_field(ObjectReader& r, const std::string& type, const Tra
   }
   layout.voxel_size = r.number("voxel_size", size_range());
   layout.origin = r.optional_vec3("origin").value_or(Vec3(0.0f));
-  field.grid = load_dense_grid(files.resolve(file.string()), layout, file.where());
+  if (!from_values) {
+    field.grid = load_dense_grid(files.resolve(source.string()), layout, source.where());
+    return field;
+  }
+  const uint64_t voxels = uint64_t(layout.dims[0]) * uint64_t(layout.dims[1]) * uint64_t(layout.dims[2]);
+  const std::vector<JsonCursor> elements_in = source.elements("an array of voxel values, x fastest");
+  if (elements_in.size() != voxels)
+    source.fail("expected " + std::to_string(voxels) + " values (the dimensions' product), got " +
+                std::to_string(elements_in.size()));
+  std::vector<float> values;
+  values.reserve(voxels);
+  for (const JsonCursor& v : elements_in) values.push_back(v.number(Range::non_negative()));
+  field.grid = dense_values_grid(values, layout, source.where());
   return field;
 }
 
@@ -256,7 +268,7 @@ VolumePrimitive parse_volume(const JsonCursor& c, const std::vector<NamedMedium>
   else if (type == "vdb")
     r.allow({"type", "file", "generate", "grids", "filter", "medium", "transform"});
   else
-    r.allow({"type", "file", "dimensions", "voxel_size", "origin", "filter", "medium", "transform"});
+    r.allow({"type", "file", "values", "dimensions", "voxel_size", "origin", "clip", "filter", "medium", "transform"});
   Transform placement;
   if (auto t = r.optional("transform")) placement = parse_transform(*t);
   VolumePrimitive v;
@@ -269,7 +281,18 @@ VolumePrimitive parse_volume(const JsonCursor& c, const std::vector<NamedMedium>
     if (!std::holds_alternative<ConstantDensity>(medium.field))
       r.fail("a grid volume takes its density from the grid: its medium may not have a falloff");
     GridDensity field = parse_grid_field(r, type, placement, files);
-    const Bounds3 b = field.grid->world_bounds();
+    Bounds3 b = field.grid->world_bounds();
+    // "clip": {"min", "max"} (dense grids, in the grid's own space): the medium ends at the box,
+    // as pbrt-v4's grid media end at their bounds (trilinear lookups beyond the outer voxel
+    // centres would otherwise fade out over half a voxel outside).
+    if (const auto clip = r.optional("clip")) {
+      ObjectReader cr(*clip, "the clip box");
+      cr.allow({"min", "max"});
+      const BoxCorners box = read_box_corners(cr);
+      cr.finish();
+      b = Bounds3{max(b.lo, box.min), min(b.hi, box.max)};
+      if (!(b.lo.x < b.hi.x && b.lo.y < b.hi.y && b.lo.z < b.hi.z)) clip->fail("the clip box misses the grid");
+    }
     v.shape = BoxVolumeShape{placement, b.lo, b.hi};
     v.shader.field = std::move(field);
   } else {
