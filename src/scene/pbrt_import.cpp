@@ -83,8 +83,9 @@ class Importer {
     while (out.size() < n) {
       const Token& t = next(directive + "'s numbers");
       if (t.kind != Token::kNumber) fail_at(s_.where(t), directive + ": expected " + std::to_string(n) + " numbers");
-      const float v = std::strtof(t.text.c_str(), nullptr);
-      if (!std::isfinite(v)) fail_at(s_.where(t), directive + ": a number is not finite");
+      const double d = std::strtod(t.text.c_str(), nullptr);
+      const float v = std::abs(d) <= 3.0e38 ? float(d) : 0.0f;
+      if (!(std::abs(d) <= 3.0e38)) fail_at(s_.where(t), directive + ": a number is not finite");
       out.push_back(v);
     }
     if (bracket && next("\"]\"").kind != Token::kClose) fail_at(s_.where(s_.tokens[at_ - 1]), directive + ": expected \"]\"");

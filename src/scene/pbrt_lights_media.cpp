@@ -46,7 +46,7 @@ void add_light(const std::string& type, const ParamList& p, const GraphicsState&
   if (type == "point") {
     const RGB I = p.spectrum("I", RGB(1.0f), b.warnings);
     const double power = p.number("power", -1);
-    const float k = scale * (power > 0 ? float(power / (4 * kPi)) : 1.0f);
+    const double k = scale * (power > 0 ? power / (4 * kPi) : 1.0);  // double: the parser checks the range
     push_light(Json{{"type", "point"}, {"position", to_json(apply_point(state.ctm, p.point("from", {})))},
                     {"color", to_json(I)}, {"intensity", k}},
                where, b);
@@ -58,7 +58,7 @@ void add_light(const std::string& type, const ParamList& p, const GraphicsState&
     const double power = p.number("power", -1);
     const double cos_start = std::cos(radians(float(inner))), cos_end = std::cos(radians(float(cone)));
     const double k_e = 2 * kPi * ((1 - cos_start) + (cos_start - cos_end) / 2);
-    const float k = scale * (power > 0 ? float(power / k_e) : 1.0f);
+    const double k = scale * (power > 0 ? power / k_e : 1.0);
     const Vec3 from = apply_point(state.ctm, p.point("from", {})), to = apply_point(state.ctm, p.point("to", {0, 0, 1}));
     if (!(length(to - from) > 0)) fail_at(where, "LightSource \"spot\": \"from\" and \"to\" are the same point");
     push_light(Json{{"type", "spot"}, {"position", to_json(from)}, {"look_at", to_json(to)}, {"inner_angle", inner},

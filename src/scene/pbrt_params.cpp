@@ -20,7 +20,8 @@ double to_number(const TokenStream& s, const Token& t) {
   const char* end = t.text.data() + t.text.size();
   const char* begin = t.text.data() + (t.text[0] == '+' ? 1 : 0);
   const auto [ptr, ec] = std::from_chars(begin, end, v);
-  if (ec != std::errc() || ptr != end || !std::isfinite(v))
+  // Within float's range: every value ends up a float (and a cast beyond it is undefined).
+  if (ec != std::errc() || ptr != end || !(std::abs(v) <= 3.0e38))
     fail(s.where(t), "expected a finite number, got " + quote_for_message(t.text));
   return v;
 }
@@ -138,8 +139,9 @@ std::vector<int> ParamList::integers(const std::string& name) const {
   const Param& p = typed(name, {"integer"});
   std::vector<int> out;
   for (double v : p.numbers) {
-    if (v != std::floor(v) || v < 0 || v > 4e9) fail(p.where, "parameter \"" + name + "\": expected non-negative integers");
-    out.push_back(int(int64_t(v)));
+    if (v != std::floor(v) || v < 0 || v > 2147483647.0)
+      fail(p.where, "parameter \"" + name + "\": expected non-negative integers");
+    out.push_back(int(v));
   }
   return out;
 }

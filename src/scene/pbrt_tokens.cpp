@@ -13,8 +13,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr size_t kMaxBytes = size_t(256) << 20;   // all files together
-constexpr size_t kMaxTokens = size_t(64) << 20;   // ~64 M numbers
+// All files together; the converted scene must fit the JSON reader's 64 MiB as well.
+constexpr size_t kMaxBytes = size_t(64) << 20;
+constexpr size_t kMaxTokens = size_t(16) << 20;
 constexpr int kMaxIncludeDepth = 16;
 
 struct Reader {
