@@ -96,7 +96,7 @@ std::string png_name(const std::string& scene) {
 
 int run_bench_table(const BenchTableOptions& o) {
   const WymanTableSettings settings = wyman_settings(o);
-  const std::vector<WymanScene> scenes = load_wyman_scenes(settings, load_scene);  // fail before work
+  const std::vector<WymanScene> scenes = load_wyman_scenes(settings, [](const std::string& name) { return load_scene(name); });  // fail before work
   // The outputs, one transaction planned now: a strip per scene, then the table.
   std::optional<OutputFolder> folder;
   OutputTransaction outputs;

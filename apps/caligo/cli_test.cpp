@@ -98,6 +98,33 @@ double printed_rmse(const RunResult& r) {
   return rmse;
 }
 
+// --frames renders a VDB sequence: "{frame:04}" in the scene's grid names and in -o become each
+// frame's number, each frame is its own complete output; a pattern without --frames, and a
+// sequence whose -o has no pattern (every frame would overwrite the last), exit 2 writing nothing.
+TEST_F(Cli, FramesRenderAGridSequenceIntoOneOutputPerFrame) {
+  for (int f : {3, 4})
+    ASSERT_EQ(run("generate smoke -o " + (dir_ / ("puff_000" + std::to_string(f) + ".vdb")).string() + " --res 16 --seed " +
+                  std::to_string(f) + " -q").exit_code, 0);
+  const fs::path scene = dir_ / "seq.json";
+  std::ofstream(scene) << R"({"camera": {"position": [0, 1, 4], "look_at": [0, 0.5, 0], "resolution": [16, 12]},
+    "render": {"spp": 1}, "media": {"smoke": {"albedo": 0.8, "extinction": 5}},
+    "volumes": [{"type": "vdb", "file": "puff_{frame:04}.vdb", "medium": "smoke"}],
+    "lights": [{"type": "directional", "direction": [0.3, -1, -0.2], "irradiance": 3}]})";
+  const RunResult r = run("render " + scene.string() + " --frames 3..4 -q -o " + (dir_ / "f_{frame}.exr").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_TRUE(fs::exists(dir_ / "f_3.exr") && fs::exists(dir_ / "f_4.exr") && fs::exists(dir_ / "f_4.png"));
+  // Two different grids: two different pictures.
+  EXPECT_GT(printed_rmse(run("compare " + (dir_ / "f_3.exr").string() + " " + (dir_ / "f_4.exr").string())), 0.0);
+  const RunResult no_frames = run("render " + scene.string() + " -q -o " + (dir_ / "g.exr").string());
+  EXPECT_EQ(no_frames.exit_code, 2);
+  EXPECT_NE(no_frames.err.find("/volumes/0/file: the file name has a {frame} pattern"), std::string::npos) << no_frames.err;
+  const RunResult overwrite = run("render " + scene.string() + " --frames 3..4 -q -o " + (dir_ / "g.exr").string());
+  EXPECT_EQ(overwrite.exit_code, 2);
+  EXPECT_NE(overwrite.err.find("has no {frame} pattern"), std::string::npos) << overwrite.err;
+  EXPECT_FALSE(fs::exists(dir_ / "g.exr"));
+  EXPECT_EQ(run("render " + scene.string() + " --frames 4..3 -q").exit_code, 2);
+}
+
 // Two renders with different seeds differ by noise alone: per pixel and channel their
 // difference has variance 2 sigma^2 / spp, so their RMSE is sqrt(2 / spp) sigma-bar and falls
 // by 2 from 16 to 64 spp. The noise is measured at 16 spp (seeds 1 and 2, `rmse16`); two

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,9 @@ struct RenderOptions {
   std::optional<std::string> crop;    // --crop x0,x1,y0,y1: fractions of the image
   std::optional<std::string> aovs;    // --aov LIST: the outputs besides the beauty (settings/aov.h)
   float time = 0.0f;  // seconds: the camera on its path and the lights on their keys at this time
+  std::optional<std::string> frames;  // --frames A..B (render_frames.cpp)
+  float fps = 24.0f;                  // --fps: a frame's time is frame / fps
+  std::optional<int> frame;           // the frame being rendered: "{frame}" in the scene's file names
   float exposure = 0.0f;
   std::vector<std::string> priorities;  // --priority MATERIAL=LEVEL, applied in order
   bool list_builtins = false;
@@ -114,7 +118,10 @@ struct SceneCommandOptions {
 inline const SourceLocation kCommandLine{"command line", ""};
 
 // A scene file or a built-in's name; InputError when it is neither.
-SceneDesc load_scene(const std::string& name);
+SceneDesc load_scene(const std::string& name, std::optional<int> frame = std::nullopt);
+// --frames A..B (or N): the first and last frame.
+std::pair<int, int> parse_frame_range(const std::string& text);
+int run_render_sequence(const RenderOptions& options);
 // The scene's reading warnings (SceneDesc::warnings) on stderr, one "caligo: warning:" line each.
 void print_scene_warnings(const SceneDesc& desc);
 // "WxH" of --res; InputError otherwise.

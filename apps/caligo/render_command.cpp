@@ -80,6 +80,10 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                   "beauty), default (alpha, depth, normal, albedo) or all (overrides the scene's render.aovs)")
       ->default_str("default");
   cmd->add_option("--time", o.time, "Render the scene at this time in seconds (camera path, light keys)");
+  cmd->add_option("--frames", o.frames,
+                  "Render frames A..B (or one frame N): {frame} or {frame:04} in -o and in the scene's file names "
+                  "becomes the frame's number, its time is frame / --fps");
+  cmd->add_option("--fps", o.fps, "Frames per second of --frames (default 24)");
   cmd->add_option("--exposure", o.exposure, "Exposure of the PNG preview, in stops");
   cmd->add_option("--priority", o.priorities,
                   "MATERIAL=LEVEL: set a medium-bounding material's priority (an integer, or off, very_high, "
@@ -418,11 +422,12 @@ int run_distributed(const RenderOptions& o, const ProgressiveSchedule& schedule,
 
 int run_render(const RenderOptions& o) {
   if (o.list_builtins) return list_builtins();
+  if (o.frames) return run_render_sequence(o);
   // From here on the first SIGINT/SIGTERM asks for a stop (a checkpoint and a partial image,
   // empty if it comes before the render), a second quits.
   const InterruptGuard interrupt;
   if (!(o.time >= 0.0f && o.time <= 1e6f)) throw InputError(kCommandLine, "--time: expected seconds in [0, 1e6]");
-  SceneDesc desc = load_scene(o.scene).at_time(o.time);
+  SceneDesc desc = load_scene(o.scene, o.frame).at_time(o.time);
   for (const std::string& p : o.priorities) apply_priority(p, desc);
   RenderSettings settings = settings_from(o, desc);
   const ProgressiveSchedule schedule = schedule_from(o);

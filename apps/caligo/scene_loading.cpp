@@ -34,7 +34,7 @@ uint64_t parse_seed(const std::string& text) {
   return uint64_t(value);
 }
 
-SceneDesc load_scene(const std::string& name) {
+SceneDesc load_scene(const std::string& name, std::optional<int> frame) {
   if (name.empty()) throw InputError(kCommandLine, "no scene given (a .json file or a built-in name)");
   if (const BuiltinScene* builtin = find_builtin(name))
     return parse_scene_text(builtin->json, "builtin:" + builtin->name, ".");
@@ -48,7 +48,7 @@ SceneDesc load_scene(const std::string& name) {
     throw InputError(SourceLocation{name, ""},
                      "no such scene file, and no built-in of that name (built-ins: " + names + ")");
   }
-  return parse_scene_file(name);
+  return parse_scene_file(name, frame);
 }
 
 void print_scene_warnings(const SceneDesc& desc) {

@@ -56,7 +56,7 @@ float spot_profile_solid_angle(const SpotLight& l) {
 // ---- attached files ----
 
 std::shared_ptr<const GoboImage> load_gobo_image(const JsonCursor& c, LightFileCache& files) {
-  const std::string path = files.files.resolve(c.string());
+  const std::string path = files.files.resolve(c);
   if (auto it = files.gobos.find(path); it != files.gobos.end()) return it->second;
   try {
     const Image image = read_image_rgb(path);
@@ -72,7 +72,7 @@ std::shared_ptr<const GoboImage> load_gobo_image(const JsonCursor& c, LightFileC
 }
 
 std::shared_ptr<const IesProfile> load_profile(const JsonCursor& c, LightFileCache& files) {
-  const std::string path = files.files.resolve(c.string());
+  const std::string path = files.files.resolve(c);
   if (auto it = files.profiles.find(path); it != files.profiles.end()) return it->second;
   try {
     auto profile = std::make_shared<const IesProfile>(IesProfile::load(path));
@@ -86,7 +86,7 @@ std::shared_ptr<const IesProfile> load_profile(const JsonCursor& c, LightFileCac
 // A lat-long image file, read once per scene. Negative pixel values were clamped to 0 by
 // read_image_rgb; non-finite ones are rejected there.
 std::shared_ptr<const EnvironmentMap> load_environment_map(const JsonCursor& c, LightFileCache& files) {
-  const std::string path = files.files.resolve(c.string());
+  const std::string path = files.files.resolve(c);
   if (auto it = files.environment_maps.find(path); it != files.environment_maps.end()) return it->second;
   try {
     const Image image = read_image_rgb(path);

@@ -89,7 +89,7 @@ void read_opacity(ObjectReader& r, SceneFiles& files, Material& m) {
     m.opacity = c->number(Range::closed(0, 1));
     return;
   }
-  const std::string path = files.resolve(c->string());
+  const std::string path = files.resolve(*c);
   try {
     const Image image = read_image_grey(path);
     m.opacity_map = std::make_shared<const OpacityMap>(image.width(), image.height(),
@@ -157,7 +157,7 @@ MeshFileShape read_mesh(ObjectReader& r, SceneFiles& files) {
   if (ext != ".obj" && ext != ".gltf" && ext != ".glb" && ext != ".ply" && ext != ".dae" &&
       ext != ".stl" && ext != ".off")
     c.fail("expected a mesh file ending in .obj, .gltf, .glb, .ply, .dae, .stl or .off, got " + c.describe());
-  return {files.resolve(file), r.boolean_or("skip_degenerate", false)};
+  return {files.resolve(c), r.boolean_or("skip_degenerate", false)};
 }
 
 // "positions": [x, y, z, ...], "indices": [a, b, c, ...], "normals": as positions (optional),
@@ -291,13 +291,13 @@ ShapeDesc parse_shape(const JsonCursor& c, const std::vector<Material>& material
 }  // namespace
 
 SceneDesc parse_scene_text(const std::string& json_text, const std::string& file_label,
-                           const std::string& base_dir) {
+                           const std::string& base_dir, std::optional<int> frame) {
   const Json root = parse_json_text(json_text, file_label);
   ObjectReader r(JsonCursor(root, file_label, ""), "a scene");
   r.allow({"camera", "render", "realtime", "materials", "shapes", "lights", "media", "volumes"});
   SceneDesc scene;
   scene.file = file_label;
-  SceneFiles files{base_dir, {}, {}};
+  SceneFiles files{base_dir, {}, {}, frame};
   scene.camera = parse_camera(r.required("camera"));
   if (auto c = r.optional("render")) scene.render = parse_render(*c);
   if (auto c = r.optional("realtime")) scene.realtime = parse_realtime(*c);
@@ -324,7 +324,7 @@ SceneDesc parse_scene_text(const std::string& json_text, const std::string& file
   return scene;
 }
 
-SceneDesc parse_scene_file(const std::string& path) {
+SceneDesc parse_scene_file(const std::string& path, std::optional<int> frame) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw InputError({path, ""}, "cannot read the scene file: no such file");
   if (fs::is_directory(path, ec))
@@ -340,7 +340,7 @@ SceneDesc parse_scene_file(const std::string& path) {
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw InputError({path, ""}, "cannot read the scene file: read error");
-  return parse_scene_text(text.str(), path, fs::path(path).parent_path().string());
+  return parse_scene_text(text.str(), path, fs::path(path).parent_path().string(), frame);
 }
 
 }  // namespace caligo

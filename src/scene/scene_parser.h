@@ -9,6 +9,7 @@
 // light's "color" is multiplied into its quantity.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "scene/scene_desc.h"
@@ -17,11 +18,12 @@ namespace caligo {
 
 // Reads and parses a scene file. Relative mesh paths are resolved against the directory
 // of `path`. An unreadable file is an InputError naming it.
-SceneDesc parse_scene_file(const std::string& path);
+// `frame`: the frame of a sequence render, which "{frame}" in the scene's file names becomes.
+SceneDesc parse_scene_file(const std::string& path, std::optional<int> frame = std::nullopt);
 
 // Parses scene text. `file_label` names the input in errors and becomes SceneDesc::file;
 // relative mesh paths are resolved against `base_dir` (left as written when it is empty).
 SceneDesc parse_scene_text(const std::string& json_text, const std::string& file_label,
-                           const std::string& base_dir);
+                           const std::string& base_dir, std::optional<int> frame = std::nullopt);
 
 }  // namespace caligo

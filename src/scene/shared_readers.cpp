@@ -1,5 +1,7 @@
 #include "scene/shared_readers.h"
 
+#include "core/frame_pattern.h"
+
 #include <algorithm>
 #include <filesystem>
 
@@ -39,6 +41,19 @@ std::string SceneFiles::resolve(const std::string& file) {
   std::string path = resolve_path(file, base_dir);
   if (std::find(named.begin(), named.end(), path) == named.end()) named.push_back(path);
   return path;
+}
+
+std::string SceneFiles::resolve(const JsonCursor& c) {
+  std::string file = c.string();
+  if (has_frame_pattern(file)) {
+    if (!frame)
+      c.fail("the file name has a {frame} pattern, but no frame is rendered (render --frames A..B)");
+    std::string error;
+    const std::optional<std::string> named_frame = substitute_frame(file, *frame, &error);
+    if (!named_frame) c.fail(error);
+    file = *named_frame;
+  }
+  return resolve(file);
 }
 
 Vec2 read_vec2(const JsonCursor& c, Range range) {

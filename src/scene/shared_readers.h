@@ -2,6 +2,7 @@
 // keyframe timing. Every failure is a located InputError (see json_reader.h).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -32,7 +33,12 @@ struct SceneFiles {
   std::vector<std::string> named;  // resolved, each once, in the order first named
   // What the files' reading found worth a warning (a located message each; SceneDesc::warnings).
   std::vector<std::string> warnings;
+  // The frame of a sequence render: "{frame}" in file names becomes it (core/frame_pattern.h).
+  std::optional<int> frame;
   std::string resolve(const std::string& file);
+  // The string at `c`, its frame pattern substituted, resolved; a pattern without a frame to
+  // render, or a malformed one, fails at `c`.
+  std::string resolve(const JsonCursor& c);
 };
 
 // [u, v]: an array of two numbers within `range`.

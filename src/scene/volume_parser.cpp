@@ -138,7 +138,7 @@ VolumeShape parse_volume_shape(ObjectReader& r, const std::string& type, const T
 // broken mesh is an error at its place in the scene file.
 VolumeShape parse_mesh_volume(ObjectReader& r, const Transform& placement, SceneFiles& files) {
   const JsonCursor file = r.required("file");
-  const std::string path = files.resolve(file.string());
+  const std::string path = files.resolve(file);
   const bool skip = r.boolean_or("skip_degenerate", false);
   const bool parity = r.has("open_edges") && r.choice("open_edges", {"error", "parity"}) == "parity";
   TriangleMesh mesh =
@@ -192,7 +192,7 @@ GridDensity parse_grid_field(ObjectReader& r, const std::string& type, const Tra
     if (which == 1) {
       field.grid = parse_generated_grid(c);
     } else {
-      const std::string path = files.resolve(c.string());
+      const std::string path = files.resolve(c);
       field.grid = load_grid_file(path, parse_channels(r), c.where());
     }
     return field;
@@ -211,7 +211,7 @@ GridDensity parse_grid_field(ObjectReader& r, const std::string& type, const Tra
   layout.voxel_size = r.number("voxel_size", size_range());
   layout.origin = r.optional_vec3("origin").value_or(Vec3(0.0f));
   if (!from_values) {
-    field.grid = load_dense_grid(files.resolve(source.string()), layout, source.where());
+    field.grid = load_dense_grid(files.resolve(source), layout, source.where());
     return field;
   }
   const uint64_t voxels = uint64_t(layout.dims[0]) * uint64_t(layout.dims[1]) * uint64_t(layout.dims[2]);
@@ -266,7 +266,7 @@ VolumePrimitive parse_volume(const JsonCursor& c, const std::vector<NamedMedium>
   else if (type == "mesh")
     r.allow({"type", "file", "skip_degenerate", "open_edges", "medium", "transform"});
   else if (type == "vdb")
-    r.allow({"type", "file", "generate", "grids", "filter", "medium", "transform"});
+    r.allow({"type", "file", "generate", "grids", "filter", "clip", "medium", "transform"});
   else
     r.allow({"type", "file", "values", "dimensions", "voxel_size", "origin", "clip", "filter", "medium", "transform"});
   Transform placement;
@@ -282,7 +282,7 @@ VolumePrimitive parse_volume(const JsonCursor& c, const std::vector<NamedMedium>
       r.fail("a grid volume takes its density from the grid: its medium may not have a falloff");
     GridDensity field = parse_grid_field(r, type, placement, files);
     Bounds3 b = field.grid->world_bounds();
-    // "clip": {"min", "max"} (dense grids, in the grid's own space): the medium ends at the box,
+    // "clip": {"min", "max"} (in the grid's own space): the medium ends at the box,
     // as pbrt-v4's grid media end at their bounds (trilinear lookups beyond the outer voxel
     // centres would otherwise fade out over half a voxel outside).
     if (const auto clip = r.optional("clip")) {
