@@ -62,7 +62,9 @@ class Importer {
     finish_camera_medium();
     for (const char* key : {"materials", "media", "shapes", "lights", "volumes"})
       if (b_.scene[key].empty()) b_.scene.erase(key);
-    return {b_.scene.dump(), std::move(b_.warnings), std::move(b_.origins)};
+    // The tokenizer refuses strings that are not UTF-8; replacing rather than throwing is the
+    // safety net should one reach the JSON some other way.
+    return {b_.scene.dump(-1, ' ', false, Json::error_handler_t::replace), std::move(b_.warnings), std::move(b_.origins)};
   }
 
  private:

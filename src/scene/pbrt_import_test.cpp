@@ -52,6 +52,12 @@ TEST(PbrtImport, ErrorsNameTheFileAndLine) {
   EXPECT_NE(error_of(std::string(kHeader) + "MediumInterface \"fog\" \"\"\n").find("s.pbrt:4: MediumInterface: medium \"fog\" is not defined"),
             std::string::npos);
   EXPECT_NE(error_of("Include \"no/such/file.pbrt\"\n").find("s.pbrt:1: cannot read"), std::string::npos);
+  // Found by the fuzzer: a Latin-1 byte in a string once escaped as an uncaught JSON exception.
+  EXPECT_NE(error_of(std::string(kHeader) + "\nMakeNamedMaterial \"caf\xe9\" \"string type\" \"diffuse\"\n")
+                .find("s.pbrt:5: a string holds bytes that are not UTF-8"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kHeader) + "Texture \"t\x92\" \"spectrum\" \"imagemap\"\n").find("s.pbrt:4: a string holds bytes"),
+            std::string::npos);
 }
 
 // What the scene parser refuses in the converted JSON is reported at the pbrt directive.

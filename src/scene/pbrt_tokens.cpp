@@ -25,6 +25,21 @@ struct Reader {
 
 void read_text(const std::string& text, uint32_t file, const std::string& base_dir, int depth, Reader& r);
 
+// Strings become JSON strings (names, file names), which must be UTF-8. pbrt-v4 reads its files
+// as UTF-8 too; a Latin-1 file name is refused here, where the line is known.
+bool is_utf8(std::string_view text) {
+  for (size_t i = 0; i < text.size();) {
+    if (static_cast<unsigned char>(text[i]) < 0x80) {
+      ++i;
+      continue;
+    }
+    const size_t n = message_text_detail::utf8_length(text, i);
+    if (n == 0) return false;
+    i += n;
+  }
+  return true;
+}
+
 std::string read_file(const std::string& path, const std::string& where, Reader& r) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw InputError(SourceLocation{where, ""}, "cannot read " + quote_for_message(path) + ": no such file");
@@ -79,6 +94,9 @@ void read_text(const std::string& text, uint32_t file, const std::string& base_d
       if (end == std::string::npos || text[end] == '\n')
         throw InputError(SourceLocation{r.out.files[file] + ":" + std::to_string(line), ""}, "a string is not closed on its line");
       Token t{Token::kString, text.substr(i + 1, end - i - 1), file, line};
+      if (!is_utf8(t.text))
+        throw InputError(SourceLocation{r.out.files[file] + ":" + std::to_string(line), ""},
+                         "a string holds bytes that are not UTF-8: " + quote_for_message(t.text));
       i = end + 1;
       if (include_next) {
         include_next = false;
