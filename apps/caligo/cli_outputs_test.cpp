@@ -4,9 +4,12 @@
 // interrupted render keeps the earlier finished image; a finished render whose checkpoint does
 // not fit keeps its image; lying image headers are refused before they are allocated; seeds
 // and non-finite pixels are validated; concurrent writers leave one complete file.
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <variant>
 
 #include "cli_testing.h"
 #include "image/exr_io.h"
@@ -220,3 +223,61 @@ TEST_F(Outputs, AFolderNamedWithATrailingSlashIsMade) {
 }
 
 }  // namespace
+
+// The EXR header records the render as renderers do (software, samples actually rendered,
+// seed, scene, time, OpenEXR's camera matrices), and --view picks the PNG's tone curve.
+TEST_F(Outputs, TheExrHeaderRecordsTheRenderAndViewPicksThePreviewCurve) {
+  const fs::path exr = dir_ / "meta.exr";
+  ASSERT_EQ(run("render default --res 24x16 --spp 3 --seed 12345678901 -q -o " + exr.string()).exit_code, 0);
+  const caligo::ExrAttributes header = caligo::read_exr_attributes(exr.string());
+  const auto text = [&](const char* name) {
+    const caligo::ExrValue* v = caligo::find_attribute(header, name);
+    return v && std::holds_alternative<std::string>(*v) ? std::get<std::string>(*v) : std::string("(missing)");
+  };
+  const auto integer = [&](const char* name) {
+    const caligo::ExrValue* v = caligo::find_attribute(header, name);
+    return v && std::holds_alternative<int>(*v) ? std::get<int>(*v) : -1;
+  };
+  EXPECT_EQ(text("software").rfind("Caligo ", 0), 0u) << text("software");
+  EXPECT_EQ(text("caligo/scene"), "builtin:default");
+  EXPECT_EQ(text("caligo/seed"), "12345678901");
+  EXPECT_EQ(integer("caligo/samples"), 3);
+  EXPECT_EQ(integer("caligo/samplesMax"), 3);
+  EXPECT_EQ(text("capDate").size(), 19u);
+  const caligo::ExrValue* time = caligo::find_attribute(header, "caligo/renderTime");
+  ASSERT_TRUE(time && std::holds_alternative<float>(*time));
+  EXPECT_GT(std::get<float>(*time), 0.0f);
+  // default's camera looks at its target from its position: worldToCamera puts the target
+  // straight ahead (x = y = 0, z = the distance), and worldToNDC at the image's centre.
+  const caligo::ExrValue* view = caligo::find_attribute(header, "worldToCamera");
+  const caligo::ExrValue* ndc = caligo::find_attribute(header, "worldToNDC");
+  ASSERT_TRUE(view && ndc && std::holds_alternative<caligo::Mat4>(*view) && std::holds_alternative<caligo::Mat4>(*ndc));
+  const std::string shown = run("scene show default").out;
+  const auto vec3_after = [&](const std::string& key) {
+    const size_t at = shown.find("[", shown.find("\"" + key + "\"", shown.find("\"camera\"")));
+    float v[3];
+    EXPECT_EQ(std::sscanf(shown.c_str() + at, "[%f,%f,%f]", &v[0], &v[1], &v[2]), 3) << shown.substr(at, 40);
+    return std::array<float, 3>{v[0], v[1], v[2]};
+  };
+  const auto eye = vec3_after("position"), target = vec3_after("look_at");
+  const auto apply = [&](const caligo::Mat4& m, int row) {
+    const auto& r = m.m[size_t(row)];
+    return r[0] * target[0] + r[1] * target[1] + r[2] * target[2] + r[3];
+  };
+  const caligo::Mat4& v = std::get<caligo::Mat4>(*view);
+  const float distance = std::hypot(target[0] - eye[0], target[1] - eye[1], target[2] - eye[2]);
+  EXPECT_NEAR(apply(v, 0), 0.0f, 1e-4f);
+  EXPECT_NEAR(apply(v, 1), 0.0f, 1e-4f);
+  EXPECT_NEAR(apply(v, 2), distance, 1e-4f);
+  const caligo::Mat4& n = std::get<caligo::Mat4>(*ndc);
+  EXPECT_NEAR(apply(n, 0) / apply(n, 3), 0.5f, 1e-5f);
+  EXPECT_NEAR(apply(n, 1) / apply(n, 3), 0.5f, 1e-5f);
+  // The same render's preview with the standard view: a different PNG; a bad view is refused.
+  const fs::path standard = dir_ / "standard.exr";
+  ASSERT_EQ(run("render default --res 24x16 --spp 3 --seed 12345678901 -q --view standard -o " + standard.string()).exit_code, 0);
+  EXPECT_NE(bytes(dir_ / "meta.png"), bytes(dir_ / "standard.png"));
+  const RunResult bad = run("render default --res 8x8 --spp 1 --view neon -o " + (dir_ / "bad.exr").string());
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--view"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir_ / "bad.exr"));
+}

@@ -41,6 +41,7 @@ struct RenderOptions {
   float fps = 24.0f;                  // --fps: a frame's time is frame / fps
   std::optional<int> frame;           // the frame being rendered: "{frame}" in the scene's file names
   float exposure = 0.0f;
+  std::string view = "filmic";  // --view filmic|standard: the PNG preview's tone curve
   std::vector<std::string> priorities;  // --priority MATERIAL=LEVEL, applied in order
   bool list_builtins = false;
   bool quiet = false;
@@ -84,6 +85,7 @@ struct RealtimeOptions {
   int reference_spp = 256;
   bool reference_per_light = false;
   float exposure = 0.0f;
+  std::string view = "filmic";  // --view filmic|standard
   bool quiet = false;
 };
 

@@ -73,6 +73,9 @@ void add_realtime_command(CLI::App& app, RealtimeOptions& o) {
   cmd->add_flag("--reference-per-light", o.reference_per_light,
                 "Path-trace the reference one light at a time and sum (far less noise with many lights)");
   cmd->add_option("--exposure", o.exposure, "Exposure of the PNG/GIF output, in stops");
+  cmd->add_option("--view", o.view,
+                  "Tone curve of the PNG/GIF output: filmic (the ACES fit, default) or standard (sRGB, clipped at 1)")
+      ->check(CLI::IsMember({"filmic", "standard"}));
   cmd->add_flag("-q,--quiet", o.quiet, "Print only the summary line");
 }
 

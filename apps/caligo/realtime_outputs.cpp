@@ -7,6 +7,7 @@
 #include "image/exr_io.h"
 #include "image/png_io.h"
 #include "image/tonemap.h"
+#include "render_metadata.h"
 #include "render_outputs.h"
 
 namespace caligo {
@@ -32,7 +33,7 @@ RealtimeOutputKind realtime_output_kind(const std::string& out) {
 }
 
 RealtimeOutputs::RealtimeOutputs(const RealtimeOptions& o, const SceneDesc& desc, int frames)
-    : kind_(realtime_output_kind(o.output)), exposure_(o.exposure), exr_frames_(o.exr) {
+    : kind_(realtime_output_kind(o.output)), preview_{o.exposure, o.view == "filmic"}, exr_frames_(o.exr) {
   if (kind_ == RealtimeOutputKind::folder) folder_.emplace(o.output);
   tx_.emplace();
   protect_scene_inputs(*tx_, desc);
@@ -61,17 +62,17 @@ RealtimeOutputs::~RealtimeOutputs() {
 }
 
 void RealtimeOutputs::frame(const Image& image, int index, bool last) {
-  const PreviewSettings preview{exposure_, true};
   const auto png = [&](const std::string& temp) {
-    write_png(temp, image.width(), image.height(), to_srgb8_preview(image, preview));
+    write_png(temp, image.width(), image.height(), to_srgb8_preview(image, preview_));
   };
-  const auto exr = [&](const std::string& temp) { write_exr(temp, image); };
+  const ExrAttributes attributes = {{"software", software_name()}};
+  const auto exr = [&](const std::string& temp) { write_exr(temp, image, false, attributes); };
   switch (kind_) {
     case RealtimeOutputKind::folder:
       if (exr_frames_) tx_->stage(size_t(index), exr);
       else tx_->stage(size_t(index), png);
       break;
-    case RealtimeOutputKind::gif: gif_frames_.push_back(to_srgb8_preview(image, preview)); break;
+    case RealtimeOutputKind::gif: gif_frames_.push_back(to_srgb8_preview(image, preview_)); break;
     case RealtimeOutputKind::single_png:
       if (last) tx_->stage(0, png);
       break;

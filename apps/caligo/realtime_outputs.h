@@ -14,6 +14,7 @@
 #include "commands.h"
 #include "core/output_transaction.h"
 #include "image/image.h"
+#include "image/tonemap.h"
 #include "output_folder.h"
 
 namespace caligo {
@@ -44,7 +45,7 @@ class RealtimeOutputs {
 
  private:
   RealtimeOutputKind kind_;
-  float exposure_;
+  PreviewSettings preview_;
   bool exr_frames_;
   std::string comparison_;
   std::optional<OutputFolder> folder_;

@@ -17,6 +17,7 @@
 #include "interrupt.h"
 #include "render/progressive.h"
 #include "render/render.h"
+#include "render_metadata.h"
 #include "render_outputs.h"
 #include "scene/builtins.h"
 #include "scene/material_priority.h"
@@ -85,6 +86,9 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
                   "becomes the frame's number, its time is frame / --fps");
   cmd->add_option("--fps", o.fps, "Frames per second of --frames (default 24)");
   cmd->add_option("--exposure", o.exposure, "Exposure of the PNG preview, in stops");
+  cmd->add_option("--view", o.view,
+                  "Tone curve of the PNG preview: filmic (the ACES fit, default) or standard (sRGB, clipped at 1)")
+      ->check(CLI::IsMember({"filmic", "standard"}));
   cmd->add_option("--priority", o.priorities,
                   "MATERIAL=LEVEL: set a medium-bounding material's priority (an integer, or off, very_high, "
                   "high, normal, low, very_low); repeatable")
@@ -400,8 +404,13 @@ int report_interrupt(const RenderOutputs& outputs, int signal, std::pair<int, in
   return kExitInterruptedBase + signal;
 }
 
+// What the EXR header records of this render (render_metadata.h).
+ExrAttributes header_of(const SceneDesc& desc, const RenderSettings& s, std::pair<int, int> samples, double seconds) {
+  return render_attributes({desc.file, s.seed, samples, seconds}, Camera(desc.camera, s.resolution));
+}
+
 // Under mpirun/srun each rank renders its share and rank 0 alone gets the frame (src/distributed/).
-int run_distributed(const RenderOptions& o, const ProgressiveSchedule& schedule, const Scene& scene,
+int run_distributed(const RenderOptions& o, const SceneDesc& desc, const ProgressiveSchedule& schedule, const Scene& scene,
                     const RenderSettings& settings, const RenderOutputs& outputs, uint64_t key,
                     Progress::Style style) {
   if (settings.adaptive.threshold > 0.0f && o.mpi_split == "samples")
@@ -413,7 +422,8 @@ int run_distributed(const RenderOptions& o, const ProgressiveSchedule& schedule,
   const std::optional<RenderResult> frame =
       distributed::render_frame(scene, settings, *distributed::split_from_name(o.mpi_split), style, key);
   if (!frame) return 0;  // an MPI rank other than 0: rank 0 writes the outputs
-  outputs.write_final(frame->image, nullptr, key, o.exposure);
+  outputs.write_final(frame->image, nullptr, key,
+                      header_of(desc, settings, {settings.spp, settings.spp}, frame->stats.seconds));
   if (!o.quiet) print_summary(o.scene, settings, frame->stats, outputs.exr(), {settings.spp, settings.spp});
   return 0;
 }
@@ -445,7 +455,7 @@ int run_render(const RenderOptions& o) {
   const bool keyed = o.checkpoint || o.resume || distributed::launcher_world_size();
   const uint64_t key = keyed ? key_now() : 0;
   const Progress::Style style = o.quiet ? Progress::Style::kQuiet : Progress::Style::kAuto;
-  if (distributed::launcher_world_size()) return run_distributed(o, schedule, *scene, settings, outputs, key, style);
+  if (distributed::launcher_world_size()) return run_distributed(o, desc, schedule, *scene, settings, outputs, key, style);
 
   Film film = o.resume ? load_checkpoint(*o.resume, key, settings) : Film(settings.resolution, settings.aovs);
   const ProgressiveResult result =
@@ -460,17 +470,17 @@ int run_render(const RenderOptions& o) {
   // cut the first pass leaves pixels without a sample: that image must not replace a finished one.
   const bool complete = samples.first >= target || (!result.stopped_by.empty() && samples.first > 0);
   if (interrupt.stopped() && !complete) {
-    outputs.write_interrupted(image, film, keyed ? key : key_now(), o.exposure);
+    outputs.write_interrupted(image, film, keyed ? key : key_now(), header_of(desc, settings, samples, result.stats.seconds));
     return report_interrupt(outputs, interrupt.signal_number(), samples, target);
   }
   if (!complete && !result.stopped_by.empty()) {
-    outputs.write_interrupted(image, film, keyed ? key : key_now(), o.exposure);
+    outputs.write_interrupted(image, film, keyed ? key : key_now(), header_of(desc, settings, samples, result.stats.seconds));
     std::fprintf(stderr, "caligo: %s came before every pixel had a sample: wrote the partial image %s (%s is kept)\n",
                  result.stopped_by.c_str(), quote_for_message(outputs.partial_exr()).c_str(),
                  quote_for_message(outputs.exr()).c_str());
     return 0;
   }
-  outputs.write_final(image, &film, key, o.exposure);
+  outputs.write_final(image, &film, key, header_of(desc, settings, samples, result.stats.seconds));
   if (!result.stopped_by.empty() && !o.quiet)
     std::fprintf(stderr, "caligo: stopped by %s at %d of %d samples per pixel\n", result.stopped_by.c_str(),
                  samples.first, target);

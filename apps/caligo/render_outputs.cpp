@@ -16,10 +16,11 @@ std::string with_suffix(const std::string& exr, const char* suffix) {
   return exr.substr(0, exr.size() - 4) + suffix;
 }
 
-std::vector<OutputTransaction::Writer> image_writers(const Image& image, float exposure) {
-  return {[&image](const std::string& temp) { write_exr(temp, image); },
-          [&image, exposure](const std::string& temp) {
-            write_png(temp, image.width(), image.height(), to_srgb8_preview(image, PreviewSettings{exposure, true}));
+std::vector<OutputTransaction::Writer> image_writers(const Image& image, const PreviewSettings& preview,
+                                                     const ExrAttributes& attributes) {
+  return {[&image, &attributes](const std::string& temp) { write_exr(temp, image, false, attributes); },
+          [&image, preview](const std::string& temp) {
+            write_png(temp, image.width(), image.height(), to_srgb8_preview(image, preview));
           }};
 }
 
@@ -30,7 +31,8 @@ void protect_scene_inputs(OutputTransaction& outputs, const SceneDesc& desc) {
   for (const std::string& f : desc.files) outputs.protect(f, "file the scene \"" + desc.file + "\" reads,");
 }
 
-RenderOutputs::RenderOutputs(const RenderOptions& o, const SceneDesc& desc) {
+RenderOutputs::RenderOutputs(const RenderOptions& o, const SceneDesc& desc)
+    : preview_{o.exposure, o.view == "filmic"} {
   if (o.output && o.output->empty()) throw InputError(kCommandLine, "-o: the output path is empty");
   exr_ = o.output ? *o.output : std::filesystem::path(o.scene).stem().string() + ".exr";
   if (std::filesystem::path(exr_).extension() != ".exr")
@@ -69,8 +71,9 @@ RenderOutputs::RenderOutputs(const RenderOptions& o, const SceneDesc& desc) {
 // Commits `plan` (images, then a checkpoint when `film`); when that fails, the images alone
 // (their own plan), then reports the checkpoint: what fits is kept.
 void RenderOutputs::write_keeping_images(const OutputTransaction& plan, const OutputTransaction& images_only,
-                                         const Image& image, const Film* film, uint64_t key, float exposure) const {
-  std::vector<OutputTransaction::Writer> writers = image_writers(image, exposure);
+                                         const Image& image, const Film* film, uint64_t key,
+                                         const ExrAttributes& attributes) const {
+  std::vector<OutputTransaction::Writer> writers = image_writers(image, preview_, attributes);
   if (!film) {
     OutputTransaction(plan).commit(writers);
     return;
@@ -85,13 +88,15 @@ void RenderOutputs::write_keeping_images(const OutputTransaction& plan, const Ou
   }
 }
 
-void RenderOutputs::write_final(const Image& image, const Film* film, uint64_t key, float exposure) const {
-  write_keeping_images(final_, *final_images_, image, asked_checkpoint_ ? film : nullptr, key, exposure);
+void RenderOutputs::write_final(const Image& image, const Film* film, uint64_t key,
+                                const ExrAttributes& attributes) const {
+  write_keeping_images(final_, *final_images_, image, asked_checkpoint_ ? film : nullptr, key, attributes);
 }
 
-void RenderOutputs::write_interrupted(const Image& image, const Film& film, uint64_t key, float exposure) const {
+void RenderOutputs::write_interrupted(const Image& image, const Film& film, uint64_t key,
+                                      const ExrAttributes& attributes) const {
   write_keeping_images(interrupted_, *interrupted_images_, image, interrupt_leaves_checkpoint() ? &film : nullptr, key,
-                       exposure);
+                       attributes);
 }
 
 }  // namespace caligo

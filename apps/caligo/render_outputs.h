@@ -13,7 +13,9 @@
 
 #include "commands.h"
 #include "core/output_transaction.h"
+#include "image/exr_attributes.h"
 #include "image/image.h"
+#include "image/tonemap.h"
 #include "render/film.h"
 
 namespace caligo {
@@ -34,17 +36,19 @@ class RenderOutputs {
   // Whether an interrupted render leaves a checkpoint to resume.
   bool interrupt_leaves_checkpoint() const { return asked_checkpoint_ || interrupt_checkpoint_; }
 
-  // The finished image, its preview and the asked-for checkpoint of `film`; when only the
-  // checkpoint fails, the image and preview are written and the EnvironmentError says so.
-  void write_final(const Image& image, const Film* film, uint64_t key, float exposure) const;
+  // The finished image (with `attributes` in its header), its preview and the asked-for
+  // checkpoint of `film`; when only the checkpoint fails, the image and preview are written and
+  // the EnvironmentError says so.
+  void write_final(const Image& image, const Film* film, uint64_t key, const ExrAttributes& attributes) const;
   // The partial image and preview, and a checkpoint when one can be written; the images are
   // kept when only the checkpoint fails, as above.
-  void write_interrupted(const Image& image, const Film& film, uint64_t key, float exposure) const;
+  void write_interrupted(const Image& image, const Film& film, uint64_t key, const ExrAttributes& attributes) const;
 
  private:
   void write_keeping_images(const OutputTransaction& plan, const OutputTransaction& images_only, const Image& image,
-                            const Film* film, uint64_t key, float exposure) const;
+                            const Film* film, uint64_t key, const ExrAttributes& attributes) const;
 
+  PreviewSettings preview_;  // --exposure and --view
   std::string exr_, png_, partial_exr_, partial_png_, checkpoint_;
   bool asked_checkpoint_ = false;
   bool interrupt_checkpoint_ = false;

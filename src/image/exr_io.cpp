@@ -16,6 +16,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "image/exr_header_attributes.h"
 
 namespace caligo {
 
@@ -37,17 +38,17 @@ Imf::FrameBuffer frame_buffer(const Image& layout, Imf::PixelType type, const vo
   return buffer;
 }
 
-Imf::Header exr_header(const Image& image, bool half) {
+Imf::Header exr_header(const Image& image, bool half, const ExrAttributes& attributes) {
   Imf::Header header(image.width(), image.height());
   header.compression() = Imf::ZIP_COMPRESSION;
   for (const std::string& name : image.channels()) {
     header.channels().insert(name, Imf::Channel(half ? Imf::HALF : Imf::FLOAT));
   }
+  add_attributes(header, attributes);
   return header;
 }
 
-void write_exr_now(const std::string& file, const Image& image, bool half) {
-  Imf::Header header = exr_header(image, half);
+void write_exr_now(const std::string& file, const Image& image, bool half, const Imf::Header& header) {
   const Imath::Box2i& window = header.dataWindow();
   Imf::OutputFile out(file.c_str(), header);
   // Unlike InputFile, OutputFile does not convert FLOAT to HALF: hand it rounded copies.
@@ -126,13 +127,14 @@ std::vector<std::string> exr_channel_order(std::vector<std::string> names) {
   return names;
 }
 
-void write_exr(const std::string& path, const Image& image, bool half) {
+void write_exr(const std::string& path, const Image& image, bool half, const ExrAttributes& attributes) {
   if (image.pixel_count() == 0) {
     throw std::invalid_argument("write_exr: " + path + ": an EXR file cannot hold an empty image");
   }
+  const Imf::Header header = exr_header(image, half, attributes);  // a bad attribute is a bug, not an I/O error
   write_file_atomically(path, [&](const std::string& temp_path) {
     try {
-      write_exr_now(temp_path, image, half);
+      write_exr_now(temp_path, image, half, header);
     } catch (const std::exception& e) {
       throw std::runtime_error("cannot write OpenEXR file " + path + ": " + e.what());
     }
@@ -145,6 +147,15 @@ Image read_exr(const std::string& path) {
   } catch (const std::exception& e) {
     // Iex exceptions (missing file, bad magic number, truncated data), std::bad_alloc and
     // our own checks above, which do not know the path.
+    throw InputError(SourceLocation{path, ""}, std::string("cannot read OpenEXR file: ") + e.what());
+  }
+}
+
+ExrAttributes read_exr_attributes(const std::string& path) {
+  try {
+    Imf::InputFile in(path.c_str());
+    return attributes_of(in.header());
+  } catch (const std::exception& e) {
     throw InputError(SourceLocation{path, ""}, std::string("cannot read OpenEXR file: ") + e.what());
   }
 }

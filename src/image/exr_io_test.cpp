@@ -3,6 +3,7 @@
 #include <ImfChannelList.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
+#include <ImfMatrixAttribute.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -72,6 +73,31 @@ TEST_F(ExrIo, FloatRoundTripIsBitIdenticalForEveryChannel) {
   write_exr(file("aov.exr"), image);
   // The channel order a renderer writes comes back, although EXR stores names sorted.
   expect_bit_identical(read_exr(file("aov.exr")), image);
+}
+
+// Header attributes come back as written: text, integers, floats, and matrices element for
+// element (stored transposed, as Imath's row-vector M44f, and transposed back).
+TEST_F(ExrIo, HeaderAttributesRoundTrip) {
+  Mat4 m;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) m.m[size_t(r)][size_t(c)] = float(10 * r + c) + 0.25f;
+  const ExrAttributes written = {{"software", std::string("Caligo test")}, {"caligo/samples", 37},
+                                 {"caligo/renderTime", 1.5f}, {"worldToCamera", m}};
+  write_exr(file("meta.exr"), test_image(3, 2, {"R", "G", "B"}), false, written);
+  const ExrAttributes read = read_exr_attributes(file("meta.exr"));
+  for (const ExrAttribute& a : written) {
+    const ExrValue* v = find_attribute(read, a.name);
+    ASSERT_NE(v, nullptr) << a.name;
+    EXPECT_TRUE(*v == a.value) << a.name;
+  }
+  Imf::InputFile in(file("meta.exr").c_str());
+  const auto* stored = in.header().findTypedAttribute<Imf::M44fAttribute>("worldToCamera");
+  ASSERT_NE(stored, nullptr);
+  EXPECT_EQ(stored->value()[0][1], m.m[1][0]);  // row vectors: M44f[i][j] = Mat4[j][i]
+  // A structural name is OpenEXR's own: refused before the file is touched.
+  EXPECT_THROW(write_exr(file("bad.exr"), test_image(1, 1, {"R"}), false, {{"dataWindow", 1}}), std::invalid_argument);
+  EXPECT_FALSE(fs::exists(file("bad.exr")));
+  EXPECT_THROW(read_exr_attributes(file("missing.exr")), InputError);
 }
 
 TEST_F(ExrIo, WritesZipCompressedFloatOrHalfChannels) {

@@ -55,4 +55,27 @@ Ray Camera::generate_ray(Vec2 film, Vec2 lens_u) const {
   return {camera_to_world_.point(lens), normalize(camera_to_world_.vector(focus - lens)), 0.0f, kInfinity};
 }
 
+Mat4 Camera::world_to_view() const {
+  Mat4 flip = Mat4::identity();
+  flip.m[0][0] = x_sign_;  // camera-local x is cross(up, forward); the image's right is x_sign_ times it
+  return flip * camera_to_world_.inverse_matrix();
+}
+
+Mat4 Camera::view_to_ndc() const {
+  Mat4 p{};
+  if (projection_ == CameraProjection::orthographic) {
+    p.m[0] = {1.0f / ortho_width_, 0.0f, 0.0f, 0.5f};
+    p.m[1] = {0.0f, -1.0f / ortho_height(), 0.0f, 0.5f};
+    p.m[2] = {0.0f, 0.0f, 1.0f, 0.0f};
+    p.m[3] = {0.0f, 0.0f, 0.0f, 1.0f};
+    return p;
+  }
+  // x / z spans [-tan * aspect, tan * aspect] over the width, y / z [-tan, tan] over the height.
+  p.m[0] = {0.5f / (tan_half_fov_ * aspect_), 0.0f, 0.5f, 0.0f};
+  p.m[1] = {0.0f, -0.5f / tan_half_fov_, 0.5f, 0.0f};
+  p.m[2] = {0.0f, 0.0f, 0.0f, 1.0f};
+  p.m[3] = {0.0f, 0.0f, 1.0f, 0.0f};
+  return p;
+}
+
 }  // namespace caligo

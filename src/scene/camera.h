@@ -41,6 +41,13 @@ class Camera {
   // from the plane through position perpendicular to the axis (the lens or window plane).
   float depth(const Ray& camera_ray, float t) const { return t * dot(camera_ray.direction, forward_); }
   Vec3 position() const { return camera_to_world_.point({}); }
+  // OpenEXR's camera space (its worldToCamera, RenderMan's): x to the image's right, y up, z
+  // along the view, origin at position(); left-handed. A column-vector matrix, as all Mat4s.
+  Mat4 world_to_view() const;
+  // That space to OpenEXR's NDC after the divide by w: (0, 0) the image's top-left corner, (1, 1)
+  // its bottom-right. w is the depth for a perspective camera and 1 for an orthographic one;
+  // z / w (1 / depth, or the depth) keeps the matrix invertible and is discarded by readers.
+  Mat4 view_to_ndc() const;
   Vec3 forward() const { return forward_; }
   Vec3 up_hint() const { return up_; }
   float tan_half_fov() const { return tan_half_fov_; }

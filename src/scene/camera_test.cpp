@@ -80,6 +80,41 @@ TEST(Camera, OrthographicRaysAreParallelAndSpanTheWindow) {
   EXPECT_FALSE(camera.has_aperture());
 }
 
+// OpenEXR's worldToNDC (view_to_ndc * world_to_view) takes a point seen through film position f
+// to f / resolution, for both handednesses and both projections; worldToCamera has z along the
+// view and x to the image's right.
+Vec2 ndc_of(const Camera& camera, Vec3 p) {
+  const Mat4 m = camera.view_to_ndc() * camera.world_to_view();
+  float h[4];
+  for (int r = 0; r < 4; ++r) h[r] = m.m[size_t(r)][0] * p.x + m.m[size_t(r)][1] * p.y + m.m[size_t(r)][2] * p.z + m.m[size_t(r)][3];
+  return {h[0] / h[3], h[1] / h[3]};
+}
+
+TEST(Camera, ExrMatricesProjectWhereTheRaysGo) {
+  CameraDesc tilted;
+  tilted.position = {0.5f, 1.5f, 3.0f};
+  tilted.look_at = {-0.3f, 0.2f, -1.0f};
+  tilted.fov_degrees = 50.0f;
+  CameraDesc mirrored = tilted;
+  mirrored.left_handed = true;
+  for (const CameraDesc& desc : {tilted, mirrored, ortho_looking_down()}) {
+    const Camera camera(desc, {160, 90});
+    for (Vec2 film : {Vec2{0, 0}, Vec2{160, 90}, Vec2{12.5f, 70.25f}, Vec2{80, 45}}) {
+      const Ray r = camera.generate_ray(film);
+      const Vec2 ndc = ndc_of(camera, r.origin + r.direction * 2.7f);
+      EXPECT_NEAR(ndc.x, film.x / 160.0f, 1e-5f);
+      EXPECT_NEAR(ndc.y, film.y / 90.0f, 1e-5f);
+    }
+    const Mat4 view = camera.world_to_view();
+    const auto& v = view.m;
+    const Vec3 ahead = camera.position() + camera.forward() * 2.0f;
+    EXPECT_NEAR(v[2][0] * ahead.x + v[2][1] * ahead.y + v[2][2] * ahead.z + v[2][3], 2.0f, 1e-5f);
+    const Ray right = camera.generate_ray({150, 45});
+    const Vec3 q = right.origin + right.direction;
+    EXPECT_GT(v[0][0] * q.x + v[0][1] * q.y + v[0][2] * q.z + v[0][3], 0.0f);
+  }
+}
+
 // ---- thin lens ----
 
 CameraDesc thin_lens() {
