@@ -12,6 +12,7 @@ demo: build-caligo
 	$(BUILD)/apps/caligo/caligo render default -o out/default.exr
 
 test: build
+	scripts/install-deps --tests
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS)
 
 deps:
