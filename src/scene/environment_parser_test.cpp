@@ -162,6 +162,28 @@ TEST_F(EnvironmentFiles, GeneratedSky) {
             512);  // the default resolution
 }
 
+// pbrt-v4's equal-area square: light +z is the square's centre; turned by -90 degrees about X
+// it lies along world +y (the zenith of the lat-long map it is resampled to, 2n x n).
+TEST_F(EnvironmentFiles, EqualAreaMapsAreResampledThroughTheirRotation) {
+  std::vector<RGB> square(16 * 16, RGB(0.0f));
+  for (int y = 6; y < 10; ++y)
+    for (int x = 6; x < 10; ++x) square[size_t(y * 16 + x)] = RGB(4.0f);
+  write_pfm(dir / "ea.pfm", 16, 16, square);
+  const SceneDesc scene = parse(R"([{"type": "environment", "map": {"file": "ea.pfm", "projection": "equal_area",
+      "transform": [{"rotate": {"angle": -90, "axis": [1, 0, 0]}}]}}])");
+  const auto& env = std::get<EnvironmentLight>(scene.lights[0]);
+  ASSERT_TRUE(env.map);
+  EXPECT_EQ(env.map->width(), 32);
+  EXPECT_EQ(env.map->height(), 16);
+  EXPECT_NEAR(escaped_radiance(scene.lights[0], {0, 1, 0}).r, 4.0f, 1e-4f);
+  EXPECT_EQ(escaped_radiance(scene.lights[0], {0, -1, 0}), RGB(0.0f));
+  EXPECT_EQ(escaped_radiance(scene.lights[0], {0, 0, 1}), RGB(0.0f));
+  // Without the rotation light +z stays world +z.
+  const SceneDesc plain = parse(R"([{"type": "environment", "map": {"file": "ea.pfm", "projection": "equal_area"}}])");
+  EXPECT_NEAR(escaped_radiance(plain.lights[0], {0, 0, 1}).r, 4.0f, 1e-4f);
+  EXPECT_EQ(escaped_radiance(plain.lights[0], {0, 1, 0}), RGB(0.0f));
+}
+
 TEST_F(EnvironmentFiles, BadMapsAndValuesAreLocated) {
   struct Bad {
     std::string lights, pointer, message_part;
@@ -192,6 +214,16 @@ TEST_F(EnvironmentFiles, BadMapsAndValuesAreLocated) {
       {R"([{"type": "environment", "map": "spot.pfm", "strength": -1}])", "/lights/0/strength", ">= 0"},
       {R"([{"type": "environment", "map": "spot.pfm", "visible": 1}])", "/lights/0/visible", "true or false"},
       {R"([{"type": "environment", "map": "spot.pfm", "rotation": "east"}])", "/lights/0/rotation", "number"},
+      {R"([{"type": "environment", "map": {"file": "spot.pfm", "projection": "equal_area"}}])", "/lights/0/map/file",
+       "is square"},
+      {R"([{"type": "environment", "map": {"file": "square.pfm", "projection": "equal_area",
+         "transform": [{"scale": 2}]}}])", "/lights/0/map/transform", "must be a rotation"},
+      {R"([{"type": "environment", "map": {"file": "spot.pfm", "transform": [{"scale": 2}]}}])", "/lights/0/map/transform",
+       "turns an equal-area map"},
+      {R"([{"type": "environment", "map": {"generate": {"kind": "sky"}, "projection": "equal_area"}}])",
+       "/lights/0/map/projection", "projection of an image file"},
+      {R"([{"type": "environment", "map": {"file": "spot.pfm", "projection": "mercator"}}])", "/lights/0/map/projection",
+       "mercator"},
   };
   for (const Bad& c : cases) {
     SCOPED_TRACE(c.lights);

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -9,6 +11,7 @@
 #include "core/math.h"
 #include "image/image_read.h"
 #include "lights/environment_map.h"
+#include "lights/equal_area.h"
 #include "lights/gobo.h"
 #include "lights/gobo_generate.h"
 #include "lights/ies.h"
@@ -83,18 +86,48 @@ std::shared_ptr<const IesProfile> load_profile(const JsonCursor& c, LightFileCac
   }
 }
 
-// A lat-long image file, read once per scene. Negative pixel values were clamped to 0 by
-// read_image_rgb; non-finite ones are rejected there.
-std::shared_ptr<const EnvironmentMap> load_environment_map(const JsonCursor& c, LightFileCache& files) {
+// Whether the linear part of `t` is a rotation (orthonormal, not mirrored) within float error;
+// a translation does not move directions and is ignored.
+bool is_rotation(const Transform& t) {
+  const auto& m = t.matrix().m;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      float dot_ij = 0.0f;
+      for (int k = 0; k < 3; ++k) dot_ij += m[size_t(k)][size_t(i)] * m[size_t(k)][size_t(j)];
+      if (std::abs(dot_ij - (i == j ? 1.0f : 0.0f)) > 1e-4f) return false;
+    }
+  return !t.swaps_handedness();
+}
+
+// pbrt-v4's equal-area square (lights/equal_area.h), turned into the world by `to_world` and
+// resampled to a lat-long map at load.
+struct EqualArea {
+  Transform to_world;
+};
+
+// A lat-long (or equal-area) image file, read once per scene and projection. Negative pixel
+// values were clamped to 0 by read_image_rgb; non-finite ones are rejected there.
+std::shared_ptr<const EnvironmentMap> load_environment_map(const JsonCursor& c, LightFileCache& files,
+                                                           const std::optional<EqualArea>& equal_area = std::nullopt) {
   const std::string path = files.files.resolve(c);
-  if (auto it = files.environment_maps.find(path); it != files.environment_maps.end()) return it->second;
+  std::string key = path;
+  if (equal_area)
+    for (const auto& row : equal_area->to_world.matrix().m)
+      for (float v : row) key += " " + std::to_string(v);
+  if (auto it = files.environment_maps.find(key); it != files.environment_maps.end()) return it->second;
   try {
     const Image image = read_image_rgb(path);
     std::vector<RGB> pixels(image.pixel_count());
     for (size_t p = 0; p < pixels.size(); ++p)
       pixels[p] = {image.pixels()[3 * p], image.pixels()[3 * p + 1], image.pixels()[3 * p + 2]};
-    auto map = std::make_shared<const EnvironmentMap>(image.width(), image.height(), std::move(pixels));
-    files.environment_maps.emplace(path, map);
+    if (equal_area && image.width() != image.height())
+      c.fail("an equal-area environment map is square; " + path + " is " + std::to_string(image.width()) + "x" +
+             std::to_string(image.height()));
+    auto map = equal_area ? std::make_shared<const EnvironmentMap>(
+                                2 * image.width(), image.width(),
+                                equal_area_to_latlong(pixels, image.width(), equal_area->to_world))
+                          : std::make_shared<const EnvironmentMap>(image.width(), image.height(), std::move(pixels));
+    files.environment_maps.emplace(key, map);
     return map;
   } catch (const InputError& e) {
     c.fail(std::string("cannot use the environment map: ") + e.what());
@@ -117,13 +150,25 @@ std::shared_ptr<const EnvironmentMap> generate_environment_map(const JsonCursor&
   return std::make_shared<const EnvironmentMap>(generate_sky(p));
 }
 
-// "map": "file.exr", {"file": "file.exr"} or {"generate": {...}}.
+// "map": "file.exr", {"file": "file.exr"} or {"generate": {...}}; a file may be pbrt-v4's
+// equal-area square ("projection": "equal_area", turned by "transform", a rotation).
 std::shared_ptr<const EnvironmentMap> read_environment_map(const JsonCursor& c, LightFileCache& files) {
   if (c.is_string()) return load_environment_map(c, files);
   ObjectReader r(c, "an environment map (a file name, {\"file\": ...} or {\"generate\": ...})");
-  r.allow({"file", "generate"});
+  r.allow({"file", "generate", "projection", "transform"});
   const auto [which, m] = r.exactly_one("file", "generate");
-  auto map = which == 0 ? load_environment_map(m, files) : generate_environment_map(m);
+  std::optional<EqualArea> equal_area;
+  if (r.has("projection") && r.choice("projection", {"latlong", "equal_area"}) == "equal_area") {
+    if (which != 0) r.required("projection").fail("\"equal_area\" is a projection of an image file");
+    equal_area = EqualArea{};
+    if (auto t = r.optional("transform")) {
+      equal_area->to_world = parse_transform(*t);
+      if (!is_rotation(equal_area->to_world)) t->fail("an environment map's transform must be a rotation");
+    }
+  } else if (r.has("transform")) {
+    r.required("transform").fail("\"transform\" turns an equal-area map; a lat-long map takes the light's \"rotation\"");
+  }
+  auto map = which == 0 ? load_environment_map(m, files, equal_area) : generate_environment_map(m);
   r.finish();
   return map;
 }

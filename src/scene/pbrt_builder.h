@@ -81,7 +81,7 @@ MaterialSpec read_material(const std::string& type, const ParamList& params, con
 void add_shape(const std::string& type, const ParamList& params, const GraphicsState& state, const std::string& where,
                const std::string& base_dir, Builder& b);
 void add_light(const std::string& type, const ParamList& params, const GraphicsState& state, const std::string& where,
-               Builder& b);
+               const std::string& base_dir, Builder& b);
 AreaLight read_area_light(const std::string& type, const ParamList& params, const std::string& where, Builder& b);
 MediumSpec read_medium(const std::string& type, const ParamList& params, const Mat4& ctm, const std::string& where,
                        const std::string& base_dir, Builder& b);

@@ -404,7 +404,7 @@ void Importer::world_directive(const std::string& name, const std::string& where
     if (named) b_.named_materials[first] = spec; else gs_.material = spec;
   } else if (name == "LightSource") {
     require_world(name, where);
-    add_light(type, p, gs_, where, b_);
+    add_light(type, p, gs_, where, base_dir_, b_);
   } else {
     gs_.area_light = read_area_light(type, p, where, b_);
   }

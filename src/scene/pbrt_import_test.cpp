@@ -106,6 +106,25 @@ TEST(PbrtImport, TheCameraKeepsPbrtsHandednessAndShorterSideFov) {
   EXPECT_EQ(s["camera"]["resolution"], Json::array({100, 200}));
 }
 
+// An image infinite light keeps its file, pbrt's equal-area projection and the light's frame.
+TEST(PbrtImport, ImageInfiniteLightsKeepTheirFrame) {
+  const Json s = convert(std::string(kHeader) +
+                         "AttributeBegin\nRotate -90 1 0 0\nLightSource \"infinite\" \"string filename\" \"sky.exr\" "
+                         "\"float scale\" 2\nAttributeEnd\n");
+  const Json& light = s["lights"][0];
+  EXPECT_EQ(light["type"], "environment");
+  EXPECT_EQ(light["strength"], 2.0);
+  EXPECT_EQ(light["map"]["projection"], "equal_area");
+  EXPECT_EQ(light["map"]["file"], "./sky.exr");
+  const Json& m = light["map"]["transform"][0]["matrix"];
+  ASSERT_EQ(m.size(), 16u);
+  EXPECT_NEAR(double(m[6]), 1.0, 1e-6);  // row 1, column 2: light +z goes to world +y
+  EXPECT_NEAR(double(m[9]), -1.0, 1e-6);
+  EXPECT_NE(error_of(std::string(kHeader) + "LightSource \"infinite\" \"string filename\" \"a.exr\" \"float illuminance\" 5\n")
+                .find("s.pbrt:4: LightSource \"infinite\": \"illuminance\" with an image"),
+            std::string::npos);
+}
+
 TEST(PbrtImport, LightsAreScaledAsPbrtScalesThem) {
   Json s = convert(std::string(kHeader) +
                    "LightSource \"point\" \"point3 from\" [1 2 3] \"float power\" 100\n"

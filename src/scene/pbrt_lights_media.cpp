@@ -41,7 +41,7 @@ Json medium_coefficients(const ParamList& p, const std::string& where, Builder& 
 }  // namespace
 
 void add_light(const std::string& type, const ParamList& p, const GraphicsState& state, const std::string& where,
-               Builder& b) {
+               const std::string& base_dir, Builder& b) {
   const float scale = float(p.number("scale", 1));
   if (type == "point") {
     const RGB I = p.spectrum("I", RGB(1.0f), b.warnings);
@@ -73,9 +73,20 @@ void add_light(const std::string& type, const ParamList& p, const GraphicsState&
                     {"irradiance", scale * (e > 0 ? float(e) : 1.0f)}},
                where, b);
   } else if (type == "infinite") {
-    if (p.has("filename"))
-      fail_at(where, "LightSource \"infinite\": image maps (pbrt-v4's equal-area square images) are not read by Caligo's "
-                     "importer yet; use a constant \"L\" or Caligo's own environment light with a latitude-longitude map");
+    if (p.has("filename")) {
+      // pbrt-v4's equal-area square, in the light's frame (the CTM here), resampled at load.
+      if (p.has("L")) fail_at(where, "LightSource \"infinite\": give \"L\" or \"filename\", not both");
+      if (p.has("illuminance"))
+        fail_at(where, "LightSource \"infinite\": \"illuminance\" with an image is not supported; give \"scale\"");
+      const std::string file = p.string("filename", "");
+      const fs::path path = fs::path(file).is_absolute() ? fs::path(file) : fs::path(base_dir) / file;
+      push_light(Json{{"type", "environment"},
+                      {"map", Json{{"file", path.string()}, {"projection", "equal_area"},
+                                   {"transform", Json::array({matrix_op(state.ctm)})}}},
+                      {"strength", scale}},
+                 where, b);
+      return;
+    }
     const RGB L = p.spectrum("L", RGB(1.0f), b.warnings);
     const double e = p.number("illuminance", -1);  // of the upper hemisphere: pi L for a constant sky
     push_light(Json{{"type", "environment"}, {"color", to_json(L)},
