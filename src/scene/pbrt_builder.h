@@ -39,6 +39,7 @@ struct AreaLight {
   RGB radiance;
   bool two_sided = false;
   std::string where;
+  double power = -1;  // watts when given: the radiance is scaled to emit it from the shape's area
 };
 
 // A named medium as declared: its Caligo medium and, for grid media, the volume that holds it

@@ -11,6 +11,7 @@
 #include "core/math.h"
 #include "core/message_text.h"
 #include "scene/pbrt_builder.h"
+#include "scene/pbrt_instances.h"
 #include "scene/scene_parser.h"
 
 namespace caligo {
@@ -59,6 +60,7 @@ class Importer {
     for (const char* key : {"shapes", "lights", "volumes"}) b_.scene[key] = Json::array();
     while (at_ < s_.tokens.size()) directive();
     if (!world_) fail_at(s_.files[0], "no WorldBegin: the file describes no scene");
+    if (instancing_.defining()) fail_at(s_.files[0], "an ObjectBegin is never closed by ObjectEnd");
     finish_camera_medium();
     for (const char* key : {"materials", "media", "shapes", "lights", "volumes"})
       if (b_.scene[key].empty()) b_.scene.erase(key);
@@ -108,6 +110,7 @@ class Importer {
   void film(const std::string& type, const ParamList& p, const std::string& where);
   void world_begin(const std::string& where);
   void finish_camera_medium();
+  void object_directive(const std::string& name, const std::string& where);
 
   const TokenStream& s_;
   std::string base_dir_;
@@ -122,6 +125,7 @@ class Importer {
   std::optional<std::array<Vec3, 3>> last_look_at_;  // a LookAt on the identity, and the CTM it made
   Mat4 look_at_ctm_ = Mat4::identity();
   bool world_ = false;
+  ObjectInstancing instancing_;
 };
 
 void Importer::directive() {
@@ -355,6 +359,23 @@ void Importer::finish_camera_medium() {
   b_.place_medium(camera_medium_, camera_.where, true);
 }
 
+// ObjectBegin opens an attribute block, as in pbrt; ObjectEnd closes it.
+void Importer::object_directive(const std::string& name, const std::string& where) {
+  require_world(name, where);
+  if (name == "ObjectBegin") {
+    const std::string object = quoted(name);
+    stack_.push_back(gs_);
+    instancing_.begin(object, where, b_);
+  } else if (name == "ObjectEnd") {
+    instancing_.end(where, b_);
+    if (stack_.empty() || stack_.back().material.pbrt_type == "<transform>") fail_at(where, "ObjectEnd without ObjectBegin");
+    gs_ = stack_.back();
+    stack_.pop_back();
+  } else {
+    instancing_.instance(quoted(name), gs_.ctm, where, b_);
+  }
+}
+
 void Importer::world_directive(const std::string& name, const std::string& where) {
   if (name == "AttributeBegin") {
     stack_.push_back(gs_);
@@ -366,8 +387,10 @@ void Importer::world_directive(const std::string& name, const std::string& where
     stack_.pop_back();
     return;
   }
-  if (name == "ObjectBegin" || name == "ObjectEnd" || name == "ObjectInstance")
-    fail_at(where, name + ": object instancing is not supported by Caligo's importer");
+  if (name == "ObjectBegin" || name == "ObjectEnd" || name == "ObjectInstance") {
+    object_directive(name, where);
+    return;
+  }
   if (name == "NamedMaterial") {
     const std::string material = quoted(name);
     const auto it = b_.named_materials.find(material);
@@ -396,6 +419,8 @@ void Importer::world_directive(const std::string& name, const std::string& where
   ParamList p = params();
   const std::string type = named ? p.string("type", "") : first;
   const std::string label = name + " " + quote_for_message(type);
+  if (instancing_.defining() && (name == "LightSource" || (name == "Shape" && gs_.area_light)))
+    fail_at(where, label + ": lights inside an object definition (ObjectBegin) are not supported, as in pbrt-v4");
   if (name == "Shape") {
     require_world(name, where);
     add_shape(type, p, gs_, where, base_dir_, b_);

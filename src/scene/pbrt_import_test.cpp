@@ -46,7 +46,8 @@ TEST(PbrtImport, ErrorsNameTheFileAndLine) {
   EXPECT_NE(error_of("Shape \"sphere\n").find("s.pbrt:1: a string is not closed"), std::string::npos);
   EXPECT_NE(error_of("Shape \"sphere\"\n").find("s.pbrt:1: Shape must come after WorldBegin"), std::string::npos);
   EXPECT_NE(error_of("LookAt 0 0 5  0 0 0  0 1 0\n").find("no WorldBegin"), std::string::npos);
-  EXPECT_NE(error_of(std::string(kHeader) + "ObjectBegin \"tree\"\n").find("object instancing"), std::string::npos);
+  EXPECT_NE(error_of(std::string(kHeader) + "ObjectBegin \"tree\"\n").find("s.pbrt: an ObjectBegin is never closed"),
+            std::string::npos);
   EXPECT_NE(error_of(std::string(kHeader) + "NamedMaterial \"gold\"\n").find("s.pbrt:4: NamedMaterial: no material"),
             std::string::npos);
   EXPECT_NE(error_of(std::string(kHeader) + "MediumInterface \"fog\" \"\"\n").find("s.pbrt:4: MediumInterface: medium \"fog\" is not defined"),
@@ -104,6 +105,49 @@ TEST(PbrtImport, TheCameraKeepsPbrtsHandednessAndShorterSideFov) {
   const double expected = 2 * std::atan(std::tan(radians(45.0f) / 2) * 2.0) * 180 / kPi;
   EXPECT_NEAR(double(s["camera"]["fov"]), expected, 1e-3);
   EXPECT_EQ(s["camera"]["resolution"], Json::array({100, 200}));
+}
+
+// ObjectInstance copies the object's shapes, the instance's transform after their own.
+TEST(PbrtImport, ObjectInstancesAreExpanded) {
+  const std::string tri = "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 2]\n";
+  const Json s = convert(std::string(kHeader) + "ObjectBegin \"tri\"\n" + tri + "ObjectEnd\n" +
+                         "AttributeBegin\nTranslate 5 0 0\nObjectInstance \"tri\"\nAttributeEnd\nObjectInstance \"tri\"\n");
+  ASSERT_EQ(s["shapes"].size(), 2u);
+  const Json& moved = s["shapes"][0]["transform"].back()["matrix"];
+  EXPECT_EQ(moved[3], 5.0);  // row 0, column 3: the translation
+  EXPECT_FALSE(s["shapes"][1].contains("transform"));
+  EXPECT_EQ(s["shapes"][1]["positions"], s["shapes"][0]["positions"]);
+  // A bad scene in an instance is reported at the shape's directive.
+  const std::string bad = "Shape \"sphere\" \"float radius\" 1e9\n";
+  EXPECT_EQ(error_of(std::string(kHeader) + "ObjectBegin \"b\"\n" + bad + "ObjectEnd\nObjectInstance \"b\"\n").rfind("s.pbrt:5: ", 0), 0u);
+  EXPECT_NE(error_of(std::string(kHeader) + "ObjectInstance \"nope\"\n").find("s.pbrt:4: ObjectInstance: no object \"nope\""),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kHeader) + "ObjectEnd\n").find("s.pbrt:4: ObjectEnd without ObjectBegin"), std::string::npos);
+  EXPECT_NE(error_of(std::string(kHeader) + "ObjectBegin \"l\"\nLightSource \"point\"\n").find("s.pbrt:5: LightSource"),
+            std::string::npos);
+  EXPECT_NE(error_of(std::string(kHeader) + "ObjectBegin \"a\"\nObjectBegin \"b\"\n").find("s.pbrt:5: ObjectBegin inside"),
+            std::string::npos);
+}
+
+// "power" on an area light: radiance x pi x area x sides = power (pbrt-v4's DiffuseAreaLight).
+TEST(PbrtImport, AreaLightPowerIsSpreadOverTheShape) {
+  const Json s = convert(std::string(kHeader) +
+                         "AttributeBegin\nAreaLightSource \"diffuse\" \"rgb L\" [1 0.5 0.25] \"float power\" 100\n"
+                         "Shape \"sphere\" \"float radius\" 0.5\nAttributeEnd\n"
+                         "AttributeBegin\nAreaLightSource \"diffuse\" \"float power\" 10 \"bool twosided\" true\n"
+                         "Shape \"bilinearmesh\" \"point3 P\" [0 0 0 2 0 0 0 3 0 2 3 0]\nAttributeEnd\n");
+  const auto emission = [&](int i) {
+    const Json& m = s["materials"][std::string(s["shapes"][i]["material"])];
+    return m.contains("emission") ? m["emission"] : m["radiance"];
+  };
+  const Json e0 = emission(0), e1 = emission(1);
+  ASSERT_TRUE(e0.is_array()) << s["materials"].dump();
+  EXPECT_NEAR(double(e0[0]), 100 / (kPi * 4 * kPi * 0.25), 1e-4);
+  EXPECT_NEAR(double(e0[1]), 0.5 * 100 / (kPi * 4 * kPi * 0.25), 1e-4);
+  EXPECT_NEAR(double(e1.is_array() ? e1[0] : e1), 10 / (2 * kPi * 6), 1e-5);
+  EXPECT_NE(error_of(std::string(kHeader) + "AreaLightSource \"diffuse\" \"float power\" 10\n"
+                                            "Shape \"plymesh\" \"string filename\" \"x.ply\"\n").find("s.pbrt:5: AreaLightSource"),
+            std::string::npos);
 }
 
 // An image infinite light keeps its file, pbrt's equal-area projection and the light's frame.

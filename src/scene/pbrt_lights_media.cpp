@@ -100,9 +100,10 @@ void add_light(const std::string& type, const ParamList& p, const GraphicsState&
 AreaLight read_area_light(const std::string& type, const ParamList& p, const std::string& where, Builder& b) {
   if (type != "diffuse") fail_at(where, "AreaLightSource " + quote_for_message(type) + ": only \"diffuse\"");
   if (p.has("filename")) fail_at(where, "AreaLightSource \"diffuse\": image emission (\"filename\") is not supported");
-  if (p.has("power")) fail_at(where, "AreaLightSource \"diffuse\": \"power\" is not supported; give \"L\" and \"scale\"");
   const RGB L = p.spectrum("L", RGB(1.0f), b.warnings) * float(p.number("scale", 1));
-  return {L, p.boolean("twosided", false), where};
+  const double power = p.number("power", -1);
+  if (p.has("power") && !(power > 0)) fail_at(where, "AreaLightSource \"diffuse\": \"power\" must be > 0");
+  return {L, p.boolean("twosided", false), where, power};
 }
 
 MediumSpec read_medium(const std::string& type, const ParamList& p, const Mat4& ctm, const std::string& where,

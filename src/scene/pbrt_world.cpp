@@ -192,6 +192,32 @@ std::string Builder::material_for(const MaterialSpec& spec, const GraphicsState&
   return name;
 }
 
+namespace {
+
+// The area of a converted shape, for an area light's "power": spheres and inline meshes, whose
+// positions are already in the world; a PLY file is not read here.
+double shape_area(const Json& shape, const std::string& where) {
+  if (shape["type"] == "sphere") {
+    const double r = shape["radius"];
+    return 4 * kPi * r * r;
+  }
+  if (!shape.contains("positions"))
+    fail_at(where, "AreaLightSource \"diffuse\": \"power\" on a plymesh is not supported (the file is not read "
+                   "while importing); give \"L\" and \"scale\"");
+  const Json& p = shape["positions"];
+  const Json& idx = shape["indices"];
+  const auto at = [&](size_t i) {
+    const size_t k = 3 * size_t(idx[i]);
+    return Vec3(float(p[k]), float(p[k + 1]), float(p[k + 2]));
+  };
+  double area = 0;
+  for (size_t i = 0; i + 2 < idx.size(); i += 3) area += 0.5 * double(length(cross(at(i + 1) - at(i), at(i + 2) - at(i))));
+  if (!(area > 0)) fail_at(where, "AreaLightSource \"diffuse\": \"power\" on a shape of no area");
+  return area;
+}
+
+}  // namespace
+
 void add_shape(const std::string& type, const ParamList& p, const GraphicsState& state, const std::string& where,
                const std::string& base_dir, Builder& b) {
   const bool swaps = determinant3(state.ctm) < 0.0f;
@@ -244,7 +270,15 @@ void add_shape(const std::string& type, const ParamList& p, const GraphicsState&
     fail_at(where, "Shape " + quote_for_message(type) +
                        " cannot be rendered by Caligo (sphere, disk, trianglemesh, bilinearmesh, plymesh)");
   }
-  shape["material"] = b.material_for(state.material, state, where);
+  if (state.area_light && state.area_light->power > 0) {
+    // pbrt-v4: the radiance times pi, the area and the sides emits the power.
+    GraphicsState powered = state;
+    const double area = shape_area(shape, where);
+    powered.area_light->radiance *= float(state.area_light->power / ((state.area_light->two_sided ? 2 : 1) * kPi * area));
+    shape["material"] = b.material_for(powered.material, powered, where);
+  } else {
+    shape["material"] = b.material_for(state.material, state, where);
+  }
   Json& shapes = b.scene["shapes"];
   b.add_origin("/shapes/" + std::to_string(shapes.size()), where);
   shapes.push_back(shape);
