@@ -42,6 +42,7 @@ struct RenderOptions {
   std::optional<int> frame;           // the frame being rendered: "{frame}" in the scene's file names
   float exposure = 0.0f;
   std::string view = "filmic";  // --view filmic|standard: the PNG preview's tone curve
+  bool denoise = false;          // --denoise: two half-sample films and the denoised layer (render_denoised.cpp)
   std::vector<std::string> priorities;  // --priority MATERIAL=LEVEL, applied in order
   bool list_builtins = false;
   bool quiet = false;
@@ -108,6 +109,15 @@ struct BenchTableOptions {
   float exposure = 0.0f;
 };
 
+struct DenoiseOptions {
+  std::string input, output;
+  std::optional<std::string> reference;  // --reference: true errors and a comparison strip
+  int radius = 5;
+  float exposure = 0.0f;
+  std::string view = "filmic";
+  bool quiet = false;
+};
+
 struct InfoOptions {
   std::string file;  // .vdb or .nvdb
 };
@@ -143,6 +153,8 @@ void add_info_command(CLI::App& app, InfoOptions& options);
 void add_scene_command(CLI::App& app, SceneCommandOptions& options);
 int run_scene(const SceneCommandOptions& options);
 int run_info(const InfoOptions& options);
+void add_denoise_command(CLI::App& app, DenoiseOptions& options);
+int run_denoise(const DenoiseOptions& options);
 void add_bench_table_command(CLI::App& app, BenchTableOptions& options);
 int run_bench_table(const BenchTableOptions& options);
 

@@ -51,6 +51,8 @@ int main(int argc, char** argv) {
   caligo::add_scene_command(app, scene);
   caligo::BenchTableOptions bench_table;
   caligo::add_bench_table_command(app, bench_table);
+  caligo::DenoiseOptions denoise;
+  caligo::add_denoise_command(app, denoise);
   if (report_unknown_command(app, argc, argv)) return caligo::kExitInputError;
   try {
     app.parse(argc, argv);
@@ -73,6 +75,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("info")) return caligo::run_info(info);
     if (app.got_subcommand("scene")) return caligo::run_scene(scene);
     if (app.got_subcommand("bench-table")) return caligo::run_bench_table(bench_table);
+    if (app.got_subcommand("denoise")) return caligo::run_denoise(denoise);
   } catch (const caligo::distributed::RankFailure& e) {
     return e.exit_code();  // an MPI job failed: rank 0 printed why
   } catch (const caligo::InputError& e) {

@@ -17,6 +17,7 @@
 #include "interrupt.h"
 #include "render/progressive.h"
 #include "render/render.h"
+#include "render_denoised.h"
 #include "render_metadata.h"
 #include "render_outputs.h"
 #include "scene/builtins.h"
@@ -96,6 +97,8 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   cmd->add_flag("--list-builtins", o.list_builtins, "List the built-in scenes and exit");
   cmd->add_flag("-q,--quiet", o.quiet, "No progress output");
+  cmd->add_flag("--denoise", o.denoise,
+                "Render two half-sample films and write the denoised beauty as the layer \"denoised\" (the PNG shows it)");
   cmd->add_option("--checkpoint", o.checkpoint,
                   "Save the film's raw sums to FILE as the render goes (every --checkpoint-every) and at the end, "
                   "so --resume can continue it; an interrupt (Ctrl-C, SIGTERM) saves one too");
@@ -456,6 +459,10 @@ int run_render(const RenderOptions& o) {
   const uint64_t key = keyed ? key_now() : 0;
   const Progress::Style style = o.quiet ? Progress::Style::kQuiet : Progress::Style::kAuto;
   if (distributed::launcher_world_size()) return run_distributed(o, desc, schedule, *scene, settings, outputs, key, style);
+  if (o.denoise)
+    return run_render_denoised(o, *scene, settings, outputs, [&](std::pair<int, int> samples, double seconds) {
+      return header_of(desc, settings, samples, seconds);
+    });
 
   Film film = o.resume ? load_checkpoint(*o.resume, key, settings) : Film(settings.resolution, settings.aovs);
   const ProgressiveResult result =

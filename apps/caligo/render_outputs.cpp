@@ -17,10 +17,10 @@ std::string with_suffix(const std::string& exr, const char* suffix) {
 }
 
 std::vector<OutputTransaction::Writer> image_writers(const Image& image, const PreviewSettings& preview,
-                                                     const ExrAttributes& attributes) {
+                                                     const ExrAttributes& attributes, const Image& shown) {
   return {[&image, &attributes](const std::string& temp) { write_exr(temp, image, false, attributes); },
-          [&image, preview](const std::string& temp) {
-            write_png(temp, image.width(), image.height(), to_srgb8_preview(image, preview));
+          [&shown, preview](const std::string& temp) {
+            write_png(temp, shown.width(), shown.height(), to_srgb8_preview(shown, preview));
           }};
 }
 
@@ -72,8 +72,8 @@ RenderOutputs::RenderOutputs(const RenderOptions& o, const SceneDesc& desc)
 // (their own plan), then reports the checkpoint: what fits is kept.
 void RenderOutputs::write_keeping_images(const OutputTransaction& plan, const OutputTransaction& images_only,
                                          const Image& image, const Film* film, uint64_t key,
-                                         const ExrAttributes& attributes) const {
-  std::vector<OutputTransaction::Writer> writers = image_writers(image, preview_, attributes);
+                                         const ExrAttributes& attributes, const Image* preview) const {
+  std::vector<OutputTransaction::Writer> writers = image_writers(image, preview_, attributes, preview ? *preview : image);
   if (!film) {
     OutputTransaction(plan).commit(writers);
     return;
@@ -88,9 +88,9 @@ void RenderOutputs::write_keeping_images(const OutputTransaction& plan, const Ou
   }
 }
 
-void RenderOutputs::write_final(const Image& image, const Film* film, uint64_t key,
-                                const ExrAttributes& attributes) const {
-  write_keeping_images(final_, *final_images_, image, asked_checkpoint_ ? film : nullptr, key, attributes);
+void RenderOutputs::write_final(const Image& image, const Film* film, uint64_t key, const ExrAttributes& attributes,
+                                const Image* preview) const {
+  write_keeping_images(final_, *final_images_, image, asked_checkpoint_ ? film : nullptr, key, attributes, preview);
 }
 
 void RenderOutputs::write_interrupted(const Image& image, const Film& film, uint64_t key,

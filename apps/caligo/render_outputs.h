@@ -39,14 +39,17 @@ class RenderOutputs {
   // The finished image (with `attributes` in its header), its preview and the asked-for
   // checkpoint of `film`; when only the checkpoint fails, the image and preview are written and
   // the EnvironmentError says so.
-  void write_final(const Image& image, const Film* film, uint64_t key, const ExrAttributes& attributes) const;
+  // `preview`, when given, is what the PNG shows instead of the image's beauty (the denoised one).
+  void write_final(const Image& image, const Film* film, uint64_t key, const ExrAttributes& attributes,
+                   const Image* preview = nullptr) const;
   // The partial image and preview, and a checkpoint when one can be written; the images are
   // kept when only the checkpoint fails, as above.
   void write_interrupted(const Image& image, const Film& film, uint64_t key, const ExrAttributes& attributes) const;
 
  private:
   void write_keeping_images(const OutputTransaction& plan, const OutputTransaction& images_only, const Image& image,
-                            const Film* film, uint64_t key, const ExrAttributes& attributes) const;
+                            const Film* film, uint64_t key, const ExrAttributes& attributes,
+                            const Image* preview = nullptr) const;
 
   PreviewSettings preview_;  // --exposure and --view
   std::string exr_, png_, partial_exr_, partial_png_, checkpoint_;

@@ -1,0 +1,62 @@
+// caligo render --denoise and caligo denoise through the binary: the beauty is the plain
+// render's bit for bit, the layers are written, the denoise command reproduces the denoised
+// layer, and bad inputs are refused with exit 2 and no output.
+#include <cstring>
+
+#include "cli_testing.h"
+#include "image/exr_io.h"
+
+namespace {
+
+using namespace caligo_cli;
+
+class Denoise : public CliFixture {};
+
+TEST_F(Denoise, RenderDenoiseKeepsTheBeautyAndAddsTheLayers) {
+  const std::string common = "render default --res 40x30 --spp 8 --seed 5 -q ";
+  ASSERT_EQ(run(common + "-o " + (dir_ / "plain.exr").string()).exit_code, 0);
+  const RunResult r = run(common + "--denoise -o " + (dir_ / "d.exr").string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const caligo::Image plain = caligo::read_exr((dir_ / "plain.exr").string());
+  const caligo::Image d = caligo::read_exr((dir_ / "d.exr").string());
+  for (const char* layer : {"half_a.", "half_b.", "denoised.", "variance.", "albedo.", "N."})
+    EXPECT_TRUE(d.has_channel(std::string(layer) + (std::strcmp(layer, "N.") ? "R" : "X"))) << layer;
+  // Two halves merged are the one render: the beauty is the same bits.
+  for (int y = 0; y < 30; ++y)
+    for (int x = 0; x < 40; ++x)
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(d.at(x, y, c), plain.at(x, y, c)) << x << "," << y;
+  EXPECT_TRUE(fs::exists(dir_ / "d.png"));
+  // The command on that file makes the same denoised layer.
+  const RunResult again = run("denoise " + (dir_ / "d.exr").string() + " -o " + (dir_ / "again.exr").string());
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  EXPECT_NE(again.err.find("estimated MSE"), std::string::npos) << again.err;
+  const caligo::Image a = caligo::read_exr((dir_ / "again.exr").string());
+  const auto dc = *d.rgb_indices("denoised."), ac = *a.rgb_indices("denoised.");
+  for (int y = 0; y < 30; ++y)
+    for (int x = 0; x < 40; ++x)
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(a.at(x, y, ac[size_t(c)]), d.at(x, y, dc[size_t(c)]));
+}
+
+TEST_F(Denoise, BadInputsAreRefusedWithNothingWritten) {
+  ASSERT_EQ(run("render default --res 16x12 --spp 4 -q -o " + (dir_ / "plain.exr").string()).exit_code, 0);
+  const RunResult missing = run("denoise " + (dir_ / "plain.exr").string() + " -o " + (dir_ / "out.exr").string());
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.err.find("half_a"), std::string::npos) << missing.err;
+  EXPECT_NE(missing.err.find("plain.exr"), std::string::npos) << missing.err;
+  EXPECT_FALSE(fs::exists(dir_ / "out.exr"));
+  EXPECT_FALSE(fs::exists(dir_ / "out.png"));
+  write("garbage.exr", "not an exr");
+  EXPECT_EQ(run("denoise " + (dir_ / "garbage.exr").string() + " -o " + (dir_ / "out.exr").string()).exit_code, 2);
+  EXPECT_EQ(run("denoise " + (dir_ / "plain.exr").string() + " -o " + (dir_ / "plain.exr").string()).exit_code, 2);
+  EXPECT_EQ(run("denoise " + (dir_ / "plain.exr").string() + " -o " + (dir_ / "out.png").string()).exit_code, 2);
+  EXPECT_EQ(run("denoise " + (dir_ / "plain.exr").string() + " --radius 0 -o " + (dir_ / "out.exr").string()).exit_code, 2);
+  const RunResult few = run("render default --res 16x12 --spp 2 --denoise -o " + (dir_ / "few.exr").string());
+  EXPECT_EQ(few.exit_code, 2);
+  EXPECT_NE(few.err.find("at least 4 samples"), std::string::npos) << few.err;
+  const RunResult timed = run("render default --res 16x12 --spp 8 --denoise --time-limit 5s -o " + (dir_ / "t.exr").string());
+  EXPECT_EQ(timed.exit_code, 2);
+  EXPECT_FALSE(fs::exists(dir_ / "few.exr"));
+  EXPECT_FALSE(fs::exists(dir_ / "t.exr"));
+}
+
+}  // namespace

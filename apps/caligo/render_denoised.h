@@ -1,0 +1,20 @@
+// caligo render --denoise (render_denoised.cpp).
+#pragma once
+
+#include <functional>
+#include <utility>
+
+#include "commands.h"
+#include "image/exr_attributes.h"
+#include "render/render.h"
+#include "render_outputs.h"
+
+namespace caligo {
+
+// The EXR header of the render, given the samples per pixel held and the seconds it took.
+using HeaderOf = std::function<ExrAttributes(std::pair<int, int> samples, double seconds)>;
+
+int run_render_denoised(const RenderOptions& o, const Scene& scene, RenderSettings settings,
+                        const RenderOutputs& outputs, const HeaderOf& header_of);
+
+}  // namespace caligo
