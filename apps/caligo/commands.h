@@ -112,7 +112,7 @@ struct BenchTableOptions {
 struct DenoiseOptions {
   std::string input, output;
   std::optional<std::string> reference;  // --reference: true errors and a comparison strip
-  int radius = 5;
+  int radius = 4;
   float exposure = 0.0f;
   std::string view = "filmic";
   bool quiet = false;

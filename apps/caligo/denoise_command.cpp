@@ -27,7 +27,7 @@ void add_denoise_command(CLI::App& app, DenoiseOptions& o) {
   CLI::App* cmd = app.add_subcommand("denoise", "Denoise an EXR written by `caligo render --denoise`");
   cmd->add_option("input", o.input, "EXR with the half_a, half_b, variance, albedo, N and Z layers")->required();
   cmd->add_option("-o,--output", o.output, "The denoised EXR (a .png preview beside it)")->required();
-  cmd->add_option("--radius", o.radius, "Regression window radius in pixels (1 to 15, default 5)");
+  cmd->add_option("--radius", o.radius, "Regression window radius in pixels (1 to 15, default 4)");
   cmd->add_option("--exposure", o.exposure, "Exposure of the PNG preview, in stops");
   cmd->add_option("--view", o.view, "Tone curve of the PNG preview: filmic (default) or standard")
       ->check(CLI::IsMember({"filmic", "standard"}));

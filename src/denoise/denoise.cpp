@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include <xsimd/xsimd.hpp>
+
+#include <memory>
+
 #include "core/parallel.h"
 
 namespace caligo {
@@ -10,7 +14,6 @@ namespace {
 
 constexpr int kTerms = 1 + kDenoiseFeatures;           // a constant and one slope per feature
 constexpr int kSymmetric = kTerms * (kTerms + 1) / 2;  // the distinct entries of X^T W X
-constexpr int kTileSize = 32;
 constexpr float kEpsilon = 1e-10f;
 constexpr double kRidge = 1e-4;  // on the slopes, relative to the window's total weight
 
@@ -34,165 +37,207 @@ PixelPlane box_mean(const PixelPlane& in, int w, int h, int r) {
   return out;
 }
 
-// Solves the SPD system a x = b (8 x 8, rows of the symmetric packed entries) by Cholesky;
-// false when it is not positive definite.
-bool solve_cholesky(double a[kTerms][kTerms], double b[3][kTerms]) {
-  for (int j = 0; j < kTerms; ++j) {
-    double d = a[j][j];
-    for (int k = 0; k < j; ++k) d -= a[j][k] * a[j][k];
-    if (!(d > 1e-30)) return false;
-    a[j][j] = std::sqrt(d);
-    for (int i = j + 1; i < kTerms; ++i) {
-      double s = a[i][j];
-      for (int k = 0; k < j; ++k) s -= a[i][k] * a[j][k];
-      a[i][j] = s / a[j][j];
-    }
-  }
-  for (int c = 0; c < 3; ++c) {
-    for (int i = 0; i < kTerms; ++i) {  // L y = b
-      double s = b[c][i];
-      for (int k = 0; k < i; ++k) s -= a[i][k] * b[c][k];
-      b[c][i] = s / a[i][i];
-    }
-    for (int i = kTerms - 1; i >= 0; --i) {  // L^T x = y
-      double s = b[c][i];
-      for (int k = i + 1; k < kTerms; ++k) s -= a[k][i] * b[c][k];
-      b[c][i] = s / a[i][i];
-    }
-  }
-  return true;
+// Every plane the filter reads, padded by replicating its edges, so that the loops over a tile's
+// rows read contiguous floats with no clamping (and vectorise).
+struct PaddedPlanes {
+  int width = 0, height = 0, border = 0, stride = 0;
+  PixelPlanes3 y, guide;
+  PixelPlane variance;
+  std::array<PixelPlane, kDenoiseFeatures> features;
+  size_t at(int x, int y_) const { return size_t(y_ + border) * size_t(stride) + size_t(x + border); }
+};
+
+PixelPlane padded(const PixelPlane& in, const PaddedPlanes& g) {
+  PixelPlane out(size_t(g.stride) * size_t(g.height + 2 * g.border));
+  for (int y = -g.border; y < g.height + g.border; ++y)
+    for (int x = -g.border; x < g.width + g.border; ++x)
+      out[g.at(x, y)] = in[size_t(std::clamp(y, 0, g.height - 1)) * size_t(g.width) + size_t(std::clamp(x, 0, g.width - 1))];
+  return out;
 }
 
-// The regression sums of one tile, planar: each entry a tile-sized plane, so that the loops over
-// a tile's pixels run over contiguous floats and vectorise.
+using Batch = xsimd::batch<float>;
+constexpr int kLanes = int(Batch::size);
+constexpr int kTileWidth = 2 * kLanes, kTileHeight = 8;  // 16 x 8 with AVX2: its sums fit the L1 cache
+
+// The regression sums of one tile as batches of kLanes pixels.
 struct TileSums {
-  explicit TileSums(size_t n) {
-    for (PixelPlane& p : xtx) p.assign(n, 0.0f);
-    for (auto& c : xty)
-      for (PixelPlane& p : c) p.assign(n, 0.0f);
-  }
-  std::array<PixelPlane, kSymmetric> xtx;
-  std::array<std::array<PixelPlane, kTerms>, 3> xty;
+  static constexpr int kChunks = kTileWidth * kTileHeight / kLanes;
+  std::array<std::array<Batch, kChunks>, kSymmetric> xtx{};
+  std::array<std::array<std::array<Batch, kChunks>, kTerms>, 3> xty{};
 };
 
-struct FilterInputs {
-  const PixelPlanes3& y;
-  const PixelPlanes3& guide;
-  const PixelPlane& variance;
-  const DenoiseLayers& layers;
-  const DenoiseSettings& settings;
-};
+// The patch rows offset_weights fills: the tile's width and its 1-pixel border, in whole batches.
+constexpr int kPatchWidth = ((kTileWidth + 2 + kLanes - 1) / kLanes) * kLanes;
 
-// NL-means weights of offset (dx, dy) for the tile's pixels (0 where p + offset leaves the image).
-void offset_weights(const FilterInputs& in, const Tile& t, int dx, int dy, PixelPlane& patch, PixelPlane& weights) {
-  const int w = in.layers.width, h = in.layers.height;
-  const int pw = t.x1 - t.x0 + 2, ph = t.y1 - t.y0 + 2;
-  const float k2 = in.settings.k * in.settings.k;
-  for (int j = 0; j < ph; ++j) {
-    const int py = std::clamp(t.y0 - 1 + j, 0, h - 1), qy = std::clamp(py + dy, 0, h - 1);
-    for (int i = 0; i < pw; ++i) {
-      const int px = std::clamp(t.x0 - 1 + i, 0, w - 1), qx = std::clamp(px + dx, 0, w - 1);
-      const size_t p = size_t(py) * size_t(w) + size_t(px), q = size_t(qy) * size_t(w) + size_t(qx);
-      float diff2 = 0.0f;
+// NL-means weights of offset (dx, dy) for a tile's pixels, rows of kTileWidth (0 where p +
+// offset leaves the image, and in the columns past the tile's own width).
+void offset_weights(const PaddedPlanes& g, float k2, const Tile& t, int dx, int dy, float* patch, float* weights) {
+  const int tw = t.x1 - t.x0, th = t.y1 - t.y0;
+  const std::ptrdiff_t offset = std::ptrdiff_t(dy) * g.stride + dx;
+  const Batch third(1.0f / 3.0f), eps(kEpsilon), kk(k2);
+  for (int j = 0; j < th + 2; ++j) {
+    const size_t p = g.at(t.x0 - 1, t.y0 - 1 + j);
+    for (int i = 0; i < kPatchWidth; i += kLanes) {
+      const size_t a = p + size_t(i), b = size_t(std::ptrdiff_t(a) + offset);
+      Batch diff2(0.0f);
       for (int c = 0; c < 3; ++c) {
-        const float d = in.guide[size_t(c)][p] - in.guide[size_t(c)][q];
-        diff2 += d * d;
+        const Batch d = Batch::load_unaligned(&g.guide[size_t(c)][a]) - Batch::load_unaligned(&g.guide[size_t(c)][b]);
+        diff2 = xsimd::fma(d, d, diff2);
       }
-      const float vp = in.variance[p], vq = in.variance[q];
-      patch[size_t(j) * size_t(pw) + size_t(i)] = (diff2 / 3.0f - (vp + std::min(vp, vq))) / (kEpsilon + k2 * (vp + vq));
+      const Batch vp = Batch::load_unaligned(&g.variance[a]), vq = Batch::load_unaligned(&g.variance[b]);
+      const Batch d = (diff2 * third - (vp + xsimd::min(vp, vq))) / xsimd::fma(kk, vp + vq, eps);
+      d.store_unaligned(patch + j * kPatchWidth + i);
     }
   }
-  const int tw = t.x1 - t.x0;
-  for (int j = 0; j < t.y1 - t.y0; ++j)
-    for (int i = 0; i < tw; ++i) {
+  // Columns inside the tile whose neighbour at dx is inside the image, as 0 / 1.
+  alignas(64) std::array<float, kTileWidth> column{};
+  for (int i = 0; i < kTileWidth; ++i) {
+    const int qx = t.x0 + i + dx;
+    column[size_t(i)] = i < tw && qx >= 0 && qx < g.width ? 1.0f : 0.0f;
+  }
+  for (int j = 0; j < kTileHeight; ++j) {
+    const int qy = t.y0 + j + dy;
+    const bool row_inside = j < th && qy >= 0 && qy < g.height;
+    for (int i = 0; i < kTileWidth; i += kLanes) {
+      if (!row_inside) {
+        Batch(0.0f).store_unaligned(weights + j * kTileWidth + i);
+        continue;
+      }
       // The patch without its centre: the guide's own value at p must not pick the weights,
       // or the filtered half's error would correlate with the guide at p and the error
       // estimate against it (denoise) would come out low.
-      float d2 = -patch[size_t(j + 1) * size_t(pw) + size_t(i + 1)];
+      Batch d2 = -Batch::load_unaligned(patch + (j + 1) * kPatchWidth + i + 1);
       for (int b = 0; b < 3; ++b)
-        for (int a = 0; a < 3; ++a) d2 += patch[size_t(j + b) * size_t(pw) + size_t(i + a)];
-      const int qx = t.x0 + i + dx, qy = t.y0 + j + dy;
-      const bool inside = qx >= 0 && qy >= 0 && qx < w && qy < h;
-      weights[size_t(j) * size_t(tw) + size_t(i)] = inside ? std::exp(-std::max(0.0f, d2 / 8.0f)) : 0.0f;
+        for (int a = 0; a < 3; ++a) d2 += Batch::load_unaligned(patch + (j + b) * kPatchWidth + i + a);
+      const Batch w = xsimd::exp(-xsimd::max(Batch(0.0f), d2 * Batch(0.125f)));
+      (w * Batch::load_aligned(column.data() + i)).store_unaligned(weights + j * kTileWidth + i);
+    }
+  }
+}
+
+// Adds offset (dx, dy)'s terms to the tile's sums, kLanes pixels at a time.
+void accumulate(const PaddedPlanes& g, const Tile& t, int dx, int dy, const float* weights, TileSums& s) {
+  const std::ptrdiff_t offset = std::ptrdiff_t(dy) * g.stride + dx;
+  for (int j = 0; j < std::min(kTileHeight, t.y1 - t.y0); ++j)
+    for (int half = 0; half < kTileWidth / kLanes; ++half) {
+      const int chunk = j * (kTileWidth / kLanes) + half;
+      const size_t p = g.at(t.x0 + half * kLanes, t.y0 + j), q = size_t(std::ptrdiff_t(p) + offset);
+      const Batch w = Batch::load_unaligned(weights + j * kTileWidth + half * kLanes);
+      std::array<Batch, kTerms> x;
+      x[0] = w;  // the weight folded into the constant term: x^T W x = sum (w x_a) x_b
+      std::array<Batch, kTerms> xu;
+      xu[0] = Batch(1.0f);
+      for (int f = 0; f < kDenoiseFeatures; ++f) {
+        xu[size_t(f + 1)] = Batch::load_unaligned(&g.features[size_t(f)][q]) - Batch::load_unaligned(&g.features[size_t(f)][p]);
+        x[size_t(f + 1)] = w * xu[size_t(f + 1)];
+      }
+      int e = 0;
+      for (int a = 0; a < kTerms; ++a)
+        for (int b = a; b < kTerms; ++b, ++e) s.xtx[size_t(e)][size_t(chunk)] = xsimd::fma(x[size_t(a)], xu[size_t(b)], s.xtx[size_t(e)][size_t(chunk)]);
+      for (int c = 0; c < 3; ++c) {
+        const Batch yc = Batch::load_unaligned(&g.y[size_t(c)][q]);
+        for (int a = 0; a < kTerms; ++a)
+          s.xty[size_t(c)][size_t(a)][size_t(chunk)] = xsimd::fma(x[size_t(a)], yc, s.xty[size_t(c)][size_t(a)][size_t(chunk)]);
+      }
     }
 }
 
-// Adds offset (dx, dy)'s terms to the tile's sums.
-void accumulate(const FilterInputs& in, const Tile& t, int dx, int dy, const PixelPlane& weights, TileSums& s,
-                std::array<PixelPlane, kTerms>& x, PixelPlanes3& yq) {
-  const int w = in.layers.width, h = in.layers.height, tw = t.x1 - t.x0;
-  for (int j = 0; j < t.y1 - t.y0; ++j) {
-    const int py = t.y0 + j, qy = std::clamp(py + dy, 0, h - 1);
-    for (int i = 0; i < tw; ++i) {
-      const int px = t.x0 + i, qx = std::clamp(px + dx, 0, w - 1);
-      const size_t p = size_t(py) * size_t(w) + size_t(px), q = size_t(qy) * size_t(w) + size_t(qx);
-      const size_t o = size_t(j) * size_t(tw) + size_t(i);
-      x[0][o] = 1.0f;
-      for (int f = 0; f < kDenoiseFeatures; ++f)
-        x[size_t(f + 1)][o] = in.layers.features[size_t(f)][q] - in.layers.features[size_t(f)][p];
-      for (int c = 0; c < 3; ++c) yq[size_t(c)][o] = in.y[size_t(c)][q];
+// The constant term of the weighted least-squares fits whose normal equations are a x = b,
+// kLanes pixels at once (SPD, the constant ordered LAST): after the Cholesky factorisation
+// a = L L^T and the forward substitution L z = b, the last unknown is z_last / L_last,last, with
+// no back substitution. Lanes whose system is not positive definite keep `fallback`.
+void solve_constant_terms(std::array<std::array<Batch, kTerms>, kTerms>& a, std::array<std::array<Batch, kTerms>, 3>& b,
+                          std::array<Batch, 3>& constant) {
+  auto valid = Batch(1.0f) > Batch(0.0f);
+  for (int j = 0; j < kTerms; ++j) {
+    Batch d = a[size_t(j)][size_t(j)];
+    for (int k = 0; k < j; ++k) d = xsimd::fnma(a[size_t(j)][size_t(k)], a[size_t(j)][size_t(k)], d);
+    valid = valid && d > Batch(1e-20f);
+    const Batch root = xsimd::sqrt(xsimd::select(valid, d, Batch(1.0f)));
+    a[size_t(j)][size_t(j)] = root;
+    const Batch inverse = Batch(1.0f) / root;
+    for (int i = j + 1; i < kTerms; ++i) {
+      Batch s = a[size_t(i)][size_t(j)];
+      for (int k = 0; k < j; ++k) s = xsimd::fnma(a[size_t(i)][size_t(k)], a[size_t(j)][size_t(k)], s);
+      a[size_t(i)][size_t(j)] = s * inverse;
     }
   }
-  const size_t n = size_t(tw) * size_t(t.y1 - t.y0);
-  int e = 0;
-  for (int a = 0; a < kTerms; ++a)
-    for (int b = a; b < kTerms; ++b, ++e) {
-      float* sum = s.xtx[size_t(e)].data();
-      const float *xa = x[size_t(a)].data(), *xb = x[size_t(b)].data(), *wt = weights.data();
-      for (size_t o = 0; o < n; ++o) sum[o] += wt[o] * xa[o] * xb[o];
+  for (int c = 0; c < 3; ++c) {
+    for (int i = 0; i < kTerms; ++i) {
+      Batch s = b[size_t(c)][size_t(i)];
+      for (int k = 0; k < i; ++k) s = xsimd::fnma(a[size_t(i)][size_t(k)], b[size_t(c)][size_t(k)], s);
+      b[size_t(c)][size_t(i)] = s / a[size_t(i)][size_t(i)];
     }
-  for (int c = 0; c < 3; ++c)
-    for (int a = 0; a < kTerms; ++a) {
-      float* sum = s.xty[size_t(c)][size_t(a)].data();
-      const float *xa = x[size_t(a)].data(), *wt = weights.data(), *yc = yq[size_t(c)].data();
-      for (size_t o = 0; o < n; ++o) sum[o] += wt[o] * xa[o] * yc[o];
-    }
+    const Batch solved = b[size_t(c)][kTerms - 1] / a[kTerms - 1][kTerms - 1];
+    constant[size_t(c)] = xsimd::select(valid, solved, constant[size_t(c)]);
+  }
 }
 
 // The regression's constant term at each pixel of the tile; the weighted mean where the system
 // is singular. Clamped at 0: radiance is not negative, and an extrapolating fit near an edge can be.
 void solve_tile(const TileSums& s, const Tile& t, int image_width, PixelPlanes3& out) {
-  const int tw = t.x1 - t.x0;
+  // Term t of the sums goes to row (t + kTerms - 1) % kTerms: the constant (term 0) last.
+  constexpr auto row = [](int term) { return size_t((term + kTerms - 1) % kTerms); };
   for (int j = 0; j < t.y1 - t.y0; ++j)
-    for (int i = 0; i < tw; ++i) {
-      const size_t o = size_t(j) * size_t(tw) + size_t(i);
-      double a[kTerms][kTerms], b[3][kTerms];
+    for (int half = 0; half < kTileWidth / kLanes; ++half) {
+      const size_t chunk = size_t(j * (kTileWidth / kLanes) + half);
+      std::array<std::array<Batch, kTerms>, kTerms> a;
+      std::array<std::array<Batch, kTerms>, 3> b;
       int e = 0;
       for (int r = 0; r < kTerms; ++r)
-        for (int c = r; c < kTerms; ++c, ++e) a[r][c] = a[c][r] = double(s.xtx[size_t(e)][o]);
-      const double total = a[0][0];
-      for (int r = 1; r < kTerms; ++r) a[r][r] += kRidge * total;
-      for (int c = 0; c < 3; ++c)
-        for (int r = 0; r < kTerms; ++r) b[c][r] = double(s.xty[size_t(c)][size_t(r)][o]);
-      const double mean[3] = {b[0][0] / total, b[1][0] / total, b[2][0] / total};
-      const bool solved = total > 0.0 && solve_cholesky(a, b);
-      const size_t p = size_t(t.y0 + j) * size_t(image_width) + size_t(t.x0 + i);
-      for (int c = 0; c < 3; ++c) out[size_t(c)][p] = float(std::max(0.0, solved ? b[c][0] : mean[c]));
+        for (int c = r; c < kTerms; ++c, ++e) a[row(r)][row(c)] = a[row(c)][row(r)] = s.xtx[size_t(e)][chunk];
+      const Batch total = s.xtx[0][chunk];
+      for (size_t r = 0; r + 1 < kTerms; ++r) a[r][r] = xsimd::fma(Batch(float(kRidge)), total, a[r][r]);
+      std::array<Batch, 3> constant;
+      const auto has_weight = total > Batch(0.0f);
+      for (int c = 0; c < 3; ++c) {
+        for (int r = 0; r < kTerms; ++r) b[size_t(c)][row(r)] = s.xty[size_t(c)][size_t(r)][chunk];
+        constant[size_t(c)] = xsimd::select(has_weight, s.xty[size_t(c)][0][chunk] / xsimd::select(has_weight, total, Batch(1.0f)),
+                                            Batch(0.0f));
+      }
+      solve_constant_terms(a, b, constant);
+      alignas(64) float values[3][kLanes];
+      for (int c = 0; c < 3; ++c) xsimd::max(constant[size_t(c)], Batch(0.0f)).store_aligned(values[c]);
+      for (int lane = 0; lane < kLanes && half * kLanes + lane < t.x1 - t.x0; ++lane) {
+        const size_t p = size_t(t.y0 + j) * size_t(image_width) + size_t(t.x0 + half * kLanes + lane);
+        for (int c = 0; c < 3; ++c) out[size_t(c)][p] = values[c][lane];
+      }
     }
+}
+
+std::vector<Tile> filter_tiles(int w, int h) {
+  std::vector<Tile> tiles;
+  for (int y = 0; y < h; y += kTileHeight)
+    for (int x = 0; x < w; x += kTileWidth)
+      tiles.push_back({x, y, std::min(w, x + kTileWidth), std::min(h, y + kTileHeight), int(tiles.size())});
+  return tiles;
 }
 
 }  // namespace
 
-PixelPlanes3 cross_filter(const PixelPlanes3& y, const PixelPlanes3& guide, const PixelPlane& guide_variance, const DenoiseLayers& layers,
-                     const DenoiseSettings& settings) {
-  const FilterInputs in{y, guide, guide_variance, layers, settings};
+PixelPlanes3 cross_filter(const PixelPlanes3& y, const PixelPlanes3& guide, const PixelPlane& guide_variance,
+                          const DenoiseLayers& layers, const DenoiseSettings& settings) {
+  const int r = settings.radius;
+  PaddedPlanes g;
+  g.width = layers.width, g.height = layers.height;
+  g.border = r + 2 + kPatchWidth;  // the window, the patch, and a tile's columns past the image
+  g.stride = g.width + 2 * g.border;
+  for (int c = 0; c < 3; ++c) g.y[size_t(c)] = padded(y[size_t(c)], g), g.guide[size_t(c)] = padded(guide[size_t(c)], g);
+  g.variance = padded(guide_variance, g);
+  for (int f = 0; f < kDenoiseFeatures; ++f) g.features[size_t(f)] = padded(layers.features[size_t(f)], g);
   PixelPlanes3 out;
   for (PixelPlane& p : out) p.assign(size_t(layers.width) * size_t(layers.height), 0.0f);
-  const int r = settings.radius;
-  parallel_for_tiles(make_tiles({layers.width, layers.height}, kTileSize), [&](const Tile& t) {
-    const size_t n = size_t(t.x1 - t.x0) * size_t(t.y1 - t.y0);
-    TileSums sums(n);
-    PixelPlane patch(size_t(t.x1 - t.x0 + 2) * size_t(t.y1 - t.y0 + 2)), weights(n);
-    std::array<PixelPlane, kTerms> x;
-    for (PixelPlane& p : x) p.resize(n);
-    PixelPlanes3 yq;
-    for (PixelPlane& p : yq) p.resize(n);
+  const float k2 = settings.k * settings.k;
+  parallel_for_tiles(filter_tiles(layers.width, layers.height), [&](const Tile& t) {
+    auto sums = std::make_unique<TileSums>();
+    std::array<float, kPatchWidth * (kTileHeight + 2) + kLanes> patch;
+    alignas(64) std::array<float, kTileWidth * kTileHeight> weights;
     for (int dy = -r; dy <= r; ++dy)
       for (int dx = -r; dx <= r; ++dx) {
-        offset_weights(in, t, dx, dy, patch, weights);
-        accumulate(in, t, dx, dy, weights, sums, x, yq);
+        offset_weights(g, k2, t, dx, dy, patch.data(), weights.data());
+        accumulate(g, t, dx, dy, weights.data(), *sums);
       }
-    solve_tile(sums, t, layers.width, out);
+    solve_tile(*sums, t, layers.width, out);
   });
   return out;
 }

@@ -34,7 +34,7 @@
 namespace caligo {
 
 struct DenoiseSettings {
-  int radius = 5;            // the regression window: (2 radius + 1)^2 pixels
+  int radius = 4;            // the regression window: (2 radius + 1)^2 pixels (4 measured best on default)
   float k = 0.45f;           // NL-means: larger accepts more dissimilar patches
   int selection_radius = 3;  // the box the error estimates are averaged over
 };
