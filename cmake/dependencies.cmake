@@ -27,6 +27,13 @@ find_package(assimp CONFIG REQUIRED)
 # `xtl` library that Debian's package does not need or ship: drop the link.
 find_package(xsimd CONFIG REQUIRED)
 set_target_properties(xsimd PROPERTIES INTERFACE_LINK_LIBRARIES "")
+# cpp-httplib 0.11 (Debian's libcpp-httplib-dev builds it as a shared library, without a CMake
+# package): the preview server of `caligo render --preview` (apps/caligo/preview_server.cpp).
+find_library(CPP_HTTPLIB_LIBRARY NAMES cpp-httplib REQUIRED)
+find_path(CPP_HTTPLIB_INCLUDE_DIR httplib.h REQUIRED)
+add_library(cpp_httplib INTERFACE IMPORTED)
+set_target_properties(cpp_httplib PROPERTIES INTERFACE_LINK_LIBRARIES "${CPP_HTTPLIB_LIBRARY}"
+                                             INTERFACE_INCLUDE_DIRECTORIES "${CPP_HTTPLIB_INCLUDE_DIR}")
 # Open MPI (optional): `mpirun caligo render` splits a frame over processes (src/distributed/).
 # The C API only (no deprecated C++ bindings). Without it the project builds single-process.
 set(MPI_CXX_SKIP_MPICXX ON)

@@ -42,6 +42,8 @@ struct RenderOptions {
   std::optional<int> frame;           // the frame being rendered: "{frame}" in the scene's file names
   float exposure = 0.0f;
   std::string view = "filmic";  // --view filmic|standard: the PNG preview's tone curve
+  bool single_pass = false;      // --single-pass: the former tile-by-tile order (no refinement passes)
+  std::optional<std::string> preview;  // --preview [PORT]: the live page (preview_server.h); "" any port
   bool denoise = false;          // --denoise: two half-sample films and the denoised layer (render_denoised.cpp)
   std::vector<std::string> priorities;  // --priority MATERIAL=LEVEL, applied in order
   bool list_builtins = false;
@@ -87,6 +89,7 @@ struct RealtimeOptions {
   bool reference_per_light = false;
   float exposure = 0.0f;
   std::string view = "filmic";  // --view filmic|standard
+  std::optional<std::string> preview;  // --preview [PORT]
   bool quiet = false;
 };
 

@@ -136,6 +136,16 @@ int run_denoise(const DenoiseOptions& o) {
     const ImageMetrics before = compare_images(noisy, ref), after = compare_images(beauty, ref);
     std::printf("mse_noisy %.6g\nmse_denoised %.6g\nrelmse_noisy %.6g\nrelmse_denoised %.6g\n", before.rmse * before.rmse,
                 after.rmse * after.rmse, before.relative_mse, after.relative_mse);
+    // A reference with its variance layer: its own noise adds its mean variance to every MSE
+    // against it (independent noise), which this removes.
+    if (const auto v = reference->rgb_indices("variance.")) {
+      double mean = 0;
+      for (int y = 0; y < reference->height(); ++y)
+        for (int x = 0; x < reference->width(); ++x) mean += reference->rgb(x, y, *v).average();
+      mean /= double(reference->pixel_count());
+      std::printf("reference_variance %.6g\nmse_noisy_corrected %.6g\nmse_denoised_corrected %.6g\n", mean,
+                  before.rmse * before.rmse - mean, after.rmse * after.rmse - mean);
+    }
     writers.push_back([&, noisy, ref](const std::string& temp) {
       const Rgb8Image panels = four_panels(noisy, beauty, ref, o.exposure);
       write_png(temp, panels.width, panels.height, panels.rgb);

@@ -61,4 +61,12 @@ InterruptGuard::~InterruptGuard() {
 const std::atomic<bool>& InterruptGuard::stop() const { return g_stop; }
 int InterruptGuard::signal_number() const { return int(g_signal); }
 
+void InterruptGuard::request_stop() const {
+  if (g_signal == 0) {
+    g_signal = SIGINT;
+    g_first_ms = std::sig_atomic_t(monotonic_ms());
+  }
+  g_stop.store(true);
+}
+
 }  // namespace caligo

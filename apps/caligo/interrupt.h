@@ -18,6 +18,8 @@ class InterruptGuard {
   const std::atomic<bool>& stop() const;
   bool stopped() const { return stop().load(); }
   int signal_number() const;  // the first signal's number (0 before any)
+  // A stop asked for by other means than a signal (the preview page's button): as a first SIGINT.
+  void request_stop() const;
 };
 
 }  // namespace caligo

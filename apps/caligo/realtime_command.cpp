@@ -6,7 +6,10 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -15,6 +18,8 @@
 #include <vector>
 
 #include "commands.h"
+#include "denoise/denoise_layers.h"
+#include "preview_server.h"
 #include "realtime_outputs.h"
 #include "core/median.h"
 #include "core/message_text.h"
@@ -73,6 +78,10 @@ void add_realtime_command(CLI::App& app, RealtimeOptions& o) {
   cmd->add_flag("--reference-per-light", o.reference_per_light,
                 "Path-trace the reference one light at a time and sum (far less noise with many lights)");
   cmd->add_option("--exposure", o.exposure, "Exposure of the PNG/GIF output, in stops");
+  cmd->add_option("--preview", o.preview,
+                  "Stream the frames and the pass table to a page on 127.0.0.1 (PORT, or any free port); the URL, with "
+                  "its access token, is printed")
+      ->expected(0, 1);
   cmd->add_option("--view", o.view,
                   "Tone curve of the PNG/GIF output: filmic (the ACES fit, default) or standard (sRGB, clipped at 1)")
       ->check(CLI::IsMember({"filmic", "standard"}));
@@ -363,6 +372,31 @@ void warn_about_what_is_not_drawn(const SceneDesc& desc, const RealtimeSettings&
 
 }  // namespace
 
+// The frame for the preview page: the composite, and its surfaces and volumetric light as layers.
+Image preview_image(const RealtimeFrame& frame) {
+  Image image = to_image(frame.color);
+  const auto layer = [](const ColorPlanes& planes) {
+    std::vector<RGB> out;
+    for (int y = 0; y < planes.height(); ++y)
+      for (int x = 0; x < planes.width(); ++x) out.push_back(planes.at(x, y));
+    return out;
+  };
+  image = with_rgb_layer(image, "surfaces", layer(frame.surfaces));
+  return with_rgb_layer(image, "volumetric", layer(frame.volumetric));
+}
+
+// The last frame's passes for the preview page, in microseconds.
+std::string frame_table(const PassTimes& t) {
+  char text[640];
+  std::snprintf(text, sizeof text,
+                "pass (last frame)        us\ndepth + normals   %8.0f\nshadow maps       %8.0f\naccumulation      %8.0f\n"
+                "gather            %8.0f\nupsample          %8.0f\ntemporal          %8.0f\nsurfaces          %8.0f\n"
+                "composite         %8.0f\ntotal             %8.0f\nvolumetric        %8.0f\n",
+                t.depth, t.shadows, t.accumulation, t.gather, t.upsample, t.temporal, t.surfaces, t.composite, t.total,
+                t.volumetric());
+  return text;
+}
+
 int run_realtime(const RealtimeOptions& o) {
   const SceneDesc desc = load_scene(o.scene);
   const RealtimeSettings settings = settings_from(o, desc);
@@ -382,6 +416,10 @@ int run_realtime(const RealtimeOptions& o) {
     scatterer = owned.get();
     pipeline.set_scatterer(std::move(owned));
   }
+  std::atomic<bool> stop_requested{false};
+  const std::unique_ptr<PreviewServer> preview =
+      start_preview(o.preview, [&stop_requested] { stop_requested = true; }, o.view == "filmic");
+  const auto start = std::chrono::steady_clock::now();
   std::vector<PassTimes> timed;
   float time = 0.0f;
   const RealtimeFrame* last_frame = nullptr;
@@ -395,7 +433,16 @@ int run_realtime(const RealtimeOptions& o) {
     previous_volumetric = frame.volumetric;
     if (i >= std::min(o.warmup, frames - 1)) timed.push_back(frame.times);
     if (outputs.wants_frame(i == frames - 1)) outputs.frame(to_image(frame.color), i, i == frames - 1);
+    if (preview) {
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      preview->publish({preview_image(frame), i + 1, frames, seconds, i == frames - 1, frame_table(frame.times)});
+      if (stop_requested) {
+        std::fprintf(stderr, "caligo: stopped from the preview page after %d of %d frames; nothing written\n", i + 1, frames);
+        return kExitInterruptedBase + SIGINT;
+      }
+    }
   }
+  if (preview) preview->linger(2.0);
 
   if (!o.quiet) print_table(desc, settings, timed, scatterer);
   print_summary(o, desc, settings, frames, timed, scatterer, changes);

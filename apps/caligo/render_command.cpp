@@ -18,6 +18,7 @@
 #include "render/progressive.h"
 #include "render/render.h"
 #include "render_denoised.h"
+#include "preview_server.h"
 #include "render_metadata.h"
 #include "render_outputs.h"
 #include "scene/builtins.h"
@@ -97,6 +98,13 @@ void add_render_command(CLI::App& app, RenderOptions& o) {
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   cmd->add_flag("--list-builtins", o.list_builtins, "List the built-in scenes and exit");
   cmd->add_flag("-q,--quiet", o.quiet, "No progress output");
+  cmd->add_option("--preview", o.preview,
+                  "Serve a live preview page on 127.0.0.1 (PORT, or any free port) while rendering; the URL, with its "
+                  "access token, is printed")
+      ->expected(0, 1);
+  cmd->add_flag("--single-pass", o.single_pass,
+                "Render each tile's samples at once, tile after tile (the former order), instead of refining the whole "
+                "frame in passes of doubling sample counts; an interrupted render then has unrendered tiles");
   cmd->add_flag("--denoise", o.denoise,
                 "Render two half-sample films and write the denoised beauty as the layer \"denoised\" (the PNG shows it)");
   cmd->add_option("--checkpoint", o.checkpoint,
@@ -321,6 +329,7 @@ ProgressiveSchedule schedule_from(const RenderOptions& o) {
     return seconds;
   };
   p.time_limit = duration(o.time_limit, "--time-limit");
+  p.refine = !o.single_pass;
   if (o.checkpoint_every && !o.checkpoint) throw InputError(kCommandLine, "--checkpoint-every needs --checkpoint FILE");
   if (o.checkpoint) p.checkpoint_every = o.checkpoint_every ? duration(o.checkpoint_every, "--checkpoint-every") : 60.0;
   if (o.target_rmse) {
@@ -374,11 +383,19 @@ Film load_checkpoint(const std::string& path, uint64_t key, const RenderSettings
 
 
 // The passes' progress line and the checkpoints between them.
-ProgressiveHooks progress_hooks(const RenderOptions& o, const RenderOutputs& outputs, uint64_t key) {
+ProgressiveHooks progress_hooks(const RenderOptions& o, const RenderOutputs& outputs, uint64_t key, const Film& film,
+                                PreviewServer* preview) {
   ProgressiveHooks hooks;
-  if (!o.quiet)
+  // A line per pass where passes are what was asked for; plain refinement shows the progress bar.
+  if (!o.quiet && (o.checkpoint || o.time_limit || o.target_rmse))
     hooks.on_pass = [](int done, int target, double seconds) {
       std::fprintf(stderr, "caligo: %d of %d samples per pixel (%s)\n", done, target, format_duration(seconds).c_str());
+    };
+  // Between passes no render thread writes the film: the page gets it resolved.
+  if (preview)
+    hooks.on_pass = [preview, &film, log = hooks.on_pass](int done, int target, double seconds) {
+      if (log) log(done, target, seconds);
+      preview->publish({film.resolve(), done, target, seconds, false, {}});
     };
   hooks.save_checkpoint = [&outputs, key](const Film& film) { film.save(outputs.checkpoint(), key); };
   // A checkpoint that fails (a full disk for a moment) must not end a long render: the film is
@@ -419,7 +436,7 @@ int run_distributed(const RenderOptions& o, const SceneDesc& desc, const Progres
   if (settings.adaptive.threshold > 0.0f && o.mpi_split == "samples")
     throw InputError(kCommandLine, "adaptive sampling stops each pixel by its own samples, which --mpi-split samples "
                                    "spreads over the ranks: use --mpi-split rows");
-  if (o.checkpoint || o.resume || schedule.passes())
+  if (o.checkpoint || o.resume || schedule.time_limit || schedule.target_rmse)
     throw InputError(kCommandLine, "--checkpoint, --resume, --time-limit and --target-rmse are for single-process "
                                    "renders, not under mpirun");
   const std::optional<RenderResult> frame =
@@ -458,16 +475,27 @@ int run_render(const RenderOptions& o) {
   const bool keyed = o.checkpoint || o.resume || distributed::launcher_world_size();
   const uint64_t key = keyed ? key_now() : 0;
   const Progress::Style style = o.quiet ? Progress::Style::kQuiet : Progress::Style::kAuto;
-  if (distributed::launcher_world_size()) return run_distributed(o, desc, schedule, *scene, settings, outputs, key, style);
+  if (distributed::launcher_world_size()) {
+    if (o.preview) throw InputError(kCommandLine, "--preview is for single-process renders, not under mpirun");
+    return run_distributed(o, desc, schedule, *scene, settings, outputs, key, style);
+  }
+  const std::unique_ptr<PreviewServer> preview =
+      start_preview(o.preview, [&interrupt] { interrupt.request_stop(); }, o.view == "filmic");
   if (o.denoise)
     return run_render_denoised(o, *scene, settings, outputs, [&](std::pair<int, int> samples, double seconds) {
       return header_of(desc, settings, samples, seconds);
-    });
+    }, preview.get());
 
   Film film = o.resume ? load_checkpoint(*o.resume, key, settings) : Film(settings.resolution, settings.aovs);
   const ProgressiveResult result =
-      render_progressive(film, *scene, settings, schedule, progress_hooks(o, outputs, key), &interrupt.stop(), style);
+      render_progressive(film, *scene, settings, schedule, progress_hooks(o, outputs, key, film, preview.get()),
+                         &interrupt.stop(), style);
   const Image image = film.resolve();
+  if (preview) {
+    const auto range = sample_range(film, settings);
+    preview->publish({image, range.first, settings.spp, result.stats.seconds, true, {}});
+    preview->linger(2.0);
+  }
   const int target = settings.spp;
   const auto samples = sample_range(film, settings);
   if (samples.second > target && !o.quiet)

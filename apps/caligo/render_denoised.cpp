@@ -37,7 +37,7 @@ std::vector<RGB> beauty_of(const Image& image) {
 }  // namespace
 
 int run_render_denoised(const RenderOptions& o, const Scene& scene, RenderSettings settings,
-                        const RenderOutputs& outputs, const HeaderOf& header_of) {
+                        const RenderOutputs& outputs, const HeaderOf& header_of, PreviewServer* preview) {
   refuse_what_halves_cannot_do(o, settings);
   settings.aovs = settings.aovs.with(Aov::kAlbedo).with(Aov::kNormal).with(Aov::kDepth).with(Aov::kVariance);
   RenderSettings first = settings, second = settings;
@@ -59,8 +59,12 @@ int run_render_denoised(const RenderOptions& o, const Scene& scene, RenderSettin
   const DenoisedImage d = denoise_image(image, outputs.exr());
   ExrAttributes attributes = header_of({settings.spp, settings.spp}, stats.seconds);
   attributes.push_back({"caligo/denoiser", std::string("NFOR-style cross-filtered regression")});
-  const Image preview = denoised_beauty(d.image);
-  outputs.write_final(d.image, nullptr, 0, attributes, &preview);
+  const Image preview_image = denoised_beauty(d.image);
+  outputs.write_final(d.image, nullptr, 0, attributes, &preview_image);
+  if (preview) {
+    preview->publish({d.image, settings.spp, settings.spp, stats.seconds, true, {}});
+    preview->linger(2.0);
+  }
   if (!o.quiet) {
     std::fprintf(stderr, "caligo: rendered %d spp as two halves in %.2f s\n", settings.spp, stats.seconds);
     print_denoise_summary(d, outputs.exr());

@@ -7,6 +7,7 @@
 #include "commands.h"
 #include "image/exr_attributes.h"
 #include "render/render.h"
+#include "preview_server.h"
 #include "render_outputs.h"
 
 namespace caligo {
@@ -14,7 +15,8 @@ namespace caligo {
 // The EXR header of the render, given the samples per pixel held and the seconds it took.
 using HeaderOf = std::function<ExrAttributes(std::pair<int, int> samples, double seconds)>;
 
+// `preview`, when given, gets the denoised frame at the end (the halves render without passes).
 int run_render_denoised(const RenderOptions& o, const Scene& scene, RenderSettings settings,
-                        const RenderOutputs& outputs, const HeaderOf& header_of);
+                        const RenderOutputs& outputs, const HeaderOf& header_of, PreviewServer* preview = nullptr);
 
 }  // namespace caligo

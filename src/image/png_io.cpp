@@ -4,6 +4,7 @@
 
 #include <csetjmp>
 #include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 
 #include "core/atomic_file.h"
@@ -94,6 +95,20 @@ void write_gif(const std::string& path, int width, int height, const std::vector
   write_file_atomically(path, [&](const std::string& temp_path) {
     write_gif_now(temp_path, path, width, height, frames, frames_per_second);
   });
+}
+
+std::string encode_png(int width, int height, const std::vector<uint8_t>& rgb8) {
+  check_buffer(width, height, rgb8);
+  char* data = nullptr;
+  size_t size = 0;
+  std::FILE* out = ::open_memstream(&data, &size);
+  if (out == nullptr) throw std::runtime_error("cannot encode a PNG: out of memory");
+  const std::string error = write_rows(out, width, height, rgb8.data());
+  std::fclose(out);  // sets data and size
+  std::string bytes(data ? data : "", data ? size : 0);
+  std::free(data);
+  if (!error.empty()) throw std::runtime_error("cannot encode a PNG: " + error);
+  return bytes;
 }
 
 void write_png(const std::string& path, int width, int height, const std::vector<uint8_t>& rgb8) {

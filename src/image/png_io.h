@@ -14,6 +14,8 @@ namespace caligo {
 // when the buffer does not hold width * height * 3 bytes, and std::runtime_error carrying
 // libpng's message when writing fails; `path` is then untouched.
 void write_png(const std::string& path, int width, int height, const std::vector<uint8_t>& rgb8);
+// The same PNG in memory (the preview server's responses). Throws std::runtime_error on failure.
+std::string encode_png(int width, int height, const std::vector<uint8_t>& rgb8);
 
 // Writes an animated GIF (OpenImageIO's GIF writer, one subimage per frame, palette per
 // frame), atomically like write_png. Every frame holds width * height * 3 bytes. Throws

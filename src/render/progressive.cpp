@@ -110,6 +110,12 @@ ProgressiveResult render_progressive(Film& film, const Scene& scene, const Rende
   }
   double last_checkpoint = 0.0, seconds_per_sample = 0.0;
   const DeadlineWatch watch(clock, schedule.time_limit, stop);
+  // One progress line over every pass: the samples the crop window still needs.
+  uint64_t remaining = 0;
+  const PixelBounds bounds = settings.crop.pixels(settings.resolution);
+  for (int y = bounds.min.y; y < bounds.max.y; ++y)
+    for (int x = bounds.min.x; x < bounds.max.x; ++x) remaining += uint64_t(std::max(0, target - int(film.sample_count(x, y))));
+  Progress shared("render", remaining, progress);
   for (int done = sample_range(film, settings).first; done < target && !stopped(stop);) {
     const int batch = next_batch(schedule, done, seconds_per_sample, clock.seconds());
     if (batch < 1) {
@@ -117,7 +123,7 @@ ProgressiveResult render_progressive(Film& film, const Scene& scene, const Rende
       break;
     }
     const int next = std::min(target, done + batch);
-    const RenderStats pass = render_up_to(film, scene, settings, next, watch.flag(), Progress::Style::kQuiet);
+    const RenderStats pass = render_up_to(film, scene, settings, next, watch.flag(), Progress::Style::kQuiet, &shared);
     result.stats += pass;
     if (stopped(stop)) break;
     if (watch.cut()) {

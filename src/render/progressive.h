@@ -18,8 +18,11 @@ struct ProgressiveSchedule {
   std::optional<double> checkpoint_every;  // seconds between checkpoints
   std::optional<double> time_limit;        // seconds
   std::optional<double> target_rmse;       // the film's estimated RMSE (needs the variance AOV)
+  // Refine the whole frame in passes of doubling sample counts even without any of the above,
+  // so that a render stopped at any moment is a whole picture (caligo render's default).
+  bool refine = false;
   // Without any of them the frame is one pass.
-  bool passes() const { return checkpoint_every || time_limit || target_rmse; }
+  bool passes() const { return refine || checkpoint_every || time_limit || target_rmse; }
 };
 
 struct ProgressiveHooks {

@@ -49,6 +49,30 @@ TEST(Progressive, PassesEndWhereOneRenderWould) {
   EXPECT_EQ(sample_range(passes, f.settings), std::make_pair(9, 9));
 }
 
+// caligo render's default: refinement alone gives the same passes and the same film, and a stop
+// after any pass leaves every pixel with that pass's samples (a whole picture, not tiles).
+TEST(Progressive, RefinementIsAWholePictureAtEveryPass) {
+  const Fixture f;
+  Film once(f.settings.resolution, f.settings.aovs);
+  render_up_to(once, *f.scene, f.settings, f.settings.spp);
+  ProgressiveSchedule schedule;
+  schedule.refine = true;
+  Film refined(f.settings.resolution, f.settings.aovs);
+  std::vector<int> done;
+  ProgressiveHooks hooks;
+  hooks.on_pass = [&](int d, int, double) { done.push_back(d); };
+  render_progressive(refined, *f.scene, f.settings, schedule, hooks);
+  EXPECT_TRUE(refined == once);
+  EXPECT_EQ(done, (std::vector<int>{1, 2, 4, 8, 9}));
+  std::atomic<bool> stop{false};
+  hooks.on_pass = [&](int d, int, double) {
+    if (d == 2) stop = true;  // as a Ctrl-C between the second and third passes
+  };
+  Film stopped(f.settings.resolution, f.settings.aovs);
+  render_progressive(stopped, *f.scene, f.settings, schedule, hooks, &stop);
+  EXPECT_EQ(sample_range(stopped, f.settings), std::make_pair(2, 2));
+}
+
 // A resumed film continues from its own count; a failing checkpoint is reported and the
 // render goes on to the target.
 TEST(Progressive, ResumesAndSurvivesFailedCheckpoints) {

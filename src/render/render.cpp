@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/global_control.h>
@@ -114,7 +115,7 @@ PathCounters render_tile(const Scene& scene, const Camera& camera, const RenderS
 template <typename SpanOf>
 RenderStats run_pass(Film& film, const Scene& scene, const RenderSettings& settings, uint64_t total_paths,
                      const SpanOf& span_of, const std::atomic<bool>* stop, Progress::Style progress_style,
-                     PathGuiding guiding = {}, const std::string& label = "render") {
+                     PathGuiding guiding = {}, const std::string& label = "render", Progress* shared = nullptr) {
   if (film.resolution() != settings.resolution || film.aovs() != settings.aovs)
     throw std::invalid_argument("render: the film does not match the settings' resolution and outputs");
   std::unique_ptr<tbb::global_control> thread_limit;
@@ -130,7 +131,9 @@ RenderStats run_pass(Film& film, const Scene& scene, const RenderSettings& setti
 
   const auto start = std::chrono::steady_clock::now();
   {
-    Progress progress(label, total_paths, progress_style);
+    std::optional<Progress> own;  // a pass of its own, or one of a progressive render's (`shared`)
+    if (!shared) own.emplace(label, total_paths, progress_style);
+    Progress& progress = shared ? *shared : *own;
     parallel_for_tiles(tiles, [&](const Tile& tile) {
       uint64_t tile_paths = 0;
       const PathCounters c =
@@ -170,7 +173,7 @@ namespace {
 // Every pixel of the crop window from its own count up to `target`, in one pass.
 RenderStats pass_up_to(Film& film, const Scene& scene, const RenderSettings& settings, int target,
                        const std::atomic<bool>* stop, Progress::Style progress_style, PathGuiding guiding = {},
-                       const std::string& label = "render") {
+                       const std::string& label = "render", Progress* shared = nullptr) {
   uint64_t remaining = 0;
   const PixelBounds b = settings.crop.pixels(settings.resolution);
   for (int y = b.min.y; y < b.max.y; ++y)
@@ -178,7 +181,7 @@ RenderStats pass_up_to(Film& film, const Scene& scene, const RenderSettings& set
   return run_pass(
       film, scene, settings, remaining,
       [&film, target](int x, int y) { return SampleSpan{int(film.sample_count(x, y)), target}; }, stop,
-      progress_style, guiding, label);
+      progress_style, guiding, label, shared);
 }
 
 bool stopped(const std::atomic<bool>* stop) { return stop && stop->load(std::memory_order_relaxed); }
@@ -216,9 +219,9 @@ GuidingField guiding_field_of(const Film& film, const Scene& scene, const Render
 }
 
 RenderStats render_up_to(Film& film, const Scene& scene, const RenderSettings& settings, int target,
-                         const std::atomic<bool>* stop, Progress::Style progress_style) {
+                         const std::atomic<bool>* stop, Progress::Style progress_style, Progress* shared_progress) {
   if (target < 0) throw std::invalid_argument("render_up_to: negative sample count");
-  if (!guided(settings)) return pass_up_to(film, scene, settings, target, stop, progress_style);
+  if (!guided(settings)) return pass_up_to(film, scene, settings, target, stop, progress_style, {}, "render", shared_progress);
   // Path guiding: one pass per training iteration (guiding/guiding_schedule.h), the field refined
   // between them; the field goes back into the film, so a checkpoint holds it.
   const auto start = std::chrono::steady_clock::now();
@@ -231,7 +234,7 @@ RenderStats render_up_to(Film& film, const Scene& scene, const RenderSettings& s
     const std::string label = train ? "render (guiding: training " + std::to_string(iteration + 1) + "/" +
                                           std::to_string(field.config().iterations) + ")"
                                     : "render";
-    stats += pass_up_to(film, scene, settings, end, stop, progress_style, {&field, train}, label);
+    stats += pass_up_to(film, scene, settings, end, stop, progress_style, {&field, train}, label, shared_progress);
     if (!train || stopped(stop) || end < training_iteration_end(iteration)) break;
     field.finish_iteration();
     if (end >= target) break;

@@ -62,9 +62,11 @@ RenderStats render_into(Film& film, const Scene& scene, const RenderSettings& se
 // `stop` becomes true (a signal), the pass ends between pixels: every pixel then holds a prefix
 // of its samples, so a later call continues it and ends bit for bit where one uninterrupted
 // call would have.
+// `shared_progress`, when given, reports these samples instead of a progress line of their own
+// (a progressive render's passes share one).
 RenderStats render_up_to(Film& film, const Scene& scene, const RenderSettings& settings, int target,
                          const std::atomic<bool>* stop = nullptr,
-                         Progress::Style progress = Progress::Style::kQuiet);
+                         Progress::Style progress = Progress::Style::kQuiet, Progress* shared_progress = nullptr);
 
 // Path guiding: whether these settings guide (settings.path.guiding, not with deferred NEE),
 // the bounds its field covers, and the field a film holds (a fresh one when it holds none).
