@@ -16,8 +16,9 @@ scenes=("$@")
 res=${RES:-200x150}
 refs=build/denoise-refs out=build/denoise-table
 mkdir -p "$refs" "$out"
+echo "MSE: against the reference, less its own variance; relMSE: raw"
+echo
 echo "| scene | spp | MSE noisy | MSE denoised | ratio | ratio at equal time | relMSE noisy | relMSE denoised | render s | denoise s |"
-echo "(MSE: against the reference, less its own variance; relMSE: raw)"
 echo "|---|---|---|---|---|---|---|---|---|---|"
 for s in "${scenes[@]}"; do
   ref="$refs/$s-$res-$ref_spp.exr"
