@@ -1,13 +1,9 @@
 // What the preview page can show of a resolved image (preview_server.h), without httplib.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <optional>
 #include <set>
 
-#include "commands.h"
-#include "core/error.h"
-#include "core/message_text.h"
 #include "preview_server.h"
 
 namespace caligo {
@@ -32,25 +28,6 @@ Image rgb_of(const Image& image, const std::array<int, 3>& ch, float scale, floa
 }
 
 }  // namespace
-
-std::unique_ptr<PreviewServer> start_preview(const std::optional<std::string>& port, std::function<void()> on_stop,
-                                             bool filmic) {
-  if (!port) return nullptr;
-  int number = 0;
-  if (!port->empty()) {
-    size_t used = 0;
-    try {
-      number = std::stoi(*port, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != port->size() || number < 0 || number > 65535)
-      throw InputError(kCommandLine, "--preview: expected a port number in [0, 65535], got " + quote_for_message(*port));
-  }
-  auto server = std::make_unique<PreviewServer>(number, std::move(on_stop), filmic);
-  std::fprintf(stderr, "caligo: preview at %s\n", server->url().c_str());
-  return server;
-}
 
 std::optional<Image> preview_layer(const Image& image, const std::string& layer) {
   if (layer == "beauty") {

@@ -16,6 +16,7 @@
 #include "image/png_io.h"
 #include "image/tonemap.h"
 #include "preview_page.h"
+#include "preview_plugin.h"
 
 namespace caligo {
 namespace {
@@ -32,7 +33,7 @@ std::string random_token() {
 
 }  // namespace
 
-struct PreviewServer::Impl {
+struct HttpPreview {  // the plugin's server (preview_plugin.h)
   httplib::Server server;
   std::thread thread;
   std::string token;
@@ -93,8 +94,12 @@ struct PreviewServer::Impl {
   }
 };
 
-PreviewServer::PreviewServer(int port, std::function<void()> on_stop, bool filmic) : impl_(std::make_unique<Impl>()) {
-  Impl& m = *impl_;
+namespace {
+
+// The plugin's server: Impl, with the constructor's work.
+void* start(int port, std::function<void()> on_stop, bool filmic, std::string* url, std::string* error) {
+  auto impl = std::make_unique<HttpPreview>();
+  HttpPreview& m = *impl;
   m.token = random_token();
   m.filmic = filmic;
   m.on_stop = std::move(on_stop);
@@ -121,17 +126,24 @@ PreviewServer::PreviewServer(int port, std::function<void()> on_stop, bool filmi
     res.set_content("{\"stopping\": true}", "application/json");
   });
   m.port = port > 0 ? (m.server.bind_to_port("127.0.0.1", port) ? port : -1) : m.server.bind_to_any_port("127.0.0.1");
-  if (m.port <= 0)
-    throw EnvironmentError("--preview: cannot listen on 127.0.0.1:" + std::to_string(port) + " (in use, or not allowed)");
+  if (m.port <= 0) {
+    *error = "--preview: cannot listen on 127.0.0.1:" + std::to_string(port) + " (in use, or not allowed)";
+    return nullptr;
+  }
   m.thread = std::thread([&m] { m.server.listen_after_bind(); });
+  *url = "http://127.0.0.1:" + std::to_string(m.port) + "/?token=" + m.token;
+  return impl.release();
 }
 
-PreviewServer::~PreviewServer() {
-  impl_->server.stop();
-  if (impl_->thread.joinable()) impl_->thread.join();
+void stop(void* server) {
+  auto* m = static_cast<HttpPreview*>(server);
+  m->server.stop();
+  if (m->thread.joinable()) m->thread.join();
+  delete m;
 }
 
-void PreviewServer::linger(double seconds) {
+void linger(void* server, double seconds) {
+  HttpPreview* impl_ = static_cast<HttpPreview*>(server);
   const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
   while (std::chrono::steady_clock::now() < end) {
     {
@@ -142,14 +154,18 @@ void PreviewServer::linger(double seconds) {
   }
 }
 
-std::string PreviewServer::url() const {
-  return "http://127.0.0.1:" + std::to_string(impl_->port) + "/?token=" + impl_->token;
+void publish(void* server, PreviewState* state) {
+  auto* m = static_cast<HttpPreview*>(server);
+  std::lock_guard lock(m->mutex);
+  m->state = std::move(*state);
+  ++m->version;
 }
 
-void PreviewServer::publish(PreviewState state) {
-  std::lock_guard lock(impl_->mutex);
-  impl_->state = std::move(state);
-  ++impl_->version;
-}
-
+}  // namespace
 }  // namespace caligo
+
+extern "C" __attribute__((visibility("default"))) const caligo::PreviewPluginApi* caligo_preview_plugin() {
+  static const caligo::PreviewPluginApi api{caligo::kPreviewPluginAbi, &caligo::start, &caligo::publish,
+                                            &caligo::linger, &caligo::stop};
+  return &api;
+}

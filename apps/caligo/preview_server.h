@@ -7,7 +7,9 @@
 // printed with the URL (?token=...), or it is refused with 403; requests are bounded in size
 // (a few KiB); nothing is served from disk: images are encoded from memory, so no file outside
 // the render's outputs (or inside them) can be read through it. httplib (Debian's
-// libcpp-httplib-dev) serves on its own threads; this is its only translation unit.
+// libcpp-httplib-dev) serves on its own threads, in the plugin caligo_preview.so
+// (preview_plugin.h: preview_server.cpp is its only translation unit with httplib), loaded
+// only by runs with --preview.
 #pragma once
 
 #include <functional>
@@ -31,7 +33,7 @@ struct PreviewState {
 class PreviewServer {
  public:
   // Binds 127.0.0.1:`port` (0: a free port). `on_stop` runs when the page's stop button is
-  // pressed. Throws EnvironmentError when the port cannot be bound.
+  // pressed. Throws EnvironmentError when the port cannot be bound or the plugin is missing.
   PreviewServer(int port, std::function<void()> on_stop, bool filmic);
   ~PreviewServer();
   PreviewServer(const PreviewServer&) = delete;
@@ -46,8 +48,8 @@ class PreviewServer {
   void linger(double seconds);
 
  private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
+  void* server_;  // the plugin's
+  std::string url_;
 };
 
 // --preview [PORT] of a command line: nullptr without it; otherwise a server listening (the
