@@ -50,6 +50,16 @@ TEST_F(Denoise, BadInputsAreRefusedWithNothingWritten) {
   EXPECT_EQ(run("denoise " + (dir_ / "plain.exr").string() + " -o " + (dir_ / "plain.exr").string()).exit_code, 2);
   EXPECT_EQ(run("denoise " + (dir_ / "plain.exr").string() + " -o " + (dir_ / "out.png").string()).exit_code, 2);
   EXPECT_EQ(run("denoise " + (dir_ / "plain.exr").string() + " --radius 0 -o " + (dir_ / "out.exr").string()).exit_code, 2);
+  // A reference of another size is refused, naming it, and nothing is written.
+  ASSERT_EQ(run("render default --res 16x12 --spp 4 --denoise -q -o " + (dir_ / "d.exr").string()).exit_code, 0);
+  ASSERT_EQ(run("render default --res 8x6 --spp 4 -q -o " + (dir_ / "small.exr").string()).exit_code, 0);
+  const RunResult mismatch = run("denoise " + (dir_ / "d.exr").string() + " --reference " + (dir_ / "small.exr").string() +
+                                 " -o " + (dir_ / "dd.exr").string());
+  EXPECT_EQ(mismatch.exit_code, 2);
+  EXPECT_NE(mismatch.err.find("small.exr"), std::string::npos) << mismatch.err;
+  EXPECT_NE(mismatch.err.find("8x6"), std::string::npos) << mismatch.err;
+  EXPECT_FALSE(fs::exists(dir_ / "dd.exr"));
+  EXPECT_FALSE(fs::exists(dir_ / "dd.strip.png"));
   const RunResult few = run("render default --res 16x12 --spp 2 --denoise -o " + (dir_ / "few.exr").string());
   EXPECT_EQ(few.exit_code, 2);
   EXPECT_NE(few.err.find("at least 4 samples"), std::string::npos) << few.err;
