@@ -371,7 +371,7 @@ int run_render(const RenderOptions& o) {
   if (o.denoise)
     return run_render_denoised(o, *scene, settings, outputs, [&](std::pair<int, int> samples, double seconds) {
       return header_of(desc, settings, samples, seconds);
-    }, preview.get());
+    }, preview.get(), interrupt);
 
   Film film = o.resume ? load_checkpoint(*o.resume, key, settings) : Film(settings.resolution, settings.aovs);
   const ProgressiveResult result =

@@ -93,6 +93,11 @@ void RenderOutputs::write_final(const Image& image, const Film* film, uint64_t k
   write_keeping_images(final_, *final_images_, image, asked_checkpoint_ ? film : nullptr, key, attributes, preview);
 }
 
+void RenderOutputs::write_interrupted_images(const Image& image, const ExrAttributes& attributes,
+                                             const Image* preview) const {
+  write_keeping_images(*interrupted_images_, *interrupted_images_, image, nullptr, 0, attributes, preview);
+}
+
 void RenderOutputs::write_interrupted(const Image& image, const Film& film, uint64_t key,
                                       const ExrAttributes& attributes) const {
   write_keeping_images(interrupted_, *interrupted_images_, image, interrupt_leaves_checkpoint() ? &film : nullptr, key,

@@ -45,6 +45,9 @@ class RenderOutputs {
   // The partial image and preview, and a checkpoint when one can be written; the images are
   // kept when only the checkpoint fails, as above.
   void write_interrupted(const Image& image, const Film& film, uint64_t key, const ExrAttributes& attributes) const;
+  // The partial image and preview alone, no checkpoint (a film that cannot be resumed, as the
+  // two halves of --denoise).
+  void write_interrupted_images(const Image& image, const ExrAttributes& attributes, const Image* preview) const;
 
  private:
   void write_keeping_images(const OutputTransaction& plan, const OutputTransaction& images_only, const Image& image,

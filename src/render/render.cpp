@@ -178,10 +178,12 @@ RenderStats pass_up_to(Film& film, const Scene& scene, const RenderSettings& set
   const PixelBounds b = settings.crop.pixels(settings.resolution);
   for (int y = b.min.y; y < b.max.y; ++y)
     for (int x = b.min.x; x < b.max.x; ++x) remaining += uint64_t(std::max(0, target - int(film.sample_count(x, y))));
+  // A film of first_sample k holds samples k, k + 1, ...: its counts start at 0 all the same.
+  const int offset = settings.first_sample;
   return run_pass(
       film, scene, settings, remaining,
-      [&film, target](int x, int y) { return SampleSpan{int(film.sample_count(x, y)), target}; }, stop,
-      progress_style, guiding, label, shared);
+      [&film, target, offset](int x, int y) { return SampleSpan{offset + int(film.sample_count(x, y)), offset + target}; },
+      stop, progress_style, guiding, label, shared);
 }
 
 bool stopped(const std::atomic<bool>* stop) { return stop && stop->load(std::memory_order_relaxed); }

@@ -58,7 +58,8 @@ RenderStats render_into(Film& film, const Scene& scene, const RenderSettings& se
                         Progress::Style progress = Progress::Style::kQuiet, PathGuiding guiding = {});
 
 // Progressive and resumed rendering: brings every pixel of the crop window from its own sample
-// count in `film` up to `target` samples (settings.spp and first_sample are not used). When
+// count in `film` up to `target` samples (settings.spp is not used; settings.first_sample k makes
+// the film hold samples k, k + 1, ..., k + target - 1, as the second half of `render --denoise`). When
 // `stop` becomes true (a signal), the pass ends between pixels: every pixel then holds a prefix
 // of its samples, so a later call continues it and ends bit for bit where one uninterrupted
 // call would have.
