@@ -1,6 +1,7 @@
 // caligo render --denoise and caligo denoise through the binary: the beauty is the plain
 // render's bit for bit, the layers are written, the denoise command reproduces the denoised
 // layer, and bad inputs are refused with exit 2 and no output.
+#include <algorithm>
 #include <cstring>
 
 #include "cli_testing.h"
@@ -67,6 +68,36 @@ TEST_F(Denoise, BadInputsAreRefusedWithNothingWritten) {
   EXPECT_EQ(timed.exit_code, 2);
   EXPECT_FALSE(fs::exists(dir_ / "few.exr"));
   EXPECT_FALSE(fs::exists(dir_ / "t.exr"));
+}
+
+}  // namespace
+
+namespace {
+
+// Interrupted by SIGINT after its first passes, --denoise writes the denoised partial image
+// (every pixel with samples: the halves refine the whole frame) and no checkpoint; exit 130.
+TEST_F(Denoise, AnInterruptedDenoisedRenderWritesTheDenoisedPartialImage) {
+  const RunResult r = run_with_env("timeout --preserve-status -s INT 2.5",
+                                   "render lamp-in-fog --res 64x48 --spp 100000 --denoise --aov default,samples -q -o " +
+                                       (dir_ / "i.exr").string());
+  if (r.err.find("interrupted") == std::string::npos) GTEST_SKIP() << "the signal came before the handler (a loaded machine)";
+  ASSERT_EQ(r.exit_code, 130) << r.err;
+  EXPECT_NE(r.err.find("no checkpoint"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "i.exr"));
+  EXPECT_FALSE(fs::exists(dir_ / "i.ckpt"));
+  const caligo::Image partial = caligo::read_exr((dir_ / "i.partial.exr").string());
+  const auto d = *partial.rgb_indices("denoised.");
+  const int samples = partial.channel_index("samples");
+  ASSERT_GE(samples, 0);
+  double sum = 0;
+  float fewest = 1e30f;
+  for (int y = 0; y < 48; ++y)
+    for (int x = 0; x < 64; ++x) {
+      sum += partial.at(x, y, d[1]);
+      fewest = std::min(fewest, partial.at(x, y, samples));
+    }
+  EXPECT_GT(sum, 0.0);
+  EXPECT_GE(fewest, 2.0f) << "every pixel has both halves' first pass: a whole picture, not finished tiles";
 }
 
 }  // namespace
