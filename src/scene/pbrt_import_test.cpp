@@ -206,6 +206,20 @@ TEST(PbrtImport, MediaInsideShapesAndAroundTheCamera) {
   EXPECT_EQ(s["volumes"][0]["type"], "dense");
   EXPECT_EQ(s["volumes"][0]["values"], Json::array({0.5, 1.0}));
   EXPECT_EQ(s["volumes"][0]["clip"]["max"], Json::array({2, 1, 1}));
+  // An rgbgrid whose voxels share their colours is a density times one sigma_a and one sigma_s.
+  const std::string rgbgrid = "MakeNamedMedium \"r\" \"string type\" \"rgbgrid\" \"integer nx\" 2 \"integer ny\" 1 "
+                              "\"integer nz\" 1 \"float scale\" 2 \"rgb sigma_a\" [0.1 0.2 0.3 0.2 0.4 0.6] \"rgb sigma_s\" ";
+  const std::string use = "\nMediumInterface \"r\" \"\"\nMaterial \"interface\"\nShape \"sphere\"\n";
+  s = convert(std::string(kHeader) + rgbgrid + "[0.5 0.5 0.5 1 1 1]" + use);
+  const Json& values = s["volumes"][0]["values"];
+  ASSERT_EQ(values.size(), 2u);
+  EXPECT_NEAR(double(values[0]), 0.7, 1e-6);
+  EXPECT_NEAR(double(values[1]), 1.4, 1e-6);
+  EXPECT_NEAR(double(s["media"]["r"]["sigma_a"][2]) * double(values[1]), 2 * 0.6, 1e-5);  // the scale too
+  EXPECT_NEAR(double(s["media"]["r"]["sigma_s"][0]) * double(values[0]), 2 * 0.5, 1e-5);
+  // Voxels of different colours cannot be one density: refused at the directive.
+  EXPECT_NE(error_of(std::string(kHeader) + rgbgrid + "[0.5 0.5 0.5 1 0 1]" + use).find("s.pbrt:4: MakeNamedMedium \"rgbgrid\": voxel"),
+            std::string::npos);
 }
 
 TEST(PbrtImport, IncludeIsRelativeToTheIncludingFile) {

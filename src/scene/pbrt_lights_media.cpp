@@ -38,6 +38,43 @@ Json medium_coefficients(const ParamList& p, const std::string& where, Builder& 
   return m;
 }
 
+// pbrt-v4's rgbgrid as one density grid times one sigma_a and one sigma_s colour (Caligo's grids
+// hold one channel): exact when every voxel's two colours are the same multiples of a common
+// pair, refused otherwise. The density is each voxel's mean extinction; `medium` gets the colours.
+std::vector<double> rgb_grid_density(const ParamList& p, size_t voxels, const std::string& where, Json& medium) {
+  const std::vector<double> a = p.rgb_numbers("sigma_a"), s = p.rgb_numbers("sigma_s");
+  if (a.size() != 3 * voxels || s.size() != 3 * voxels)
+    fail_at(where, "MakeNamedMedium \"rgbgrid\": \"rgb sigma_a\" and \"rgb sigma_s\" must both hold nx * ny * nz = " +
+                       std::to_string(voxels) + " colours");
+  const double scale = p.number("scale", 1);
+  if (!(scale >= 0)) fail_at(where, "MakeNamedMedium: scale must be >= 0");
+  std::vector<double> density(voxels);
+  size_t densest = 0;
+  for (size_t i = 0; i < voxels; ++i) {
+    density[i] = (a[3 * i] + a[3 * i + 1] + a[3 * i + 2] + s[3 * i] + s[3 * i + 1] + s[3 * i + 2]) / 3;
+    if (density[i] > density[densest]) densest = i;
+  }
+  const double top = density[densest];
+  RGB sigma_a(0.0f), sigma_s(0.0f);
+  if (top > 0) {
+    sigma_a = RGB(float(a[3 * densest] / top), float(a[3 * densest + 1] / top), float(a[3 * densest + 2] / top));
+    sigma_s = RGB(float(s[3 * densest] / top), float(s[3 * densest + 1] / top), float(s[3 * densest + 2] / top));
+  }
+  for (size_t i = 0; i < voxels; ++i)
+    for (int c = 0; c < 3; ++c) {
+      const bool same = std::abs(a[3 * i + size_t(c)] - density[i] * sigma_a[c]) <= 1e-4 * top &&
+                        std::abs(s[3 * i + size_t(c)] - density[i] * sigma_s[c]) <= 1e-4 * top;
+      if (!same)
+        fail_at(where, "MakeNamedMedium \"rgbgrid\": voxel " + std::to_string(i) + "'s colours differ from the grid's "
+                       "(Caligo's grids hold one density, which scales one sigma_a and one sigma_s colour)");
+    }
+  const double g = p.number("g", 0);
+  if (!(g > -1 && g < 1)) fail_at(where, "MakeNamedMedium: g must be in (-1, 1)");
+  medium = Json{{"sigma_a", to_json(sigma_a * float(scale))}, {"sigma_s", to_json(sigma_s * float(scale))},
+                {"phase", Json{{"type", "hg"}, {"g", g}}}};
+  return density;
+}
+
 }  // namespace
 
 void add_light(const std::string& type, const ParamList& p, const GraphicsState& state, const std::string& where,
@@ -116,19 +153,27 @@ MediumSpec read_medium(const std::string& type, const ParamList& p, const Mat4& 
     if (!Le.is_black()) spec.medium["emission"] = to_json(Le);
     return spec;
   }
-  if (type == "uniformgrid") {
+  if (type == "uniformgrid" || type == "rgbgrid") {
     spec.homogeneous = false;
-    spec.medium = medium_coefficients(p, where, b);
     const int nx = p.integer("nx", 1), ny = p.integer("ny", 1), nz = p.integer("nz", 1);
     if (nx < 1 || ny < 1 || nz < 1 || nx > 4096 || ny > 4096 || nz > 4096)
-      fail_at(where, "MakeNamedMedium \"uniformgrid\": nx, ny and nz must be in [1, 4096]");
-    const std::vector<double> density = p.numbers("density");
-    if (density.size() != size_t(nx) * size_t(ny) * size_t(nz))
-      fail_at(where, "MakeNamedMedium \"uniformgrid\": \"density\" has " + std::to_string(density.size()) +
-                         " values, nx * ny * nz is " + std::to_string(size_t(nx) * size_t(ny) * size_t(nz)));
-    if (p.has("Le") || p.has("temperature")) fail_at(where, "MakeNamedMedium \"uniformgrid\": emission is not supported");
+      fail_at(where, "MakeNamedMedium " + quote_for_message(type) + ": nx, ny and nz must be in [1, 4096]");
+    const size_t voxels = size_t(nx) * size_t(ny) * size_t(nz);
+    std::vector<double> density;
+    if (type == "uniformgrid") {
+      spec.medium = medium_coefficients(p, where, b);
+      density = p.numbers("density");
+    } else {
+      density = rgb_grid_density(p, voxels, where, spec.medium);
+    }
+    if (density.size() != voxels)
+      fail_at(where, "MakeNamedMedium " + quote_for_message(type) + ": \"density\" has " + std::to_string(density.size()) +
+                         " values, nx * ny * nz is " + std::to_string(voxels));
+    if (p.has("Le") || p.has("temperature"))
+      fail_at(where, "MakeNamedMedium " + quote_for_message(type) + ": emission is not supported");
     const Vec3 p0 = p.point("p0", {}), p1 = p.point("p1", {1, 1, 1});
-    if (!(p1.x > p0.x && p1.y > p0.y && p1.z > p0.z)) fail_at(where, "MakeNamedMedium \"uniformgrid\": p1 must exceed p0");
+    if (!(p1.x > p0.x && p1.y > p0.y && p1.z > p0.z))
+      fail_at(where, "MakeNamedMedium " + quote_for_message(type) + ": p1 must exceed p0");
     // Voxel (i, j, k) of unit size at the origin, then onto [p0, p1] (cell-centred, as pbrt samples), then the CTM.
     const Vec3 extent = p1 - p0;
     const Mat4 to_box = (Transform::translate(p0) *
@@ -154,7 +199,7 @@ MediumSpec read_medium(const std::string& type, const ParamList& p, const Mat4& 
     return spec;
   }
   fail_at(where, "MakeNamedMedium " + quote_for_message(type) +
-                     " cannot be rendered by Caligo (homogeneous, uniformgrid, nanovdb)");
+                     " cannot be rendered by Caligo (homogeneous, uniformgrid, rgbgrid, nanovdb)");
 }
 
 void Builder::place_medium(const std::string& name, const std::string& where, bool around_camera) {

@@ -134,6 +134,11 @@ std::vector<double> ParamList::numbers(const std::string& name) const {
   return typed(name, {"float", "point3", "point", "normal3", "normal", "vector3", "vector", "point2", "vector2"}).numbers;
 }
 
+std::vector<double> ParamList::rgb_numbers(const std::string& name) const {
+  if (!has(name)) return {};
+  return typed(name, {"rgb"}).numbers;
+}
+
 std::vector<int> ParamList::integers(const std::string& name) const {
   if (!has(name)) return {};
   const Param& p = typed(name, {"integer"});

@@ -36,6 +36,7 @@ class ParamList {
   bool boolean(const std::string& name, bool fallback) const;
   std::string string(const std::string& name, const std::string& fallback) const;
   std::vector<double> numbers(const std::string& name) const;  // empty when not given
+  std::vector<double> rgb_numbers(const std::string& name) const;  // an "rgb" array's values; empty when not given
   std::vector<int> integers(const std::string& name) const;
   Vec3 point(const std::string& name, Vec3 fallback) const;
   // A spectrum as pbrt converts it to RGB: "rgb" as given; "blackbody" T as the blackbody's
