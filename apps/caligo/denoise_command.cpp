@@ -47,25 +47,9 @@ DenoisedImage denoise_image(const Image& image, const std::string& where, const 
   return out;
 }
 
-Image denoised_beauty(const Image& image) {
-  const auto ch = *image.rgb_indices("denoised.");
-  Image out(image.width(), image.height(), {"R", "G", "B"});
-  for (int y = 0; y < image.height(); ++y)
-    for (int x = 0; x < image.width(); ++x)
-      for (int c = 0; c < 3; ++c) out.at(x, y, c) = image.at(x, y, ch[size_t(c)]);
-  return out;
-}
+Image denoised_beauty(const Image& image) { return image.rgb_image(*image.rgb_indices("denoised.")); }
 
 namespace {
-
-Image beauty_only(const Image& image) {
-  const auto ch = *image.rgb_indices("");
-  Image out(image.width(), image.height(), {"R", "G", "B"});
-  for (int y = 0; y < image.height(); ++y)
-    for (int x = 0; x < image.width(); ++x)
-      for (int c = 0; c < 3; ++c) out.at(x, y, c) = image.at(x, y, ch[size_t(c)]);
-  return out;
-}
 
 // noisy | denoised | reference | error of the denoised (comparison_strip's heat map).
 Rgb8Image four_panels(const Image& noisy, const Image& denoised, const Image& reference, float exposure) {
@@ -132,7 +116,7 @@ int run_denoise(const DenoiseOptions& o) {
       [&](const std::string& temp) { write_exr(temp, d.image, false, attributes); },
       [&](const std::string& temp) { write_png(temp, beauty.width(), beauty.height(), to_srgb8_preview(beauty, preview)); }};
   if (reference) {
-    const Image noisy = beauty_only(image), ref = beauty_only(*reference);
+    const Image noisy = image.rgb_image(*image.rgb_indices("")), ref = reference->rgb_image(*reference->rgb_indices(""));
     const ImageMetrics before = compare_images(noisy, ref), after = compare_images(beauty, ref);
     std::printf("mse_noisy %.6g\nmse_denoised %.6g\nrelmse_noisy %.6g\nrelmse_denoised %.6g\n", before.rmse * before.rmse,
                 after.rmse * after.rmse, before.relative_mse, after.relative_mse);

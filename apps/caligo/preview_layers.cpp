@@ -4,6 +4,7 @@
 #include <optional>
 #include <set>
 
+#include "core/median.h"
 #include "preview_server.h"
 
 namespace caligo {
@@ -19,39 +20,34 @@ Image grey(const Image& image, int channel, const std::function<float(float)>& m
   return out;
 }
 
-Image rgb_of(const Image& image, const std::array<int, 3>& ch, float scale, float offset) {
-  Image out(image.width(), image.height(), {"R", "G", "B"});
+// The median of the finite depths, the scale the depth layer is shown at.
+float median_depth(const Image& image, int z) {
+  std::vector<double> finite;
   for (int y = 0; y < image.height(); ++y)
     for (int x = 0; x < image.width(); ++x)
-      for (int c = 0; c < 3; ++c) out.at(x, y, c) = image.at(x, y, ch[size_t(c)]) * scale + offset;
-  return out;
+      if (std::isfinite(image.at(x, y, z)) && image.at(x, y, z) > 0.0f) finite.push_back(image.at(x, y, z));
+  return finite.empty() ? 1.0f : std::max(float(median(std::move(finite))), 1e-6f);
 }
 
 }  // namespace
 
 std::optional<Image> preview_layer(const Image& image, const std::string& layer) {
   if (layer == "beauty") {
-    if (const auto ch = image.rgb_indices("")) return rgb_of(image, *ch, 1.0f, 0.0f);
+    if (const auto ch = image.rgb_indices("")) return image.rgb_image(*ch);
     return std::nullopt;
   }
   if (layer == "N") {
     const int x = image.channel_index("N.X"), y = image.channel_index("N.Y"), z = image.channel_index("N.Z");
     if (x < 0 || y < 0 || z < 0) return std::nullopt;
-    return rgb_of(image, {x, y, z}, 0.5f, 0.5f);  // [-1, 1] shown as [0, 1]
+    Image normals = image.rgb_image({x, y, z});
+    for (float& v : normals.pixels()) v = 0.5f * v + 0.5f;  // [-1, 1] shown as [0, 1]
+    return normals;
   }
   if (layer == "Z") {
     const int z = image.channel_index("Z");
     if (z < 0) return std::nullopt;
     // Near white, far dark: 1 / (1 + z / median of the finite depths); the background black.
-    std::vector<float> finite;
-    for (int y = 0; y < image.height(); ++y)
-      for (int x = 0; x < image.width(); ++x)
-        if (std::isfinite(image.at(x, y, z))) finite.push_back(image.at(x, y, z));
-    float median = 1.0f;
-    if (!finite.empty()) {
-      std::nth_element(finite.begin(), finite.begin() + std::ptrdiff_t(finite.size() / 2), finite.end());
-      median = std::max(finite[finite.size() / 2], 1e-6f);
-    }
+    const float median = median_depth(image, z);
     return grey(image, z, [median](float v) { return std::isfinite(v) ? 1.0f / (1.0f + std::max(v, 0.0f) / median) : 0.0f; });
   }
   if (layer == "A") {
@@ -59,7 +55,7 @@ std::optional<Image> preview_layer(const Image& image, const std::string& layer)
     if (a < 0) return std::nullopt;
     return grey(image, a, [](float v) { return v; });
   }
-  if (const auto ch = image.rgb_indices(layer + ".")) return rgb_of(image, *ch, 1.0f, 0.0f);
+  if (const auto ch = image.rgb_indices(layer + ".")) return image.rgb_image(*ch);
   return std::nullopt;
 }
 

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -335,6 +336,46 @@ int run_distributed(const RenderOptions& o, const SceneDesc& desc, const Progres
   return 0;
 }
 
+// The outputs of a single-process render that has ended: the final image (and the asked-for
+// checkpoint), or the partial image when it was interrupted or stopped before every pixel had a
+// sample; the preview page gets the last state first. `resume_key` gives the checkpoint key an
+// interrupt's checkpoint takes: called only then, as it may re-read every asset of the scene.
+int write_render(const RenderOptions& o, const SceneDesc& desc, const RenderSettings& settings,
+                 const RenderOutputs& outputs, const Film& film, const ProgressiveResult& result,
+                 const InterruptGuard& interrupt, PreviewServer* preview,
+                 const std::function<uint64_t()>& resume_key, uint64_t key) {
+  const Image image = film.resolve();
+  const int target = settings.spp;
+  const auto samples = sample_range(film, settings);
+  if (preview) {
+    preview->publish({image, samples.first, target, result.stats.seconds, true, {}});
+    preview->linger(2.0);
+  }
+  if (samples.second > target && !o.quiet)
+    std::fprintf(stderr, "caligo: the checkpoint already held %d samples per pixel, more than --spp %d: all are kept\n",
+                 samples.second, target);
+  // A signal after the last sample changes nothing: the render is complete. A time limit that
+  // cut the first pass leaves pixels without a sample: that image must not replace a finished one.
+  const bool complete = samples.first >= target || (!result.stopped_by.empty() && samples.first > 0);
+  if (interrupt.stopped() && !complete) {
+    outputs.write_interrupted(image, film, resume_key(), header_of(desc, settings, samples, result.stats.seconds));
+    return report_interrupt(outputs, interrupt.signal_number(), samples, target);
+  }
+  if (!complete && !result.stopped_by.empty()) {
+    outputs.write_interrupted(image, film, resume_key(), header_of(desc, settings, samples, result.stats.seconds));
+    std::fprintf(stderr, "caligo: %s came before every pixel had a sample: wrote the partial image %s (%s is kept)\n",
+                 result.stopped_by.c_str(), quote_for_message(outputs.partial_exr()).c_str(),
+                 quote_for_message(outputs.exr()).c_str());
+    return 0;
+  }
+  outputs.write_final(image, &film, key, header_of(desc, settings, samples, result.stats.seconds));
+  if (!result.stopped_by.empty() && !o.quiet)
+    std::fprintf(stderr, "caligo: stopped by %s at %d of %d samples per pixel\n", result.stopped_by.c_str(),
+                 samples.first, target);
+  if (!o.quiet) print_summary(o.scene, settings, result.stats, outputs.exr(), samples);
+  return 0;
+}
+
 }  // namespace
 
 int run_render(const RenderOptions& o) {
@@ -377,37 +418,8 @@ int run_render(const RenderOptions& o) {
   const ProgressiveResult result =
       render_progressive(film, *scene, settings, schedule, progress_hooks(o, outputs, key, film, preview.get()),
                          &interrupt.stop(), style);
-  const Image image = film.resolve();
-  if (preview) {
-    const auto range = sample_range(film, settings);
-    preview->publish({image, range.first, settings.spp, result.stats.seconds, true, {}});
-    preview->linger(2.0);
-  }
-  const int target = settings.spp;
-  const auto samples = sample_range(film, settings);
-  if (samples.second > target && !o.quiet)
-    std::fprintf(stderr, "caligo: the checkpoint already held %d samples per pixel, more than --spp %d: all are kept\n",
-                 samples.second, target);
-  // A signal after the last sample changes nothing: the render is complete. A time limit that
-  // cut the first pass leaves pixels without a sample: that image must not replace a finished one.
-  const bool complete = samples.first >= target || (!result.stopped_by.empty() && samples.first > 0);
-  if (interrupt.stopped() && !complete) {
-    outputs.write_interrupted(image, film, keyed ? key : key_now(), header_of(desc, settings, samples, result.stats.seconds));
-    return report_interrupt(outputs, interrupt.signal_number(), samples, target);
-  }
-  if (!complete && !result.stopped_by.empty()) {
-    outputs.write_interrupted(image, film, keyed ? key : key_now(), header_of(desc, settings, samples, result.stats.seconds));
-    std::fprintf(stderr, "caligo: %s came before every pixel had a sample: wrote the partial image %s (%s is kept)\n",
-                 result.stopped_by.c_str(), quote_for_message(outputs.partial_exr()).c_str(),
-                 quote_for_message(outputs.exr()).c_str());
-    return 0;
-  }
-  outputs.write_final(image, &film, key, header_of(desc, settings, samples, result.stats.seconds));
-  if (!result.stopped_by.empty() && !o.quiet)
-    std::fprintf(stderr, "caligo: stopped by %s at %d of %d samples per pixel\n", result.stopped_by.c_str(),
-                 samples.first, target);
-  if (!o.quiet) print_summary(o.scene, settings, result.stats, outputs.exr(), samples);
-  return 0;
+  return write_render(o, desc, settings, outputs, film, result, interrupt, preview.get(),
+                      [&] { return keyed ? key : key_now(); }, key);
 }
 
 }  // namespace caligo

@@ -17,26 +17,6 @@ constexpr int kSymmetric = kTerms * (kTerms + 1) / 2;  // the distinct entries o
 constexpr float kEpsilon = 1e-10f;
 constexpr double kRidge = 1e-4;  // on the slopes, relative to the window's total weight
 
-// Mean over a (2r+1)^2 box clamped to the image, separably.
-PixelPlane box_mean(const PixelPlane& in, int w, int h, int r) {
-  PixelPlane rows(in.size()), out(in.size());
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      float sum = 0.0f;
-      const int a = std::max(0, x - r), b = std::min(w - 1, x + r);
-      for (int i = a; i <= b; ++i) sum += in[size_t(y) * size_t(w) + size_t(i)];
-      rows[size_t(y) * size_t(w) + size_t(x)] = sum / float(b - a + 1);
-    }
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      float sum = 0.0f;
-      const int a = std::max(0, y - r), b = std::min(h - 1, y + r);
-      for (int j = a; j <= b; ++j) sum += rows[size_t(j) * size_t(w) + size_t(x)];
-      out[size_t(y) * size_t(w) + size_t(x)] = sum / float(b - a + 1);
-    }
-  return out;
-}
-
 // Every plane the filter reads, padded by replicating its edges, so that the loops over a tile's
 // rows read contiguous floats with no clamping (and vectorise).
 struct PaddedPlanes {

@@ -22,8 +22,8 @@
 //    and each pixel takes the candidate of the lower estimate: the result is never worse than
 //    the noisy input in that estimate.
 //
-// Cost: O(pixels x window x features^2), tiled and threaded; about one second for 1920x1080
-// on two cores at the default window (docs/benchmarks.md).
+// Cost: O(pixels x window x features^2), tiled and threaded; 2.0 s for 1920x1080 on two cores
+// at the default window (docs/benchmarks.md, bench_denoise.cpp).
 #pragma once
 
 #include <vector>

@@ -5,6 +5,7 @@
 #include <initializer_list>
 
 #include "core/error.h"
+#include "core/median.h"
 
 namespace caligo {
 namespace {
@@ -33,25 +34,6 @@ PixelPlanes3 planes_of(const Image& image, const std::array<int, 3>& ch) {
   return out;
 }
 
-// A 3x3 box mean, clamped at the borders: a pixel's own variance estimate is itself noisy.
-PixelPlane box3(const PixelPlane& in, int w, int h) {
-  PixelPlane out(in.size());
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      float sum = 0.0f;
-      int n = 0;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int qx = x + dx, qy = y + dy;
-          if (qx < 0 || qy < 0 || qx >= w || qy >= h) continue;
-          sum += in[size_t(qy) * size_t(w) + size_t(qx)];
-          ++n;
-        }
-      out[size_t(y) * size_t(w) + size_t(x)] = sum / float(n);
-    }
-  return out;
-}
-
 // Scales a feature to unit spread (its standard deviation, at least 1e-2 of its range's floor)
 // so that the regression's ridge weighs every feature alike.
 void normalise(PixelPlane& f) {
@@ -64,6 +46,26 @@ void normalise(PixelPlane& f) {
 }
 
 }  // namespace
+
+// Mean over a (2r+1)^2 box clamped to the image, separably.
+PixelPlane box_mean(const PixelPlane& in, int w, int h, int r) {
+  PixelPlane rows(in.size()), out(in.size());
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      float sum = 0.0f;
+      const int a = std::max(0, x - r), b = std::min(w - 1, x + r);
+      for (int i = a; i <= b; ++i) sum += in[size_t(y) * size_t(w) + size_t(i)];
+      rows[size_t(y) * size_t(w) + size_t(x)] = sum / float(b - a + 1);
+    }
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      float sum = 0.0f;
+      const int a = std::max(0, y - r), b = std::min(h - 1, y + r);
+      for (int j = a; j <= b; ++j) sum += rows[size_t(j) * size_t(w) + size_t(x)];
+      out[size_t(y) * size_t(w) + size_t(x)] = sum / float(b - a + 1);
+    }
+  return out;
+}
 
 DenoiseLayers denoise_layers(const Image& image, const std::string& where) {
   if (image.pixel_count() == 0) throw InputError(SourceLocation{where, ""}, "the image is empty");
@@ -84,7 +86,7 @@ DenoiseLayers denoise_layers(const Image& image, const std::string& where) {
         if (!std::isfinite(v)) throw InputError(SourceLocation{where, ""}, "a layer the denoiser reads holds a NaN or inf");
   PixelPlane avg(image.pixel_count());
   for (size_t i = 0; i < avg.size(); ++i) avg[i] = (variance[0][i] + variance[1][i] + variance[2][i]) / 3.0f;
-  d.variance = box3(avg, d.width, d.height);
+  d.variance = box_mean(avg, d.width, d.height, 1);  // a pixel's own variance estimate is itself noisy
   for (int c = 0; c < 3; ++c) {
     d.features[size_t(c)] = albedo[size_t(c)];
     d.features[size_t(3 + c)] = normal[size_t(c)];
@@ -93,15 +95,11 @@ DenoiseLayers denoise_layers(const Image& image, const std::string& where) {
   PixelPlane depth = planes_of(image, {z, z, z})[0];  // +inf is the background
   for (float v : depth)
     if (std::isnan(v) || v == -INFINITY) throw InputError(SourceLocation{where, ""}, "Z holds a NaN or -inf");
-  std::vector<float> finite;
+  std::vector<double> finite;
   for (float v : depth)
     if (std::isfinite(v) && v > 0.0f) finite.push_back(v);
-  float median = 1.0f;
-  if (!finite.empty()) {
-    std::nth_element(finite.begin(), finite.begin() + std::ptrdiff_t(finite.size() / 2), finite.end());
-    median = std::max(finite[finite.size() / 2], 1e-6f);
-  }
-  for (float& v : depth) v = std::isfinite(v) ? std::max(v, 0.0f) / (std::max(v, 0.0f) + median) : 1.0f;
+  const float median_depth = finite.empty() ? 1.0f : std::max(float(median(std::move(finite))), 1e-6f);
+  for (float& v : depth) v = std::isfinite(v) ? std::max(v, 0.0f) / (std::max(v, 0.0f) + median_depth) : 1.0f;
   d.features[6] = std::move(depth);
   for (PixelPlane& f : d.features) normalise(f);
   return d;

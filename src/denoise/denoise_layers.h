@@ -33,6 +33,9 @@ inline constexpr std::array<const char*, 5> kDenoiseLayerNames = {"half_a.", "ha
 // command that writes it; a non-finite value anywhere is one too.
 DenoiseLayers denoise_layers(const Image& image, const std::string& where);
 
+// The mean over a (2r+1)^2 box clamped to the image, separably.
+PixelPlane box_mean(const PixelPlane& in, int w, int h, int r);
+
 // `image` with the layer `name` (name.R, name.G, name.B) set to `values` (rows from the top):
 // replaced where it exists, appended otherwise.
 Image with_rgb_layer(const Image& image, const std::string& name, const std::vector<RGB>& values);

@@ -43,6 +43,13 @@ std::optional<std::array<int, 3>> Image::rgb_indices(std::string_view prefix) co
   return indices;
 }
 
+Image Image::rgb_image(const std::array<int, 3>& channels) const {
+  Image out(width_, height_, {"R", "G", "B"});
+  for (int y = 0; y < height_; ++y)
+    for (int x = 0; x < width_; ++x) out.set_rgb(x, y, 0, rgb(x, y, channels));
+  return out;
+}
+
 RGB Image::rgb(int x, int y, int base_channel) const {
   const float* p = &pixels_[offset(x, y, base_channel)];
   assert(base_channel + 2 < channel_count());

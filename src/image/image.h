@@ -56,6 +56,8 @@ class Image {
   void set_rgb(int x, int y, int base_channel, RGB value);
   // The same for three channels that need not be adjacent (see rgb_indices).
   RGB rgb(int x, int y, const std::array<int, 3>& channels) const;
+  // Those three channels as an image of its own, channels R, G, B (a layer shown as a beauty).
+  Image rgb_image(const std::array<int, 3>& channels) const;
 
   // Every sample, interleaved as described above: pixel_count() * channel_count() floats.
   std::span<float> pixels() { return pixels_; }

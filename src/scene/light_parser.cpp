@@ -113,7 +113,7 @@ std::shared_ptr<const EnvironmentMap> load_environment_map(const JsonCursor& c, 
   std::string key = path;
   if (equal_area)
     for (const auto& row : equal_area->to_world.matrix().m)
-      for (float v : row) key += " " + std::to_string(v);
+      for (float v : row) key.append(" ").append(std::to_string(v));
   if (auto it = files.environment_maps.find(key); it != files.environment_maps.end()) return it->second;
   try {
     const Image image = read_image_rgb(path);
