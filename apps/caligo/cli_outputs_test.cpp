@@ -281,3 +281,14 @@ TEST_F(Outputs, TheExrHeaderRecordsTheRenderAndViewPicksThePreviewCurve) {
   EXPECT_NE(bad.err.find("--view"), std::string::npos) << bad.err;
   EXPECT_FALSE(fs::exists(dir_ / "bad.exr"));
 }
+
+// --preview's port is checked before any work: a bad one is exit 2 naming the option, nothing written.
+TEST_F(Outputs, ABadPreviewPortIsRefusedFirst) {
+  for (const char* port : {"abc", "70000", "-1", "8080x"}) {
+    const RunResult r = run(std::string("render default --res 8x8 --spp 1 --preview ") + port + " -o " +
+                            (dir_ / "p.exr").string());
+    EXPECT_EQ(r.exit_code, 2) << port << ": " << r.err;
+    EXPECT_NE(r.err.find("--preview"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "p.exr"));
+  }
+}

@@ -70,8 +70,9 @@ int run_render_denoised(const RenderOptions& o, const Scene& scene, RenderSettin
   // preview finds two halves of equal counts; the halves' merge ends the plain render's film.
   const auto start = std::chrono::steady_clock::now();
   const auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
-  Progress progress("render", uint64_t(settings.resolution.x) * uint64_t(settings.resolution.y) * uint64_t(settings.spp),
-                    o.quiet ? Progress::Style::kQuiet : Progress::Style::kAuto);
+  const PixelBounds window = settings.crop.pixels(settings.resolution);
+  const uint64_t pixels = window.empty() ? 0 : uint64_t(window.width()) * uint64_t(window.height());
+  Progress progress("render", pixels * uint64_t(settings.spp), o.quiet ? Progress::Style::kQuiet : Progress::Style::kAuto);
   RenderStats stats;
   for (int done = 0; done < half_b && !interrupt.stopped();) {
     done = o.single_pass ? half_b : std::min(half_b, std::max(1, 2 * done));
